@@ -1,0 +1,7 @@
+//! Analyses on an assembled [`crate::System`].
+
+pub mod eigen;
+pub mod modal;
+pub mod reduce;
+
+pub use modal::{modal, modal_at_reference, ModalResult, ModalSettings, Mode, ModeKind};

@@ -1,0 +1,233 @@
+//! Linearized modal analysis of the constrained system.
+//!
+//! At a state (q, λ): K = ∂(Q_int − Q_ext)/∂q + ∂(C_qᵀλ)/∂q, M constant.
+//! With N an orthonormal basis of null(C_q): K_r = NᵀKN, M_r = NᵀMN, and
+//! K_r x = ω² M_r x is solved by Cholesky reduction. f = √max(ω², 0)/2π [Hz].
+//!
+//! Zero-frequency (rigid-body or mechanism) modes are those with
+//! |ω²| ≤ tol, tol = [`ModalSettings::rigid_tolerance`] · n · ε · max|ω²|:
+//! the round-off level of the reduced problem. Each elastic mode is classified
+//! by where its strain energy ½φᵀKφ sits: beam axial, beam bending, or springs.
+
+use super::eigen::{solve_generalized, EigenFailure};
+use super::reduce::NullSpace;
+use crate::error::AnalysisError;
+use crate::system::{EnergyBreakdown, Linearization, System};
+use faer::Mat;
+use serde::Serialize;
+
+/// Settings of a modal analysis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModalSettings {
+    /// Number of modes to report, rigid ones included (`None` = all).
+    pub modes: Option<usize>,
+    /// Multiple of n·ε·max|ω²| below which ω² counts as zero.
+    pub rigid_tolerance: f64,
+}
+
+impl Default for ModalSettings {
+    fn default() -> Self {
+        ModalSettings {
+            modes: None,
+            rigid_tolerance: 64.0,
+        }
+    }
+}
+
+/// What a mode mostly does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ModeKind {
+    /// Zero frequency: rigid-body motion or a free mechanism.
+    Rigid,
+    Bending,
+    Axial,
+    /// Energy mostly in springs (e.g. a body rocking on a torsion spring).
+    Spring,
+}
+
+impl std::fmt::Display for ModeKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let s = match self {
+            ModeKind::Rigid => "rigid",
+            ModeKind::Bending => "bending",
+            ModeKind::Axial => "axial",
+            ModeKind::Spring => "spring",
+        };
+        f.write_str(s)
+    }
+}
+
+/// Fractions of a mode's strain energy.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EnergyFractions {
+    pub axial: f64,
+    pub bending: f64,
+    pub springs: f64,
+}
+
+/// One mode.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Mode {
+    /// 0-based, ascending frequency.
+    pub index: usize,
+    /// Natural frequency [SI: Hz]; 0 for rigid modes.
+    pub frequency_hz: f64,
+    /// Eigenvalue ω² [SI: rad²/s²] (negative = unstable direction).
+    pub eigenvalue: f64,
+    pub kind: ModeKind,
+    /// Strain-energy split (all zero for rigid modes).
+    pub energy: EnergyFractions,
+    /// Mass-normalized shape in the global coordinates (φᵀMφ = 1).
+    #[serde(skip)]
+    pub shape: Vec<f64>,
+}
+
+/// Result of a modal analysis.
+#[derive(Debug, Clone, Serialize)]
+pub struct ModalResult {
+    /// Number of coordinates.
+    pub dofs: usize,
+    /// Number of constraint equations.
+    pub constraints: usize,
+    /// Labels of joints with redundant equations.
+    pub redundant_constraints: Vec<String>,
+    /// Dimension of the reduced problem.
+    pub reduced_dofs: usize,
+    /// Number of zero-frequency modes.
+    pub rigid_modes: usize,
+    pub modes: Vec<Mode>,
+}
+
+impl ModalResult {
+    /// Elastic modes of a kind, ascending.
+    pub fn of_kind(&self, kind: ModeKind) -> impl Iterator<Item = &Mode> {
+        self.modes.iter().filter(move |m| m.kind == kind)
+    }
+
+    /// The first bending mode, if any was computed.
+    pub fn first_bending(&self) -> Option<&Mode> {
+        self.of_kind(ModeKind::Bending).next()
+    }
+}
+
+/// Modal analysis at the system's reference configuration (unloaded, λ = 0).
+pub fn modal_at_reference(
+    system: &System,
+    settings: &ModalSettings,
+) -> Result<ModalResult, AnalysisError> {
+    let at = Linearization {
+        q: &system.q0,
+        lambda: None,
+        time: 0.0,
+        load_scale: 0.0,
+    };
+    modal(system, &at, settings)
+}
+
+/// Modal analysis linearized at `at`.
+pub fn modal(
+    system: &System,
+    at: &Linearization,
+    settings: &ModalSettings,
+) -> Result<ModalResult, AnalysisError> {
+    let n = system.ndof();
+    let mut k = Mat::zeros(n, n);
+    system.tangent_stiffness(at, &mut k);
+    let m = system.mass_matrix();
+    let mut cq = Mat::zeros(system.constraint_count(), n);
+    system.constraint_jacobian(at.q, &mut cq);
+    let ns = NullSpace::new(&cq);
+    if ns.dim() == 0 {
+        return Err(AnalysisError::NoFreedom);
+    }
+    let kr = ns.project(&k);
+    let mr = ns.project(&m);
+    let eig = solve_generalized(&kr, &mr).map_err(|e| match e {
+        EigenFailure::SingularMass { direction } => {
+            let full = ns.expand(&direction, n);
+            let i = (0..n)
+                .max_by(|&a, &b| full[a].abs().total_cmp(&full[b].abs()))
+                .unwrap_or(0);
+            AnalysisError::SingularMass {
+                dof: system.dof_label(i),
+            }
+        }
+        EigenFailure::NoConvergence => AnalysisError::EigenSolver { size: ns.dim() },
+    })?;
+    let lmax = eig.values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let tol = settings.rigid_tolerance * ns.dim() as f64 * f64::EPSILON * lmax;
+    let count = settings.modes.map_or(ns.dim(), |c| c.min(ns.dim()));
+    let rigid_modes = eig.values.iter().filter(|v| v.abs() <= tol).count();
+    let mut modes = Vec::with_capacity(count);
+    for i in 0..count {
+        let value = eig.values[i];
+        let xr: Vec<f64> = (0..ns.dim()).map(|r| eig.vectors[(r, i)]).collect();
+        let shape = ns.expand(&xr, n);
+        let rigid = value.abs() <= tol;
+        let (kind, energy) = if rigid {
+            (
+                ModeKind::Rigid,
+                EnergyFractions {
+                    axial: 0.0,
+                    bending: 0.0,
+                    springs: 0.0,
+                },
+            )
+        } else {
+            classify(system.mode_energy(at.q, &shape))
+        };
+        let frequency_hz = if rigid {
+            0.0
+        } else {
+            value.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
+        };
+        modes.push(Mode {
+            index: i,
+            frequency_hz,
+            eigenvalue: value,
+            kind,
+            energy,
+            shape,
+        });
+    }
+    let redundant_constraints = redundant_labels(system, &ns.redundant_rows);
+    Ok(ModalResult {
+        dofs: n,
+        constraints: system.constraint_count(),
+        redundant_constraints,
+        reduced_dofs: ns.dim(),
+        rigid_modes,
+        modes,
+    })
+}
+
+fn classify(e: EnergyBreakdown) -> (ModeKind, EnergyFractions) {
+    let total = e.axial.abs() + e.bending.abs() + e.springs.abs();
+    let frac = |x: f64| if total > 0.0 { x.abs() / total } else { 0.0 };
+    let fr = EnergyFractions {
+        axial: frac(e.axial),
+        bending: frac(e.bending),
+        springs: frac(e.springs),
+    };
+    let kind = if fr.springs > fr.axial && fr.springs > fr.bending {
+        ModeKind::Spring
+    } else if fr.axial > fr.bending {
+        ModeKind::Axial
+    } else {
+        ModeKind::Bending
+    };
+    (kind, fr)
+}
+
+fn redundant_labels(system: &System, rows: &[usize]) -> Vec<String> {
+    let mut labels: Vec<String> = Vec::new();
+    for &r in rows {
+        let idx = system.constraint_rows.partition_point(|&start| start <= r) - 1;
+        let label = system.constraints[idx].label().to_string();
+        if !labels.contains(&label) {
+            labels.push(label);
+        }
+    }
+    labels
+}

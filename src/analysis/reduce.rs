@@ -1,0 +1,152 @@
+//! Reduction of a constrained linear problem to its free coordinates.
+//!
+//! Given C_q (m × n), an orthonormal basis N of null(C_q) is built so that
+//! K_r = NᵀKN, M_r = NᵀMN. Only the coordinates that some constraint touches
+//! need the SVD; all others map to themselves, so N stays sparse and the
+//! reduction costs O(n²) instead of O(n³). Rows are normalized first, so a
+//! rotational row [rad] and a positional row [m] weigh alike; constraints
+//! whose rows add nothing (e.g. a second clamp of the same node) are named.
+
+use faer::Mat;
+
+/// Relative singular value below which a constraint row is dependent.
+pub const RANK_TOLERANCE: f64 = 1e-10;
+
+/// The null-space map q = N q_r.
+#[derive(Debug, Clone)]
+pub struct NullSpace {
+    /// Coordinates no constraint touches (identity part of N).
+    pub free: Vec<usize>,
+    /// Coordinates touched by constraints.
+    pub involved: Vec<usize>,
+    /// Basis of the null space on `involved` (|involved| × k).
+    pub basis: Mat<f64>,
+    /// Rows of C_q that are linearly dependent on earlier rows.
+    pub redundant_rows: Vec<usize>,
+}
+
+impl NullSpace {
+    /// Null space of C_q (m × n).
+    pub fn new(cq: &Mat<f64>) -> NullSpace {
+        let (m, n) = (cq.nrows(), cq.ncols());
+        let mut touched = vec![false; n];
+        for i in 0..m {
+            for j in 0..n {
+                if cq[(i, j)] != 0.0 {
+                    touched[j] = true;
+                }
+            }
+        }
+        let involved: Vec<usize> = (0..n).filter(|&j| touched[j]).collect();
+        let free: Vec<usize> = (0..n).filter(|&j| !touched[j]).collect();
+        let d = involved.len();
+        // Normalized rows restricted to the involved coordinates.
+        let a = Mat::from_fn(m, d, |i, k| cq[(i, involved[k])]);
+        let norms: Vec<f64> = (0..m)
+            .map(|i| (0..d).map(|k| a[(i, k)].powi(2)).sum::<f64>().sqrt())
+            .collect();
+        let a = Mat::from_fn(m, d, |i, k| {
+            if norms[i] > 0.0 {
+                a[(i, k)] / norms[i]
+            } else {
+                0.0
+            }
+        });
+        let redundant_rows = dependent_rows(&a);
+        let rank = m - redundant_rows.len();
+        let basis = if d == 0 {
+            Mat::zeros(0, 0)
+        } else {
+            // Full SVD of Aᵀ A's row space: the last d − rank right singular vectors.
+            let svd = a.svd().expect("SVD of a small constraint matrix converges");
+            let v = svd.V();
+            Mat::from_fn(d, d - rank, |i, k| v[(i, rank + k)])
+        };
+        NullSpace {
+            free,
+            involved,
+            basis,
+            redundant_rows,
+        }
+    }
+
+    /// Number of free (reduced) coordinates.
+    pub fn dim(&self) -> usize {
+        self.free.len() + self.basis.ncols()
+    }
+
+    /// NᵀAN for a symmetric n × n matrix A.
+    pub fn project(&self, a: &Mat<f64>) -> Mat<f64> {
+        let (f, k) = (self.free.len(), self.basis.ncols());
+        let mut out = Mat::zeros(f + k, f + k);
+        for (i, &gi) in self.free.iter().enumerate() {
+            for (j, &gj) in self.free.iter().enumerate() {
+                out[(i, j)] = a[(gi, gj)];
+            }
+        }
+        if k == 0 {
+            return out;
+        }
+        let z = &self.basis;
+        // A_fD Z (f × k)
+        let a_fd = Mat::from_fn(f, self.involved.len(), |i, j| {
+            a[(self.free[i], self.involved[j])]
+        });
+        let afz = &a_fd * z;
+        let a_dd = Mat::from_fn(self.involved.len(), self.involved.len(), |i, j| {
+            a[(self.involved[i], self.involved[j])]
+        });
+        let zaz = z.transpose() * (&a_dd * z);
+        for i in 0..f {
+            for j in 0..k {
+                out[(i, f + j)] = afz[(i, j)];
+                out[(f + j, i)] = afz[(i, j)];
+            }
+        }
+        for i in 0..k {
+            for j in 0..k {
+                out[(f + i, f + j)] = 0.5 * (zaz[(i, j)] + zaz[(j, i)]);
+            }
+        }
+        out
+    }
+
+    /// q = N q_r (n = total coordinates).
+    pub fn expand(&self, qr: &[f64], n: usize) -> Vec<f64> {
+        let mut q = vec![0.0; n];
+        for (i, &g) in self.free.iter().enumerate() {
+            q[g] = qr[i];
+        }
+        let f = self.free.len();
+        for (r, &g) in self.involved.iter().enumerate() {
+            q[g] = (0..self.basis.ncols())
+                .map(|k| self.basis[(r, k)] * qr[f + k])
+                .sum();
+        }
+        q
+    }
+}
+
+/// Rows of a (row-normalized) matrix that depend on earlier rows (modified
+/// Gram–Schmidt in row order).
+fn dependent_rows(a: &Mat<f64>) -> Vec<usize> {
+    let (m, d) = (a.nrows(), a.ncols());
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    let mut dependent = Vec::new();
+    for i in 0..m {
+        let mut r: Vec<f64> = (0..d).map(|k| a[(i, k)]).collect();
+        for _ in 0..2 {
+            for b in &basis {
+                let p: f64 = r.iter().zip(b).map(|(x, y)| x * y).sum();
+                r.iter_mut().zip(b).for_each(|(x, y)| *x -= p * y);
+            }
+        }
+        let norm = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if norm <= RANK_TOLERANCE.sqrt() {
+            dependent.push(i);
+        } else {
+            basis.push(r.into_iter().map(|x| x / norm).collect());
+        }
+    }
+    dependent
+}

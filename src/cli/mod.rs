@@ -1,0 +1,44 @@
+//! Subcommands. Each file parses its flags, validates them, calls the
+//! library and prints; nothing numerical lives here.
+
+mod modal;
+
+use ancf_modal::model::Model;
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+use std::path::{Path, PathBuf};
+
+/// Modal and frequency-response analysis of planar rigid-flexible
+/// assemblies with ANCF beams.
+#[derive(Debug, Parser)]
+#[command(name = "ancf-modal", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Natural frequencies and mode shapes of the linearized assembly.
+    Modal(modal::ModalArgs),
+}
+
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Modal(a) => modal::run(a),
+    }
+}
+
+/// The model file, or the built-in default when none is given.
+pub fn load_model(path: Option<&Path>) -> Result<Model> {
+    Ok(match path {
+        Some(p) => Model::from_file(p)?,
+        None => Model::builtin(),
+    })
+}
+
+/// Write text to a file atomically.
+pub fn write_output(path: &PathBuf, text: &str) -> Result<()> {
+    ancf_modal::output::files::write_atomic(path, text.as_bytes())?;
+    Ok(())
+}

@@ -1,0 +1,353 @@
+//! The planar ANCF cable element (gradient-deficient Euler–Bernoulli beam).
+//!
+//! Element coordinates `e = [rA, r'A, rB, r'B]` (8 values [SI: m, –]):
+//! positions and slopes ∂r/∂x of its two nodes, x the reference arc length.
+//! The position field is `r(x) = Σ Sᵢ(ξ) eᵢ`, ξ = x/Le, with the Hermite cubics
+//! S1 = 1−3ξ²+2ξ³, S2 = Le(ξ−2ξ²+ξ³), S3 = 3ξ²−2ξ³, S4 = Le(ξ³−ξ²).
+//!
+//! Elastic energy (Gerstmayr & Irschik 2008):
+//! `U = ½∫(EA ε² + EI κ²) dx`, ε = |r'| − 1, κ = (r' × r'')/|r'|².
+//! [`CableElement::elastic_force_into`] returns `Q_s = ∂U/∂e` and
+//! [`CableElement::tangent_into`] its exact derivative `K = ∂Q_s/∂e`.
+//! The mass matrix `ρA Le ∫ SᵀS dξ` is constant.
+//!
+//! Quadrature: 5 Gauss points for the axial part (exact for the linear part,
+//! whose integrand is of degree 4) and 3 for bending (degree 2).
+
+use nalgebra::{Matrix2, SMatrix, SVector, Vector2, Vector4};
+
+/// 8×8 element matrix.
+pub type Mat8 = SMatrix<f64, 8, 8>;
+/// Element coordinate vector.
+pub type Vec8 = SVector<f64, 8>;
+
+/// Section properties of a cable.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CableSection {
+    /// Axial stiffness EA [SI: N].
+    pub ea: f64,
+    /// Bending stiffness EI [SI: N m²].
+    pub ei: f64,
+    /// Mass per length ρA [SI: kg/m].
+    pub rho_a: f64,
+}
+
+impl CableSection {
+    /// Rectangular section of height `h` (bending plane) and width `w`.
+    pub fn rectangle(young: f64, density: f64, h: f64, w: f64) -> Self {
+        let a = h * w;
+        CableSection {
+            ea: young * a,
+            ei: young * w * h.powi(3) / 12.0,
+            rho_a: density * a,
+        }
+    }
+}
+
+/// Hermite shape functions at ξ: values, d/dx and d²/dx² (x = ξ Le).
+#[derive(Debug, Clone, Copy)]
+pub struct ShapeValues {
+    pub s: Vector4<f64>,
+    pub d1: Vector4<f64>,
+    pub d2: Vector4<f64>,
+}
+
+/// Evaluate the shape functions of an element of length `le` at `xi`.
+pub fn shape(le: f64, xi: f64) -> ShapeValues {
+    let (x2, x3) = (xi * xi, xi * xi * xi);
+    let s = Vector4::new(
+        1.0 - 3.0 * x2 + 2.0 * x3,
+        le * (xi - 2.0 * x2 + x3),
+        3.0 * x2 - 2.0 * x3,
+        le * (x3 - x2),
+    );
+    let d1 = Vector4::new(
+        (-6.0 * xi + 6.0 * x2) / le,
+        1.0 - 4.0 * xi + 3.0 * x2,
+        (6.0 * xi - 6.0 * x2) / le,
+        3.0 * x2 - 2.0 * xi,
+    );
+    let d2 = Vector4::new(
+        (-6.0 + 12.0 * xi) / (le * le),
+        (-4.0 + 6.0 * xi) / le,
+        (6.0 - 12.0 * xi) / (le * le),
+        (6.0 * xi - 2.0) / le,
+    );
+    ShapeValues { s, d1, d2 }
+}
+
+/// Gauss–Legendre points and weights on [0, 1].
+pub fn gauss01(n: usize) -> Vec<(f64, f64)> {
+    let (x, w): (&[f64], &[f64]) = match n {
+        1 => (&[0.0], &[2.0]),
+        2 => (&[-0.5773502691896257, 0.5773502691896257], &[1.0, 1.0]),
+        3 => (
+            &[-0.7745966692414834, 0.0, 0.7745966692414834],
+            &[5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0],
+        ),
+        4 => (
+            &[
+                -0.8611363115940526,
+                -0.3399810435848563,
+                0.3399810435848563,
+                0.8611363115940526,
+            ],
+            &[
+                0.3478548451374538,
+                0.6521451548625461,
+                0.6521451548625461,
+                0.3478548451374538,
+            ],
+        ),
+        5 => (
+            &[
+                -0.906179845938664,
+                -0.5384693101056831,
+                0.0,
+                0.5384693101056831,
+                0.906179845938664,
+            ],
+            &[
+                0.23692688505618908,
+                0.47862867049936647,
+                0.5688888888888889,
+                0.47862867049936647,
+                0.23692688505618908,
+            ],
+        ),
+        _ => panic!("Gauss rule with {n} points is not tabulated"),
+    };
+    x.iter()
+        .zip(w)
+        .map(|(x, w)| (0.5 * (x + 1.0), 0.5 * w))
+        .collect()
+}
+
+/// Shape derivatives at one quadrature point, weight already times Le.
+#[derive(Debug, Clone, Copy)]
+struct QuadPoint {
+    w: f64,
+    d1: Vector4<f64>,
+    d2: Vector4<f64>,
+}
+
+const AXIAL_POINTS: usize = 5;
+const BENDING_POINTS: usize = 3;
+
+/// One cable element: length, section and its precomputed quadrature data.
+#[derive(Debug, Clone)]
+pub struct CableElement {
+    /// Reference length [SI: m].
+    pub le: f64,
+    pub section: CableSection,
+    axial: [QuadPoint; AXIAL_POINTS],
+    bending: [QuadPoint; BENDING_POINTS],
+}
+
+/// Strain energy of an element split by kind [SI: J].
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EnergySplit {
+    pub axial: f64,
+    pub bending: f64,
+}
+
+#[inline]
+fn node(e: &Vec8, i: usize) -> Vector2<f64> {
+    Vector2::new(e[2 * i], e[2 * i + 1])
+}
+
+#[inline]
+fn combine(e: &Vec8, c: &Vector4<f64>) -> Vector2<f64> {
+    node(e, 0) * c[0] + node(e, 1) * c[1] + node(e, 2) * c[2] + node(e, 3) * c[3]
+}
+
+/// `J a` with J = [[0, 1], [−1, 0]], so that `bᵀ J a = b × a`… written out:
+/// returns [a_y, −a_x]; r' × r'' = r'ᵀ [r''_y, −r''_x].
+#[inline]
+fn perp_neg(a: Vector2<f64>) -> Vector2<f64> {
+    Vector2::new(a.y, -a.x)
+}
+
+impl CableElement {
+    pub fn new(le: f64, section: CableSection) -> Self {
+        let make = |(xi, w): (f64, f64)| {
+            let sv = shape(le, xi);
+            QuadPoint {
+                w: w * le,
+                d1: sv.d1,
+                d2: sv.d2,
+            }
+        };
+        let ax = gauss01(AXIAL_POINTS);
+        let bd = gauss01(BENDING_POINTS);
+        CableElement {
+            le,
+            section,
+            axial: std::array::from_fn(|i| make(ax[i])),
+            bending: std::array::from_fn(|i| make(bd[i])),
+        }
+    }
+
+    /// Reference coordinates of a straight element from `p0` along unit tangent `t`.
+    pub fn straight(le: f64, p0: Vector2<f64>, t: Vector2<f64>) -> Vec8 {
+        let p1 = p0 + t * le;
+        Vec8::from_column_slice(&[p0.x, p0.y, t.x, t.y, p1.x, p1.y, t.x, t.y])
+    }
+
+    /// Consistent mass matrix `ρA Le ∫ SᵀS dξ` (each 4×4 entry times I₂).
+    pub fn mass(&self) -> Mat8 {
+        let mut m = Mat8::zeros();
+        for (xi, w) in gauss01(4) {
+            let s = shape(self.le, xi).s;
+            for i in 0..4 {
+                for j in 0..4 {
+                    let v = self.section.rho_a * self.le * w * s[i] * s[j];
+                    m[(2 * i, 2 * j)] += v;
+                    m[(2 * i + 1, 2 * j + 1)] += v;
+                }
+            }
+        }
+        m
+    }
+
+    /// Generalized force of a uniform body force `f` per length [SI: N/m]: ∫ Sᵀ f dx.
+    pub fn distributed_force(&self, f: Vector2<f64>) -> Vec8 {
+        let mut q = Vec8::zeros();
+        for (xi, w) in gauss01(3) {
+            let s = shape(self.le, xi).s;
+            for i in 0..4 {
+                q[2 * i] += w * self.le * s[i] * f.x;
+                q[2 * i + 1] += w * self.le * s[i] * f.y;
+            }
+        }
+        q
+    }
+
+    /// Strain energy split into axial and bending parts [SI: J].
+    pub fn strain_energy(&self, e: &Vec8) -> EnergySplit {
+        let mut out = EnergySplit::default();
+        for qp in &self.axial {
+            let eps = combine(e, &qp.d1).norm() - 1.0;
+            out.axial += 0.5 * qp.w * self.section.ea * eps * eps;
+        }
+        for qp in &self.bending {
+            let (r1, r2) = (combine(e, &qp.d1), combine(e, &qp.d2));
+            let kappa = r1.dot(&perp_neg(r2)) / r1.norm_squared();
+            out.bending += 0.5 * qp.w * self.section.ei * kappa * kappa;
+        }
+        out
+    }
+
+    /// Elastic force `Q_s = ∂U/∂e`, added into `out`.
+    pub fn elastic_force_into(&self, e: &Vec8, out: &mut Vec8) {
+        let CableSection { ea, ei, .. } = self.section;
+        for qp in &self.axial {
+            let r1 = combine(e, &qp.d1);
+            let l = r1.norm();
+            let f = r1 * (qp.w * ea * (l - 1.0) / l);
+            for i in 0..4 {
+                out[2 * i] += qp.d1[i] * f.x;
+                out[2 * i + 1] += qp.d1[i] * f.y;
+            }
+        }
+        for qp in &self.bending {
+            let b = BendingPoint::new(e, qp);
+            let c = qp.w * ei * b.kappa;
+            for i in 0..4 {
+                let g = b.p * qp.d1[i] + b.q * qp.d2[i];
+                out[2 * i] += c * g.x;
+                out[2 * i + 1] += c * g.y;
+            }
+        }
+    }
+
+    /// Tangent stiffness `∂Q_s/∂e` split into its axial and bending parts,
+    /// each added into its buffer (pass the same buffer twice for the sum).
+    pub fn tangent_parts_into(&self, e: &Vec8, axial: &mut Mat8, bending: &mut Mat8) {
+        let CableSection { ea, ei, .. } = self.section;
+        for qp in &self.axial {
+            let r1 = combine(e, &qp.d1);
+            let l = r1.norm();
+            let t = r1 / l;
+            let eps = l - 1.0;
+            let ttt = t * t.transpose();
+            let a = (ttt + (Matrix2::identity() - ttt) * (eps / l)) * (qp.w * ea);
+            add_kron(axial, &qp.d1, &qp.d1, &a);
+        }
+        for qp in &self.bending {
+            let b = BendingPoint::new(e, qp);
+            let c = qp.w * ei;
+            for i in 0..4 {
+                let gi = b.p * qp.d1[i] + b.q * qp.d2[i];
+                for j in 0..4 {
+                    let gj = b.p * qp.d1[j] + b.q * qp.d2[j];
+                    let h = b.h11 * (qp.d1[i] * qp.d1[j])
+                        + b.h12 * (qp.d1[i] * qp.d2[j])
+                        + b.h12.transpose() * (qp.d2[i] * qp.d1[j]);
+                    let blk = (gi * gj.transpose() + h * b.kappa) * c;
+                    let mut dst = bending.fixed_view_mut::<2, 2>(2 * i, 2 * j);
+                    dst += blk;
+                }
+            }
+        }
+    }
+
+    /// Tangent stiffness `∂Q_s/∂e`, added into `out`.
+    pub fn tangent_into(&self, e: &Vec8, out: &mut Mat8) {
+        let mut bending = Mat8::zeros();
+        self.tangent_parts_into(e, out, &mut bending);
+        *out += bending;
+    }
+}
+
+/// Curvature and its first and second derivatives with respect to (r', r'').
+struct BendingPoint {
+    kappa: f64,
+    /// ∂κ/∂r'
+    p: Vector2<f64>,
+    /// ∂κ/∂r''
+    q: Vector2<f64>,
+    /// ∂²κ/∂r'²
+    h11: Matrix2<f64>,
+    /// ∂²κ/∂r'∂r''
+    h12: Matrix2<f64>,
+}
+
+impl BendingPoint {
+    #[inline]
+    fn new(e: &Vec8, qp: &QuadPoint) -> Self {
+        let r1 = combine(e, &qp.d1);
+        let r2 = combine(e, &qp.d2);
+        let g = r1.norm_squared();
+        let jr2 = perp_neg(r2); // ∂c/∂r'
+        let jtr1 = Vector2::new(-r1.y, r1.x); // ∂c/∂r''
+        let c = r1.dot(&jr2);
+        let kappa = c / g;
+        let g2 = g * g;
+        let p = jr2 / g - r1 * (2.0 * c / g2);
+        let q = jtr1 / g;
+        let h11 = -(jr2 * r1.transpose() + r1 * jr2.transpose()) * (2.0 / g2)
+            - Matrix2::identity() * (2.0 * c / g2)
+            + r1 * r1.transpose() * (8.0 * c / (g2 * g));
+        // ∂/∂r'' of p: J/g − 2 r' (Jᵀr')ᵀ/g², J = [[0, 1], [−1, 0]].
+        let h12 = Matrix2::new(0.0, 1.0, -1.0, 0.0) / g - r1 * jtr1.transpose() * (2.0 / g2);
+        BendingPoint {
+            kappa,
+            p,
+            q,
+            h11,
+            h12,
+        }
+    }
+}
+
+/// out[2i.., 2j..] += a_i b_j · blk for the 4×4 node blocks.
+#[inline]
+fn add_kron(out: &mut Mat8, a: &Vector4<f64>, b: &Vector4<f64>, blk: &Matrix2<f64>) {
+    for i in 0..4 {
+        for j in 0..4 {
+            let mut dst = out.fixed_view_mut::<2, 2>(2 * i, 2 * j);
+            dst += blk * (a[i] * b[j]);
+        }
+    }
+}

@@ -1,0 +1,115 @@
+//! Typed errors of the library.
+//!
+//! Model errors carry the file, the JSON path and the problem, so that the
+//! command line can print one line a user can act on. Analysis errors carry
+//! the quantities that explain them (times, residuals, coordinates).
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// Where a model came from, for messages.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Source {
+    File(PathBuf),
+    BuiltIn,
+}
+
+impl fmt::Display for Source {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Source::File(p) => write!(f, "{}", p.display()),
+            Source::BuiltIn => write!(f, "<built-in model>"),
+        }
+    }
+}
+
+/// A problem with one value of a model, found by validation.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Problem {
+    #[error("must be a finite number, got {value}")]
+    NotFinite { value: f64 },
+    #[error("must be positive, got {value}")]
+    NotPositive { value: f64 },
+    #[error("must not be negative, got {value}")]
+    Negative { value: f64 },
+    #[error("must be at least 1")]
+    ZeroCount,
+    #[error("{value} is outside [{min}, {max}]")]
+    OutOfRange { value: f64, min: f64, max: f64 },
+    #[error("must not be empty")]
+    EmptyId,
+    #[error("id `{id}` is used twice")]
+    DuplicateId { id: String },
+    #[error("no {kind} with id `{id}`")]
+    UnknownId { kind: &'static str, id: String },
+    #[error("give exactly one of `beam`, `body` or `ground`")]
+    AmbiguousPoint,
+    #[error("`{key}` is required here")]
+    MissingKey { key: &'static str },
+    #[error("`{key}` is not allowed here: {why}")]
+    KeyNotAllowed {
+        key: &'static str,
+        why: &'static str,
+    },
+    #[error("a direction must have non-zero length")]
+    ZeroDirection,
+    #[error("the points do not coincide initially: gap {gap:.3e} m ({a:?} vs {b:?})")]
+    PointsApart { gap: f64, a: [f64; 2], b: [f64; 2] },
+    #[error("point b is {gap:.3e} m off the slider axis through point a")]
+    OffAxis { gap: f64 },
+    #[error("both points are fixed to the ground: nothing to connect")]
+    GroundToGround,
+    #[error("`{id}` is a point mass and has no orientation; {what} needs a rigid body, a beam or the ground")]
+    NoOrientation { id: String, what: &'static str },
+    #[error("both points are the same, the spring has zero length")]
+    ZeroLength,
+    #[error("the model has no bodies (no beam, rigid body or point mass)")]
+    NoBodies,
+    #[error("the spring's free length {free_length} m is not positive (preload {preload} N, stiffness {stiffness} N/m, initial length {length} m)")]
+    NonPositiveFreeLength {
+        free_length: f64,
+        preload: f64,
+        stiffness: f64,
+        length: f64,
+    },
+}
+
+/// Why a model could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum ModelError {
+    #[error("{source_name}: cannot read the file: {io}")]
+    Read {
+        source_name: Source,
+        io: std::io::Error,
+    },
+    #[error("{source_name}:{line}:{column}: malformed JSON: {message}")]
+    Syntax {
+        source_name: Source,
+        line: usize,
+        column: usize,
+        message: String,
+    },
+    #[error("{source_name}: {path}: {message}")]
+    Schema {
+        source_name: Source,
+        path: String,
+        message: String,
+    },
+    #[error("{source_name}: {path}: {problem}")]
+    Invalid {
+        source_name: Source,
+        path: String,
+        problem: Problem,
+    },
+}
+
+/// Why an analysis failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum AnalysisError {
+    #[error("the mass matrix is singular in the direction of {dof} (a body without inertia in a free direction)")]
+    SingularMass { dof: String },
+    #[error("the system has no free coordinates left after the constraints")]
+    NoFreedom,
+    #[error("the eigen solver did not converge ({size}×{size} problem)")]
+    EigenSolver { size: usize },
+}

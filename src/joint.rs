@@ -1,0 +1,177 @@
+//! Joints: holonomic constraints C(q) = 0 between two anchors.
+//!
+//! - [`Pin`]: r_b − r_a = 0 [SI: m], 2 rows.
+//! - [`Weld`]: the pin rows plus wrap(θ_b − θ_a − Δ₀) = 0 [rad], 3 rows.
+//!   For a beam the angle is that of its slope r', so a weld fixes the
+//!   direction of the slope but not its length (no axial strain is forbidden).
+//! - [`Slider`]: n(θ_a)·(r_b − r_a) = 0 [SI: m], 1 row; n is the axis normal,
+//!   turning with a's orientation.
+//!
+//! Each constraint writes its residual, its local Jacobian (rows × 16) and
+//! the λ-weighted Hessian Σ λᵢ ∂²Cᵢ/∂q² (16 × 16) into caller buffers; the
+//! last one gives the ∂(C_qᵀλ)/∂q term of a linearization about a loaded state.
+
+use crate::anchor::perp;
+use crate::pair::{Pair, PairGrad, PairHess, PairJac2, MAX_PAIR_DOFS};
+use nalgebra::{SMatrix, Vector2};
+
+/// Most rows of one joint.
+pub const MAX_ROWS: usize = 3;
+/// Local constraint Jacobian.
+pub type ConstraintJac = SMatrix<f64, MAX_ROWS, MAX_PAIR_DOFS>;
+
+/// A holonomic constraint between the two anchors of a pair.
+pub trait Constraint: std::fmt::Debug + Send + Sync {
+    /// Name for messages.
+    fn label(&self) -> &str;
+    /// The two anchors.
+    fn pair(&self) -> &Pair;
+    /// Number of equations.
+    fn rows(&self) -> usize;
+    /// C(q) into `out[..rows]`.
+    fn residual(&self, q: &[f64], out: &mut [f64]);
+    /// ∂C/∂q (local) into the first `rows` rows of `out`.
+    fn jacobian(&self, q: &[f64], out: &mut ConstraintJac);
+    /// Adds Σᵢ λᵢ ∂²Cᵢ/∂q² (local) into `out`.
+    fn hessian_dot(&self, q: &[f64], lambda: &[f64], out: &mut PairHess);
+}
+
+/// Revolute joint.
+#[derive(Debug, Clone)]
+pub struct Pin {
+    pub label: String,
+    pub pair: Pair,
+}
+
+impl Constraint for Pin {
+    fn label(&self) -> &str {
+        &self.label
+    }
+    fn pair(&self) -> &Pair {
+        &self.pair
+    }
+    fn rows(&self) -> usize {
+        2
+    }
+    fn residual(&self, q: &[f64], out: &mut [f64]) {
+        let d = self.pair.separation(q);
+        out[0] = d.x;
+        out[1] = d.y;
+    }
+    fn jacobian(&self, q: &[f64], out: &mut ConstraintJac) {
+        let mut j = PairJac2::zeros();
+        self.pair.separation_jacobian(q, &mut j);
+        out.fixed_rows_mut::<2>(0).copy_from(&j);
+    }
+    fn hessian_dot(&self, q: &[f64], lambda: &[f64], out: &mut PairHess) {
+        self.pair
+            .separation_hessian_dot(q, Vector2::new(lambda[0], lambda[1]), out);
+    }
+}
+
+/// Rigid connection.
+#[derive(Debug, Clone)]
+pub struct Weld {
+    pub label: String,
+    pub pair: Pair,
+    /// Initial θ_b − θ_a [rad].
+    pub offset: f64,
+}
+
+impl Constraint for Weld {
+    fn label(&self) -> &str {
+        &self.label
+    }
+    fn pair(&self) -> &Pair {
+        &self.pair
+    }
+    fn rows(&self) -> usize {
+        3
+    }
+    fn residual(&self, q: &[f64], out: &mut [f64]) {
+        let d = self.pair.separation(q);
+        out[0] = d.x;
+        out[1] = d.y;
+        out[2] = self.pair.relative_angle(q, self.offset);
+    }
+    fn jacobian(&self, q: &[f64], out: &mut ConstraintJac) {
+        let mut j = PairJac2::zeros();
+        self.pair.separation_jacobian(q, &mut j);
+        out.fixed_rows_mut::<2>(0).copy_from(&j);
+        let mut g = PairGrad::zeros();
+        self.pair.relative_angle_derivatives(q, &mut g, None);
+        out.row_mut(2).copy_from(&g.transpose());
+    }
+    fn hessian_dot(&self, q: &[f64], lambda: &[f64], out: &mut PairHess) {
+        self.pair
+            .separation_hessian_dot(q, Vector2::new(lambda[0], lambda[1]), out);
+        let (mut g, mut h) = (PairGrad::zeros(), PairHess::zeros());
+        self.pair
+            .relative_angle_derivatives(q, &mut g, Some(&mut h));
+        *out += h * lambda[2];
+    }
+}
+
+/// Point b on a line through a, turning with a.
+#[derive(Debug, Clone)]
+pub struct Slider {
+    pub label: String,
+    pub pair: Pair,
+    /// Unit normal of the axis at the initial configuration (global).
+    pub normal0: Vector2<f64>,
+    /// Initial angle of anchor a [rad].
+    pub angle0: f64,
+}
+
+impl Slider {
+    fn normal(&self, q: &[f64]) -> Vector2<f64> {
+        let phi = self.pair.a.angle(q) - self.angle0;
+        let (s, c) = phi.sin_cos();
+        Vector2::new(
+            c * self.normal0.x - s * self.normal0.y,
+            s * self.normal0.x + c * self.normal0.y,
+        )
+    }
+}
+
+impl Constraint for Slider {
+    fn label(&self) -> &str {
+        &self.label
+    }
+    fn pair(&self) -> &Pair {
+        &self.pair
+    }
+    fn rows(&self) -> usize {
+        1
+    }
+    fn residual(&self, q: &[f64], out: &mut [f64]) {
+        out[0] = self.normal(q).dot(&self.pair.separation(q));
+    }
+    fn jacobian(&self, q: &[f64], out: &mut ConstraintJac) {
+        let n = self.normal(q);
+        let d = self.pair.separation(q);
+        let mut j = PairJac2::zeros();
+        self.pair.separation_jacobian(q, &mut j);
+        let (mut g, mut h) = (PairGrad::zeros(), PairHess::zeros());
+        self.pair.angle_a_derivatives(q, &mut g, &mut h);
+        let row = j.transpose() * n + g * perp(n).dot(&d);
+        out.row_mut(0).copy_from(&row.transpose());
+    }
+    fn hessian_dot(&self, q: &[f64], lambda: &[f64], out: &mut PairHess) {
+        let l = lambda[0];
+        let n = self.normal(q);
+        let np = perp(n);
+        let d = self.pair.separation(q);
+        let mut j = PairJac2::zeros();
+        self.pair.separation_jacobian(q, &mut j);
+        let (mut g, mut h) = (PairGrad::zeros(), PairHess::zeros());
+        self.pair.angle_a_derivatives(q, &mut g, &mut h);
+        let jn = j.transpose() * np;
+        *out += (g * g.transpose() * (-n.dot(&d))
+            + h * np.dot(&d)
+            + g * jn.transpose()
+            + jn * g.transpose())
+            * l;
+        self.pair.separation_hessian_dot(q, n * l, out);
+    }
+}

@@ -1,0 +1,25 @@
+//! # ancf-modal
+//!
+//! Modal and frequency-response analysis of planar rigid-flexible assemblies
+//! whose flexible parts are ANCF cable beams (absolute nodal coordinate
+//! formulation, Euler–Bernoulli, gradient-deficient).
+//!
+//! Data flows one way: model file ([`model`]) → assembled system
+//! ([`system`]) → analysis ([`analysis`]) → outputs ([`output`]).
+//! All quantities are SI unless a name says otherwise (`_deg`, `_hz`).
+
+pub mod analysis;
+pub mod anchor;
+pub mod element;
+pub mod error;
+pub mod joint;
+pub mod load;
+pub mod model;
+pub mod output;
+pub mod pair;
+pub mod spring;
+pub mod system;
+
+pub use error::{AnalysisError, ModelError};
+pub use model::Model;
+pub use system::System;

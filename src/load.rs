@@ -1,0 +1,70 @@
+//! Applied point forces and their time functions.
+//!
+//! A load is a dead force F(t) = F₀ f(t) [SI: N] at an anchor, fixed in
+//! direction (a `beam`-frame load is turned into the global frame once, at the
+//! initial configuration). Its generalized force is `Q = (∂r/∂q)ᵀ F`
+//! (paper Eq. 7); on a rigid-body point off the centre, `∂Q/∂q ≠ 0`.
+
+use crate::anchor::{Anchor, Hess, PosJac};
+use crate::model::TimeFunction;
+use nalgebra::Vector2;
+
+impl TimeFunction {
+    /// f(t) [–].
+    pub fn value(&self, t: f64) -> f64 {
+        match *self {
+            TimeFunction::Constant => 1.0,
+            TimeFunction::HalfSine { duration } => {
+                if (0.0..=duration).contains(&t) {
+                    (std::f64::consts::PI * t / duration).sin()
+                } else {
+                    0.0
+                }
+            }
+            TimeFunction::Step { start } => {
+                if t >= start {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+}
+
+/// A point force on the assembly.
+#[derive(Debug, Clone)]
+pub struct PointLoad {
+    pub label: String,
+    pub anchor: Anchor,
+    /// Amplitude in the global frame [SI: N].
+    pub force: Vector2<f64>,
+    pub time: TimeFunction,
+}
+
+impl PointLoad {
+    /// Force at time t [SI: N].
+    pub fn force_at(&self, t: f64) -> Vector2<f64> {
+        self.force * self.time.value(t)
+    }
+
+    /// Adds the generalized force at (q, t), scaled by `scale`, into `out` (global).
+    pub fn add_generalized_force(&self, q: &[f64], t: f64, scale: f64, out: &mut [f64]) {
+        let f = self.force_at(t) * scale;
+        if f == Vector2::zeros() {
+            return;
+        }
+        let mut jac = PosJac::zeros();
+        self.anchor.position_jacobian(q, &mut jac);
+        for (k, &d) in self.anchor.dofs().iter().enumerate() {
+            out[d] += jac.column(k).dot(&f);
+        }
+    }
+
+    /// ∂Q/∂q (local to the anchor) at (q, t), scaled; zero except on rigid bodies.
+    pub fn load_stiffness(&self, q: &[f64], t: f64, scale: f64, out: &mut Hess) {
+        out.fill(0.0);
+        self.anchor
+            .position_hessian_dot(q, self.force_at(t) * scale, out);
+    }
+}

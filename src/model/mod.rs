@@ -1,0 +1,82 @@
+//! The model file: JSON input describing an assembly (see `DESIGN` in the
+//! README for the format). Parsing maps serde errors to the JSON path of the
+//! offending value; [`Model::validate`] then checks physics and references.
+
+mod types;
+pub mod validate;
+
+pub use types::*;
+pub use validate::PointTarget;
+
+use crate::error::{ModelError, Source};
+use std::path::Path;
+
+/// The paper's free-free assembly, embedded in the binary.
+pub const DEFAULT_MODEL_JSON: &str = include_str!("../../models/rcbo_free_free.json");
+
+impl Model {
+    /// Parse and validate a model from JSON text.
+    pub fn from_json(text: &str, source: Source) -> Result<Model, ModelError> {
+        let de = &mut serde_json::Deserializer::from_str(text);
+        let model: Model = serde_path_to_error::deserialize(de).map_err(|e| {
+            let path = e.path().to_string();
+            let inner = e.into_inner();
+            if inner.is_syntax() || inner.is_eof() {
+                ModelError::Syntax {
+                    source_name: source.clone(),
+                    line: inner.line(),
+                    column: inner.column(),
+                    message: strip_position(&inner.to_string()),
+                }
+            } else {
+                let path = if path == "." { String::from("$") } else { path };
+                ModelError::Schema {
+                    source_name: source.clone(),
+                    path,
+                    message: strip_position(&inner.to_string()),
+                }
+            }
+        })?;
+        model
+            .validate()
+            .map_err(|(path, problem)| ModelError::Invalid {
+                source_name: source,
+                path,
+                problem,
+            })?;
+        Ok(model)
+    }
+
+    /// Read, parse and validate a model file.
+    pub fn from_file(path: &Path) -> Result<Model, ModelError> {
+        let source = Source::File(path.to_path_buf());
+        let text = std::fs::read_to_string(path).map_err(|io| ModelError::Read {
+            source_name: source.clone(),
+            io,
+        })?;
+        Model::from_json(&text, source)
+    }
+
+    /// The built-in default: the paper's free-free rigid-flexible assembly.
+    pub fn builtin() -> Model {
+        Model::from_json(DEFAULT_MODEL_JSON, Source::BuiltIn).expect("the built-in model is valid")
+    }
+
+    /// The model as pretty JSON (a valid model file).
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("models serialize")
+    }
+
+    /// A beam by id.
+    pub fn beam(&self, id: &str) -> Option<&Beam> {
+        self.beams.iter().find(|b| b.id == id)
+    }
+}
+
+/// serde_json appends " at line L column C"; the path already locates the value.
+fn strip_position(message: &str) -> String {
+    match message.rfind(" at line ") {
+        Some(i) => message[..i].to_string(),
+        None => message.to_string(),
+    }
+}

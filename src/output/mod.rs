@@ -1,0 +1,4 @@
+//! Outputs: human-readable tables, JSON documents, CSV files, atomic writes.
+
+pub mod files;
+pub mod modal_report;

@@ -1,0 +1,82 @@
+//! Modal results as a table, a JSON document and CSV.
+
+use crate::analysis::{ModalResult, ModeKind};
+use serde_json::json;
+use std::fmt::Write;
+
+/// Readable table: index, frequency [Hz], kind, energy split.
+pub fn modal_table(model_name: &str, r: &ModalResult) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "model {model_name}: {} coordinates, {} constraint equations, {} free",
+        r.dofs, r.constraints, r.reduced_dofs
+    );
+    if !r.redundant_constraints.is_empty() {
+        let _ = writeln!(
+            s,
+            "redundant constraints: {}",
+            r.redundant_constraints.join(", ")
+        );
+    }
+    let _ = writeln!(
+        s,
+        "{} zero-frequency (rigid-body or mechanism) modes",
+        r.rigid_modes
+    );
+    let _ = writeln!(
+        s,
+        "{:>5}  {:>14}  {:<8}  {:>7}  {:>7}  {:>7}",
+        "mode", "frequency [Hz]", "kind", "bend %", "axial %", "sprg %"
+    );
+    for m in &r.modes {
+        if m.kind == ModeKind::Rigid {
+            let _ = writeln!(s, "{:>5}  {:>14}  {:<8}", m.index + 1, "0", m.kind);
+        } else {
+            let _ = writeln!(
+                s,
+                "{:>5}  {:>14.3}  {:<8}  {:>7.2}  {:>7.2}  {:>7.2}",
+                m.index + 1,
+                m.frequency_hz,
+                m.kind,
+                100.0 * m.energy.bending,
+                100.0 * m.energy.axial,
+                100.0 * m.energy.springs
+            );
+        }
+    }
+    s
+}
+
+/// JSON document (DESIGN §5 keys: model, dofs, rigid_modes, modes[index, frequency_hz, kind]).
+pub fn modal_json(model_name: &str, r: &ModalResult) -> serde_json::Value {
+    json!({
+        "model": model_name,
+        "dofs": r.dofs,
+        "constraints": r.constraints,
+        "reduced_dofs": r.reduced_dofs,
+        "redundant_constraints": r.redundant_constraints,
+        "rigid_modes": r.rigid_modes,
+        "first_bending_hz": r.first_bending().map(|m| m.frequency_hz),
+        "modes": r.modes,
+    })
+}
+
+/// CSV: one row per mode.
+pub fn modal_csv(r: &ModalResult) -> String {
+    let mut s = String::from("mode,frequency_hz,eigenvalue_rad2_s2,kind,bending_fraction,axial_fraction,spring_fraction\n");
+    for m in &r.modes {
+        let _ = writeln!(
+            s,
+            "{},{:.10e},{:.10e},{},{:.6},{:.6},{:.6}",
+            m.index + 1,
+            m.frequency_hz,
+            m.eigenvalue,
+            m.kind,
+            m.energy.bending,
+            m.energy.axial,
+            m.energy.springs
+        );
+    }
+    s
+}

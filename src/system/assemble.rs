@@ -1,0 +1,234 @@
+//! Global assembly: mass matrix M, forces, tangent stiffness, constraints.
+//!
+//! Sign conventions (paper Eq. 12): M q̈ + C_qᵀ λ = Q_ext(q, t) − Q_int(q),
+//! with Q_int = Q_s (beams) + ∂U/∂q (springs) and Q_ext = loads + gravity.
+//! The tangent stiffness is K = ∂(Q_int − Q_ext)/∂q; a linearization about a
+//! loaded state adds ∂(C_qᵀλ)/∂q.
+
+use super::System;
+use crate::anchor::Hess;
+use crate::element::{Mat8, Vec8};
+use crate::joint::ConstraintJac;
+use crate::pair::{PairGrad, PairHess};
+use faer::Mat;
+
+/// Strain energy of a coordinate vector by kind [SI: J].
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EnergyBreakdown {
+    /// Axial (membrane) energy of the beams.
+    pub axial: f64,
+    /// Bending energy of the beams.
+    pub bending: f64,
+    /// Energy of springs and torsion springs.
+    pub springs: f64,
+}
+
+impl EnergyBreakdown {
+    pub fn total(&self) -> f64 {
+        self.axial + self.bending + self.springs
+    }
+}
+
+/// The state a linearization is taken at.
+#[derive(Debug, Clone, Copy)]
+pub struct Linearization<'a> {
+    pub q: &'a [f64],
+    /// Constraint multipliers; `None` = zero (unloaded reference).
+    pub lambda: Option<&'a [f64]>,
+    pub time: f64,
+    /// Factor on the applied loads (not on gravity).
+    pub load_scale: f64,
+}
+
+fn element_vec(q: &[f64], dofs: &[usize; 8]) -> Vec8 {
+    Vec8::from_fn(|i, _| q[dofs[i]])
+}
+
+fn scatter_mat<const R: usize, const C: usize>(
+    dofs: &[usize],
+    local: &nalgebra::SMatrix<f64, R, C>,
+    out: &mut Mat<f64>,
+) {
+    for (i, &gi) in dofs.iter().enumerate() {
+        for (j, &gj) in dofs.iter().enumerate() {
+            out[(gi, gj)] += local[(i, j)];
+        }
+    }
+}
+
+impl System {
+    /// Constant mass matrix [SI: kg, kg m, kg m²].
+    pub fn mass_matrix(&self) -> Mat<f64> {
+        let n = self.ndof();
+        let mut m = Mat::zeros(n, n);
+        for b in &self.beams {
+            for (k, e) in b.elements.iter().enumerate() {
+                scatter_mat(&b.element_dofs(k), &e.mass(), &mut m);
+            }
+        }
+        for r in &self.rigid_bodies {
+            m[(r.dof0, r.dof0)] += r.mass;
+            m[(r.dof0 + 1, r.dof0 + 1)] += r.mass;
+            m[(r.dof0 + 2, r.dof0 + 2)] += r.inertia;
+        }
+        for p in &self.point_masses {
+            m[(p.dof0, p.dof0)] += p.mass;
+            m[(p.dof0 + 1, p.dof0 + 1)] += p.mass;
+        }
+        m
+    }
+
+    /// Internal force Q_int(q) = Q_s + ∂U_springs/∂q, overwriting `out`.
+    pub fn internal_force(&self, q: &[f64], out: &mut [f64]) {
+        out.fill(0.0);
+        for b in &self.beams {
+            for (k, e) in b.elements.iter().enumerate() {
+                let dofs = b.element_dofs(k);
+                let mut f = Vec8::zeros();
+                e.elastic_force_into(&element_vec(q, &dofs), &mut f);
+                for (i, &d) in dofs.iter().enumerate() {
+                    out[d] += f[i];
+                }
+            }
+        }
+        let mut g = PairGrad::zeros();
+        for fe in &self.force_elements {
+            fe.gradient(q, &mut g);
+            for (i, d) in fe.pair().dofs().enumerate() {
+                out[d] += g[i];
+            }
+        }
+    }
+
+    /// External force Q_ext(q, t): loads × `load_scale` plus gravity, overwriting `out`.
+    pub fn external_force(&self, q: &[f64], t: f64, load_scale: f64, out: &mut [f64]) {
+        out.fill(0.0);
+        for l in &self.loads {
+            l.add_generalized_force(q, t, load_scale, out);
+        }
+        self.add_gravity(out);
+    }
+
+    /// Adds the (constant) gravity forces.
+    pub fn add_gravity(&self, out: &mut [f64]) {
+        let g = self.gravity;
+        if g.x == 0.0 && g.y == 0.0 {
+            return;
+        }
+        for b in &self.beams {
+            for (k, e) in b.elements.iter().enumerate() {
+                let f = e.distributed_force(g * b.section.rho_a);
+                for (i, &d) in b.element_dofs(k).iter().enumerate() {
+                    out[d] += f[i];
+                }
+            }
+        }
+        for r in &self.rigid_bodies {
+            out[r.dof0] += r.mass * g.x;
+            out[r.dof0 + 1] += r.mass * g.y;
+        }
+        for p in &self.point_masses {
+            out[p.dof0] += p.mass * g.x;
+            out[p.dof0 + 1] += p.mass * g.y;
+        }
+    }
+
+    /// Tangent stiffness K = ∂(Q_int − Q_ext)/∂q (+ ∂(C_qᵀλ)/∂q if λ is
+    /// given), overwriting `out` (n × n).
+    pub fn tangent_stiffness(&self, at: &Linearization, out: &mut Mat<f64>) {
+        out.fill(0.0);
+        let q = at.q;
+        for b in &self.beams {
+            for (k, e) in b.elements.iter().enumerate() {
+                let dofs = b.element_dofs(k);
+                let mut kt = Mat8::zeros();
+                e.tangent_into(&element_vec(q, &dofs), &mut kt);
+                scatter_mat(&dofs, &kt, out);
+            }
+        }
+        let mut h = PairHess::zeros();
+        for fe in &self.force_elements {
+            fe.hessian(q, &mut h);
+            let dofs: Vec<usize> = fe.pair().dofs().collect();
+            scatter_mat(&dofs, &h, out);
+        }
+        let mut hl = Hess::zeros();
+        for l in &self.loads {
+            l.load_stiffness(q, at.time, at.load_scale, &mut hl);
+            scatter_mat(l.anchor.dofs(), &(-hl), out);
+        }
+        if let Some(lambda) = at.lambda {
+            self.add_constraint_hessian(q, lambda, out);
+        }
+    }
+
+    /// Stacked constraint residual C(q) (length = constraint_count).
+    pub fn constraint_residual(&self, q: &[f64], out: &mut [f64]) {
+        for (c, &row) in self.constraints.iter().zip(&self.constraint_rows) {
+            c.residual(q, &mut out[row..row + c.rows()]);
+        }
+    }
+
+    /// Constraint Jacobian C_q (m × n), overwriting `out`.
+    pub fn constraint_jacobian(&self, q: &[f64], out: &mut Mat<f64>) {
+        out.fill(0.0);
+        let mut j = ConstraintJac::zeros();
+        for (c, &row) in self.constraints.iter().zip(&self.constraint_rows) {
+            j.fill(0.0);
+            c.jacobian(q, &mut j);
+            for (k, d) in c.pair().dofs().enumerate() {
+                for r in 0..c.rows() {
+                    out[(row + r, d)] += j[(r, k)];
+                }
+            }
+        }
+    }
+
+    /// Adds ∂(C_qᵀλ)/∂q = Σ λᵢ ∂²Cᵢ/∂q² into `out`.
+    pub fn add_constraint_hessian(&self, q: &[f64], lambda: &[f64], out: &mut Mat<f64>) {
+        let mut h = PairHess::zeros();
+        for (c, &row) in self.constraints.iter().zip(&self.constraint_rows) {
+            h.fill(0.0);
+            c.hessian_dot(q, &lambda[row..row + c.rows()], &mut h);
+            let dofs: Vec<usize> = c.pair().dofs().collect();
+            scatter_mat(&dofs, &h, out);
+        }
+    }
+
+    /// Elastic energy of the state q, by kind [SI: J].
+    pub fn strain_energy(&self, q: &[f64]) -> EnergyBreakdown {
+        let mut e = EnergyBreakdown::default();
+        for b in &self.beams {
+            for (k, el) in b.elements.iter().enumerate() {
+                let s = el.strain_energy(&element_vec(q, &b.element_dofs(k)));
+                e.axial += s.axial;
+                e.bending += s.bending;
+            }
+        }
+        e.springs = self.force_elements.iter().map(|f| f.energy(q)).sum();
+        e
+    }
+
+    /// Quadratic strain energy ½ φᵀ K φ of a mode shape φ, split by kind,
+    /// with the stiffness parts taken at the state `q`.
+    pub fn mode_energy(&self, q: &[f64], phi: &[f64]) -> EnergyBreakdown {
+        let mut e = EnergyBreakdown::default();
+        for b in &self.beams {
+            for (k, el) in b.elements.iter().enumerate() {
+                let dofs = b.element_dofs(k);
+                let (mut ka, mut kb) = (Mat8::zeros(), Mat8::zeros());
+                el.tangent_parts_into(&element_vec(q, &dofs), &mut ka, &mut kb);
+                let v = element_vec(phi, &dofs);
+                e.axial += 0.5 * v.dot(&(ka * v));
+                e.bending += 0.5 * v.dot(&(kb * v));
+            }
+        }
+        let mut h = PairHess::zeros();
+        for fe in &self.force_elements {
+            fe.hessian(q, &mut h);
+            let v = PairGrad::from_fn(|i, _| fe.pair().dofs().nth(i).map_or(0.0, |d| phi[d]));
+            e.springs += 0.5 * v.dot(&(h * v));
+        }
+        e
+    }
+}

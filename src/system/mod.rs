@@ -1,0 +1,173 @@
+//! The assembled system: the global coordinate vector q and the maps from
+//! bodies, joints, springs and loads to it (the paper's Boolean matrices,
+//! done as index lists).
+//!
+//! Layout of q: every beam's nodes in order, 4 coordinates per node
+//! [rx, ry, r'x, r'y] [SI: m, m, –, –]; then each rigid body [x, y, θ]
+//! [SI: m, m, rad]; then each point mass [x, y] [SI: m].
+//!
+//! Beams are meshed with `elements` equal elements, plus (with
+//! `nodes_at_attachments`) a node at every point where a joint, spring, load
+//! or sensor attaches, so that concentrated masses and welds sit on nodes.
+
+mod assemble;
+mod build;
+
+pub use assemble::{EnergyBreakdown, Linearization};
+
+use crate::anchor::Anchor;
+use crate::element::{CableElement, CableSection};
+use crate::joint::Constraint;
+use crate::load::PointLoad;
+use crate::model::{SensorFrame, SensorQuantity};
+use crate::spring::ForceElement;
+use nalgebra::Vector2;
+
+/// A meshed beam.
+#[derive(Debug, Clone)]
+pub struct BeamMesh {
+    pub id: String,
+    /// Arc length of each node [SI: m], increasing, first 0, last L.
+    pub node_s: Vec<f64>,
+    /// Index of the beam's first coordinate in q.
+    pub dof0: usize,
+    pub section: CableSection,
+    pub elements: Vec<CableElement>,
+    /// Reference position of node 0 [SI: m] and unit tangent.
+    pub start: Vector2<f64>,
+    pub tangent: Vector2<f64>,
+}
+
+impl BeamMesh {
+    /// Global indices of element k's 8 coordinates.
+    pub fn element_dofs(&self, k: usize) -> [usize; 8] {
+        std::array::from_fn(|i| self.dof0 + 4 * k + i)
+    }
+
+    /// Element and local coordinate ξ of arc length s.
+    pub fn locate(&self, s: f64) -> (usize, f64) {
+        let last = self.elements.len() - 1;
+        let k = match self.node_s.partition_point(|&x| x <= s) {
+            0 => 0,
+            i => (i - 1).min(last),
+        };
+        let xi = (s - self.node_s[k]) / self.elements[k].le;
+        (k, xi.clamp(0.0, 1.0))
+    }
+
+    /// Anchor of the material point at arc length s.
+    pub fn anchor_at(&self, s: f64) -> Anchor {
+        let (k, xi) = self.locate(s);
+        Anchor::beam(self.element_dofs(k), self.elements[k].le, xi)
+    }
+
+    pub fn node_count(&self) -> usize {
+        self.node_s.len()
+    }
+
+    /// Total mass [SI: kg].
+    pub fn mass(&self) -> f64 {
+        self.section.rho_a * self.node_s[self.node_s.len() - 1]
+    }
+}
+
+/// A rigid body's place in q.
+#[derive(Debug, Clone)]
+pub struct RigidDofs {
+    pub id: String,
+    pub dof0: usize,
+    pub mass: f64,
+    pub inertia: f64,
+}
+
+/// A point mass's place in q.
+#[derive(Debug, Clone)]
+pub struct PointMassDofs {
+    pub id: String,
+    pub dof0: usize,
+    pub mass: f64,
+}
+
+/// A sensor resolved to an anchor.
+#[derive(Debug, Clone)]
+pub struct SensorPoint {
+    pub id: String,
+    pub anchor: Anchor,
+    /// Beam index for the co-rotated frame.
+    pub beam: Option<usize>,
+    pub quantity: SensorQuantity,
+    pub frame: SensorFrame,
+    /// Unit measuring direction (global, or in the beam's initial frame).
+    pub direction: Vector2<f64>,
+    /// Reference arc length on the beam, if on a beam [SI: m].
+    pub s: Option<f64>,
+}
+
+/// The assembled multibody system.
+#[derive(Debug)]
+pub struct System {
+    pub name: String,
+    pub beams: Vec<BeamMesh>,
+    pub rigid_bodies: Vec<RigidDofs>,
+    pub point_masses: Vec<PointMassDofs>,
+    pub constraints: Vec<Box<dyn Constraint>>,
+    pub force_elements: Vec<Box<dyn ForceElement>>,
+    pub loads: Vec<PointLoad>,
+    pub sensors: Vec<SensorPoint>,
+    /// Gravitational acceleration [SI: m/s²].
+    pub gravity: Vector2<f64>,
+    /// Reference (initial) coordinates.
+    pub q0: Vec<f64>,
+    /// First row of each constraint in the stacked C.
+    pub constraint_rows: Vec<usize>,
+    ndof: usize,
+    nrows: usize,
+}
+
+impl System {
+    /// Number of coordinates.
+    pub fn ndof(&self) -> usize {
+        self.ndof
+    }
+
+    /// Number of constraint equations.
+    pub fn constraint_count(&self) -> usize {
+        self.nrows
+    }
+
+    /// Human-readable name of coordinate i, e.g. `beam blade node 3 r'x`.
+    pub fn dof_label(&self, i: usize) -> String {
+        for b in &self.beams {
+            let n = 4 * b.node_count();
+            if (b.dof0..b.dof0 + n).contains(&i) {
+                let k = i - b.dof0;
+                let name = ["rx", "ry", "r'x", "r'y"][k % 4];
+                return format!(
+                    "beam `{}` node {} (s = {:.4} mm) {name}",
+                    b.id,
+                    k / 4,
+                    1e3 * b.node_s[k / 4]
+                );
+            }
+        }
+        for r in &self.rigid_bodies {
+            if (r.dof0..r.dof0 + 3).contains(&i) {
+                let name = ["x", "y", "rotation"][i - r.dof0];
+                return format!("rigid body `{}` {name}", r.id);
+            }
+        }
+        for p in &self.point_masses {
+            if (p.dof0..p.dof0 + 2).contains(&i) {
+                return format!("point mass `{}` {}", p.id, ["x", "y"][i - p.dof0]);
+            }
+        }
+        format!("coordinate {i}")
+    }
+
+    /// Total mass [SI: kg].
+    pub fn total_mass(&self) -> f64 {
+        self.beams.iter().map(BeamMesh::mass).sum::<f64>()
+            + self.rigid_bodies.iter().map(|r| r.mass).sum::<f64>()
+            + self.point_masses.iter().map(|p| p.mass).sum::<f64>()
+    }
+}
