@@ -66,13 +66,38 @@ pub fn solve_generalized(k: &Mat<f64>, m: &Mat<f64>) -> Result<GeneralizedEigen,
     let mut c = w.transpose().to_owned();
     solve_lower_triangular_in_place(l, c.as_mut(), p);
     let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
-    let evd = c
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|_| EigenFailure::NoConvergence)?;
-    let values: Vec<f64> = (0..n).map(|i| evd.S()[i]).collect();
-    let mut vectors = evd.U().to_owned();
+    let (values, mut vectors) = symmetric_eigen_qr(&c, p)?;
     solve_upper_triangular_in_place(l.transpose(), vectors.as_mut(), p);
     Ok(GeneralizedEigen { values, vectors })
+}
+
+/// Eigenvalues (ascending) and eigenvectors of a symmetric matrix by the
+/// tridiagonal QR algorithm.
+///
+/// faer's default switches to divide and conquer from n = 128, and that path
+/// lost the zero eigenvalues of a free 32-element beam (ω² = 1.7e5 instead of
+/// ~0.1 rad²/s², where the eigenvalue-only path, nalgebra and LAPACK agree),
+/// so the QR algorithm is forced for every size.
+pub fn symmetric_eigen_qr(c: &Mat<f64>, par: Par) -> Result<(Vec<f64>, Mat<f64>), EigenFailure> {
+    use faer::dyn_stack::{MemBuffer, MemStack};
+    use faer::linalg::evd::{self, ComputeEigenvectors, SelfAdjointEvdParams};
+    let n = c.nrows();
+    let mut params: SelfAdjointEvdParams = faer::auto!(f64);
+    params.recursion_threshold = usize::MAX;
+    let mut s = faer::diag::Diag::<f64>::zeros(n);
+    let mut u = Mat::<f64>::zeros(n, n);
+    let req = evd::self_adjoint_evd_scratch::<f64>(n, ComputeEigenvectors::Yes, par, params.into());
+    let mut buf = MemBuffer::new(req);
+    evd::self_adjoint_evd(
+        c.as_ref(),
+        s.as_mut(),
+        Some(u.as_mut()),
+        par,
+        MemStack::new(&mut buf),
+        params.into(),
+    )
+    .map_err(|_| EigenFailure::NoConvergence)?;
+    Ok(((0..n).map(|i| s[i]).collect(), u))
 }
 
 /// Eigenvector of the smallest eigenvalue of a symmetric matrix.

@@ -5,8 +5,11 @@
 //! K_r x = ω² M_r x is solved by Cholesky reduction. f = √max(ω², 0)/2π [Hz].
 //!
 //! Zero-frequency (rigid-body or mechanism) modes are those with
-//! |ω²| ≤ tol, tol = [`ModalSettings::rigid_tolerance`] · n · ε · max|ω²|:
-//! the round-off level of the reduced problem. Each elastic mode is classified
+//! |ω²| ≤ tol, tol = [`ModalSettings::rigid_tolerance`] · ε · max|ω²|.
+//! Measured on free beams of 8–500 elements, the zero eigenvalues scatter at
+//! 0.02–0.12 · ε · max|ω²| while the first bending mode sits at ≥ 1e4 · ε ·
+//! max|ω²| (500 elements; 6e10 at 8), so the default factor 100 separates them
+//! by three orders of magnitude on the noise side and two on the other. Each elastic mode is classified
 //! by where its strain energy ½φᵀKφ sits: beam axial, beam bending, or springs.
 
 use super::eigen::{solve_generalized, EigenFailure};
@@ -21,7 +24,7 @@ use serde::Serialize;
 pub struct ModalSettings {
     /// Number of modes to report, rigid ones included (`None` = all).
     pub modes: Option<usize>,
-    /// Multiple of n·ε·max|ω²| below which ω² counts as zero.
+    /// Multiple of ε·max|ω²| below which ω² counts as zero.
     pub rigid_tolerance: f64,
 }
 
@@ -156,7 +159,7 @@ pub fn modal(
         EigenFailure::NoConvergence => AnalysisError::EigenSolver { size: ns.dim() },
     })?;
     let lmax = eig.values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-    let tol = settings.rigid_tolerance * ns.dim() as f64 * f64::EPSILON * lmax;
+    let tol = settings.rigid_tolerance * f64::EPSILON * lmax;
     let count = settings.modes.map_or(ns.dim(), |c| c.min(ns.dim()));
     let rigid_modes = eig.values.iter().filter(|v| v.abs() <= tol).count();
     let mut modes = Vec::with_capacity(count);

@@ -1,0 +1,71 @@
+//! Shared builders for the verification tests: the paper's blade (Table 2)
+//! and analytic Euler–Bernoulli frequencies.
+#![allow(dead_code)]
+
+use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings, ModeKind};
+use ancf_modal::error::Source;
+use ancf_modal::{Model, System};
+use serde_json::{json, Value};
+use std::f64::consts::PI;
+
+/// Paper Table 2.
+pub const L: f64 = 25e-3;
+pub const H: f64 = 1.1e-3;
+pub const W: f64 = 5.2e-3;
+pub const RHO: f64 = 8940.0;
+pub const E: f64 = 127e9;
+
+/// Free-free βL (DESIGN §3, standard tables).
+pub const FREE_FREE_BL: [f64; 4] = [4.730040745, 7.853204624, 10.99560784, 14.13716549];
+/// Cantilever βL.
+pub const CANTILEVER_BL: [f64; 4] = [1.875104069, 4.694091133, 7.854757438, 10.99554073];
+
+/// Euler–Bernoulli frequency [Hz] of a beam for a given βL.
+pub fn euler_bernoulli_hz(bl: f64, l: f64, h: f64) -> f64 {
+    let ei = E * W * h.powi(3) / 12.0;
+    let rho_a = RHO * W * h;
+    bl * bl / (2.0 * PI * l * l) * (ei / rho_a).sqrt()
+}
+
+/// First free-free axial frequency [Hz]: 1/(2L) √(E/ρ).
+pub fn axial_hz(k: usize, l: f64) -> f64 {
+    k as f64 / (2.0 * l) * (E / RHO).sqrt()
+}
+
+/// The blade as a JSON beam, on the x axis from the origin.
+pub fn blade(elements: usize) -> Value {
+    json!({
+        "id": "blade", "start": [0.0, 0.0], "angle_deg": 0.0, "length": L,
+        "elements": elements, "nodes_at_attachments": false,
+        "section": {"height": H, "width": W},
+        "material": {"young": E, "density": RHO}
+    })
+}
+
+pub fn model(v: Value) -> Model {
+    Model::from_json(&v.to_string(), Source::BuiltIn).expect("test model is valid")
+}
+
+pub fn modal_all(m: &Model) -> ModalResult {
+    modal_at_reference(&System::new(m), &ModalSettings::default()).expect("modal analysis succeeds")
+}
+
+pub fn free_beam(elements: usize) -> Model {
+    model(json!({"name": "free", "beams": [blade(elements)]}))
+}
+
+pub fn cantilever(elements: usize) -> Model {
+    model(json!({
+        "name": "cantilever", "beams": [blade(elements)],
+        "joints": [{"type": "weld", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "blade", "s": 0.0}}]
+    }))
+}
+
+/// Frequencies [Hz] of the elastic modes of a kind, ascending.
+pub fn freqs(r: &ModalResult, kind: ModeKind) -> Vec<f64> {
+    r.of_kind(kind).map(|m| m.frequency_hz).collect()
+}
+
+pub fn rel(a: f64, b: f64) -> f64 {
+    (a - b) / b
+}
