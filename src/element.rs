@@ -292,6 +292,34 @@ impl CableElement {
         }
     }
 
+    /// The quadratic form ½ δeᵀ K δe of the tangent at `e`, split into its
+    /// axial and bending parts, evaluated from the strain variations at the
+    /// quadrature points. Unlike a product with the assembled matrix, this
+    /// does not cancel large stiffness entries against each other: a rigid
+    /// motion of a short element gives exactly zero, so Rayleigh quotients of
+    /// smooth modes keep full relative precision on any mesh.
+    pub fn quadratic_form(&self, e: &Vec8, de: &Vec8) -> EnergySplit {
+        let CableSection { ea, ei, .. } = self.section;
+        let mut out = EnergySplit::default();
+        for qp in &self.axial {
+            let r1 = combine(e, &qp.d1);
+            let l = r1.norm();
+            let t = r1 / l;
+            let d1 = combine(de, &qp.d1);
+            let along = t.dot(&d1);
+            let across2 = d1.norm_squared() - along * along;
+            out.axial += 0.5 * qp.w * ea * (along * along + (l - 1.0) / l * across2);
+        }
+        for qp in &self.bending {
+            let b = BendingPoint::new(e, qp);
+            let (d1, d2) = (combine(de, &qp.d1), combine(de, &qp.d2));
+            let dk = b.p.dot(&d1) + b.q.dot(&d2);
+            let second = d1.dot(&(b.h11 * d1)) + 2.0 * d1.dot(&(b.h12 * d2));
+            out.bending += 0.5 * qp.w * ei * (dk * dk + b.kappa * second);
+        }
+        out
+    }
+
     /// Tangent stiffness `∂Q_s/∂e`, added into `out`.
     pub fn tangent_into(&self, e: &Vec8, out: &mut Mat8) {
         let mut bending = Mat8::zeros();

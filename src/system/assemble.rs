@@ -21,11 +21,14 @@ pub struct EnergyBreakdown {
     pub bending: f64,
     /// Energy of springs and torsion springs.
     pub springs: f64,
+    /// Load stiffness and constraint-force (∂(C_qᵀλ)/∂q) terms; not strain
+    /// energy, zero at an unloaded reference.
+    pub other: f64,
 }
 
 impl EnergyBreakdown {
     pub fn total(&self) -> f64 {
-        self.axial + self.bending + self.springs
+        self.axial + self.bending + self.springs + self.other
     }
 }
 
@@ -209,26 +212,57 @@ impl System {
         e
     }
 
-    /// Quadratic strain energy ½ φᵀ K φ of a mode shape φ, split by kind,
-    /// with the stiffness parts taken at the state `q`.
-    pub fn mode_energy(&self, q: &[f64], phi: &[f64]) -> EnergyBreakdown {
+    /// The quadratic form ½ φᵀ K φ of the tangent stiffness at `at`, split
+    /// by kind. Beam parts come from strain variations (see
+    /// [`crate::element::CableElement::quadratic_form`]), so the result keeps
+    /// full relative precision for smooth shapes even on meshes with very
+    /// short elements.
+    pub fn stiffness_quadratic_form(&self, at: &Linearization, phi: &[f64]) -> EnergyBreakdown {
+        let q = at.q;
         let mut e = EnergyBreakdown::default();
         for b in &self.beams {
             for (k, el) in b.elements.iter().enumerate() {
                 let dofs = b.element_dofs(k);
-                let (mut ka, mut kb) = (Mat8::zeros(), Mat8::zeros());
-                el.tangent_parts_into(&element_vec(q, &dofs), &mut ka, &mut kb);
-                let v = element_vec(phi, &dofs);
-                e.axial += 0.5 * v.dot(&(ka * v));
-                e.bending += 0.5 * v.dot(&(kb * v));
+                let s = el.quadratic_form(&element_vec(q, &dofs), &element_vec(phi, &dofs));
+                e.axial += s.axial;
+                e.bending += s.bending;
             }
         }
+        let local = |dofs: &mut dyn Iterator<Item = usize>| {
+            let mut v = PairGrad::zeros();
+            for (i, d) in dofs.enumerate() {
+                v[i] = phi[d];
+            }
+            v
+        };
         let mut h = PairHess::zeros();
         for fe in &self.force_elements {
             fe.hessian(q, &mut h);
-            let v = PairGrad::from_fn(|i, _| fe.pair().dofs().nth(i).map_or(0.0, |d| phi[d]));
+            let v = local(&mut fe.pair().dofs());
             e.springs += 0.5 * v.dot(&(h * v));
         }
+        let mut hl = Hess::zeros();
+        for l in &self.loads {
+            l.load_stiffness(q, at.time, at.load_scale, &mut hl);
+            let v = local(&mut l.anchor.dofs().iter().copied());
+            e.other -= 0.5 * v.fixed_rows::<8>(0).dot(&(hl * v.fixed_rows::<8>(0)));
+        }
+        if let Some(lambda) = at.lambda {
+            for (c, &row) in self.constraints.iter().zip(&self.constraint_rows) {
+                h.fill(0.0);
+                c.hessian_dot(q, &lambda[row..row + c.rows()], &mut h);
+                let v = local(&mut c.pair().dofs());
+                e.other += 0.5 * v.dot(&(h * v));
+            }
+        }
         e
+    }
+
+    /// Kinetic-energy form φᵀ M φ [SI: kg m² …].
+    pub fn mass_quadratic_form(&self, mass: &Mat<f64>, phi: &[f64]) -> f64 {
+        let n = self.ndof();
+        (0..n)
+            .map(|i| phi[i] * (0..n).map(|j| mass[(i, j)] * phi[j]).sum::<f64>())
+            .sum()
     }
 }
