@@ -1,7 +1,9 @@
 //! Analyses on an assembled [`crate::System`].
 
+pub mod dispersion;
 pub mod eigen;
 pub mod modal;
 pub mod reduce;
+pub mod spectrum;
 
 pub use modal::{modal, modal_at_reference, ModalResult, ModalSettings, Mode, ModeKind};

@@ -6,7 +6,7 @@ mod modal;
 use ancf_modal::model::Model;
 use anyhow::Result;
 use clap::{Parser, Subcommand};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Modal and frequency-response analysis of planar rigid-flexible
 /// assemblies with ANCF beams.
@@ -38,7 +38,7 @@ pub fn load_model(path: Option<&Path>) -> Result<Model> {
 }
 
 /// Write text to a file atomically.
-pub fn write_output(path: &PathBuf, text: &str) -> Result<()> {
+pub fn write_output(path: &Path, text: &str) -> Result<()> {
     ancf_modal::output::files::write_atomic(path, text.as_bytes())?;
     Ok(())
 }

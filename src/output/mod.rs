@@ -2,3 +2,4 @@
 
 pub mod files;
 pub mod modal_report;
+pub mod plot;

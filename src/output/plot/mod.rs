@@ -1,0 +1,316 @@
+//! Figures of modal and impulse-response results, rendered to SVG or PNG.
+//!
+//! The module depends on nothing else in the crate: callers fill plain data
+//! structs, in SI units, and [`render`] turns a [`Figure`] into the bytes of
+//! an SVG or PNG file; [`write_atomic`] puts them on disk. Rendering needs no
+//! system library and no installed font: text uses DejaVu Sans, embedded.
+//!
+//! # Figures
+//!
+//! * [`LineFigure`] — a title and one or more panels stacked vertically that
+//!   share the x axis (e.g. the sensor signal over the force pulse). Each
+//!   panel has named [`Series`] (lines, points, or dashed reference lines), a
+//!   legend, vertical and horizontal [`Guide`] lines with labels (e.g.
+//!   computed eigenfrequencies, and the 4600 Hz experiment as a *reference*
+//!   guide, drawn dashed in the reference colour) and labelled
+//!   [`PointMarker`]s (e.g. identified peaks at (f, dB)). Axes may be
+//!   logarithmic.
+//! * [`ModeShapeFigure`] — a grid with one subplot per mode: the undeformed
+//!   geometry in grey (beam polylines, squares for rigid bodies and point
+//!   masses, small circles for joints), the deformed geometry in colour, and
+//!   a title such as "Mode 1: 4577.3 Hz (bending)". x and y use one length
+//!   scale (equal aspect ratio). The caller scales the mode amplitude.
+//! * [`calibration_figure`] and [`convergence_figure`] build line figures
+//!   for a calibration (frequency against a parameter, target line, fitted
+//!   point, numbered iterates) and a log-log convergence study (relative
+//!   error against the number of elements, with an O(hᵖ) slope).
+//!
+//! # Units
+//!
+//! All data are SI (s, Hz, m, N, …; dB where a series is in decibels). Each
+//! axis has a [`Scale`] that says how it is *shown*: `Scale::ms()` shows
+//! seconds as milliseconds, `Scale::khz()` hertz as kilohertz,
+//! `Scale::mm()` metres as millimetres, and `Scale::si(unit, max)` picks the
+//! SI prefix. The unit is written into the axis label: `Time [ms]`.
+//!
+//! # Style
+//!
+//! Series take colours from one colour-blind-safe palette (Okabe–Ito,
+//! [`PALETTE`]) in order, across all panels of a figure; undeformed geometry
+//! is grey; reference lines are dashed in [`REFERENCE`] (reddish purple),
+//! plain guides are thin dark grey. Text scales with the figure size.
+//!
+//! Tick labels get as many decimals as their step needs; log axes use
+//! decades (or 1-2-5 steps over short ranges) and write powers of ten as
+//! 10⁻⁶. Labels of guides and markers are placed so that they do not
+//! overlap each other, markers or the legend; the legend goes to the corner
+//! that hides the least data unless a corner is chosen. Long series are
+//! thinned to four points per pixel column (first, min, max, last), which
+//! draws the same. Values outside a fixed range are clipped.
+//!
+//! Layout facts (pixel positions of data points, plot areas) are available
+//! through [`Figure::layout`] and [`Figure::pixel_of`], for tests and for
+//! callers that annotate.
+//!
+//! PNG text is rasterised by this module from the embedded font (plotters'
+//! own glyph placement spaces letters unevenly); SVG text is `<text>` in the
+//! `sans-serif` family, drawn by the viewer.
+
+mod annotate;
+mod font;
+mod frame;
+mod geom;
+mod line;
+mod modeshape;
+mod pngtext;
+mod presets;
+mod style;
+mod ticks;
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+pub use frame::PanelLayout;
+pub use line::{Guide, Legend, LineFigure, MarkerShape, Panel, PointMarker, Series, SeriesStyle};
+pub use modeshape::{Geometry, ModeShape, ModeShapeFigure};
+pub use presets::{calibration_figure, convergence_figure, Calibration, Convergence};
+pub use style::{
+    format_sig, palette, Scale, BACKGROUND, GUIDE, INK, PALETTE, REFERENCE, UNDEFORMED,
+};
+pub use ticks::superscript;
+
+/// Why a figure could not be made or written.
+#[derive(Debug, thiserror::Error)]
+pub enum PlotError {
+    #[error("{path}: unknown plot format (use a .svg or .png file name)", path = path.display())]
+    UnknownExtension { path: PathBuf },
+    #[error("{path}: cannot write the plot: {io}", path = path.display())]
+    Io { path: PathBuf, io: std::io::Error },
+    /// The drawing library failed; its message.
+    #[error("drawing failed: {0}")]
+    Backend(String),
+    #[error("PNG encoding failed: {0}")]
+    PngEncode(String),
+    #[error("nothing to plot: {what}")]
+    EmptyData { what: String },
+    #[error("series `{series}` has {x_len} x values but {y_len} y values")]
+    LengthMismatch {
+        series: String,
+        x_len: usize,
+        y_len: usize,
+    },
+    #[error("plot size {width}×{height} is outside 100…16384 pixels")]
+    InvalidSize { width: u32, height: u32 },
+    #[error("the embedded font could not be loaded")]
+    Font,
+}
+
+impl<E: std::error::Error + Send + Sync> From<DrawingAreaErrorKind<E>> for PlotError {
+    fn from(e: DrawingAreaErrorKind<E>) -> Self {
+        PlotError::Backend(e.to_string())
+    }
+}
+
+/// Output file format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    Svg,
+    Png,
+}
+
+impl Format {
+    /// The format named by the file extension (`.svg`, `.png`, any case).
+    pub fn from_path(path: &Path) -> Result<Format, PlotError> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("svg") => Ok(Format::Svg),
+            Some("png") => Ok(Format::Png),
+            _ => Err(PlotError::UnknownExtension {
+                path: path.to_path_buf(),
+            }),
+        }
+    }
+}
+
+/// Figure size in pixels (SVG user units).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PlotSize {
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Default for PlotSize {
+    fn default() -> Self {
+        PlotSize {
+            width: 1200,
+            height: 800,
+        }
+    }
+}
+
+impl PlotSize {
+    fn check(self) -> Result<(), PlotError> {
+        let ok = |v: u32| (100..=16384).contains(&v);
+        if ok(self.width) && ok(self.height) {
+            Ok(())
+        } else {
+            Err(PlotError::InvalidSize {
+                width: self.width,
+                height: self.height,
+            })
+        }
+    }
+}
+
+/// Any figure this module draws.
+#[derive(Debug, Clone)]
+pub enum Figure {
+    Line(LineFigure),
+    ModeShapes(ModeShapeFigure),
+}
+
+impl From<LineFigure> for Figure {
+    fn from(f: LineFigure) -> Self {
+        Figure::Line(f)
+    }
+}
+
+impl From<ModeShapeFigure> for Figure {
+    fn from(f: ModeShapeFigure) -> Self {
+        Figure::ModeShapes(f)
+    }
+}
+
+impl Figure {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        size: PlotSize,
+    ) -> Result<Vec<PanelLayout>, PlotError> {
+        root.fill(&BACKGROUND)?;
+        match self {
+            Figure::Line(f) => f.draw(root, size),
+            Figure::ModeShapes(f) => f.draw(root, size),
+        }
+    }
+
+    /// Where each panel (line figure) or subplot (mode shapes) lands at
+    /// `size`, with the data-to-pixel mapping the renderer uses.
+    pub fn layout(&self, size: PlotSize) -> Result<Vec<PanelLayout>, PlotError> {
+        size.check()?;
+        font::ensure_registered()?;
+        let mut svg = String::new();
+        let root = SVGBackend::with_string(&mut svg, (size.width, size.height)).into_drawing_area();
+        self.draw(&root, size)
+    }
+
+    /// The pixel at which SI data point `(x, y)` of panel (or subplot)
+    /// `panel` is drawn at `size`; `None` if there is no such panel or the
+    /// point cannot be shown (non-finite, or ≤ 0 on a log axis).
+    pub fn pixel_of(
+        &self,
+        size: PlotSize,
+        panel: usize,
+        x: f64,
+        y: f64,
+    ) -> Result<Option<(i32, i32)>, PlotError> {
+        Ok(self.layout(size)?.get(panel).and_then(|p| p.to_pixel(x, y)))
+    }
+}
+
+/// Renders `figure` as the bytes of an SVG or PNG file.
+pub fn render(figure: &Figure, format: Format, size: PlotSize) -> Result<Vec<u8>, PlotError> {
+    size.check()?;
+    font::ensure_registered()?;
+    let (w, h) = (size.width, size.height);
+    match format {
+        Format::Svg => {
+            let mut svg = String::new();
+            {
+                let root = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
+                figure.draw(&root, size)?;
+                root.present()?;
+            }
+            Ok(svg.into_bytes())
+        }
+        Format::Png => {
+            let mut rgb = vec![0u8; w as usize * h as usize * 3];
+            {
+                let backend = pngtext::TextFix(BitMapBackend::with_buffer(&mut rgb, (w, h)));
+                let root = backend.into_drawing_area();
+                figure.draw(&root, size)?;
+                root.present()?;
+            }
+            encode_png(&rgb, w, h)
+        }
+    }
+}
+
+fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, PlotError> {
+    let mut out = Vec::new();
+    let mut encoder = png::Encoder::new(&mut out, width, height);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    // Plots are flat colour: per-row adaptive filtering shrinks them ~2×.
+    encoder.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
+    encoder.set_compression(png::Compression::Best);
+    let err = |e: png::EncodingError| PlotError::PngEncode(e.to_string());
+    let mut writer = encoder.write_header().map_err(err)?;
+    writer.write_image_data(rgb).map_err(err)?;
+    writer.finish().map_err(err)?;
+    Ok(out)
+}
+
+/// Writes `bytes` to `path` atomically: into a temporary file in the same
+/// directory, flushed, then renamed over `path`. On failure the temporary
+/// file is removed and `path` is untouched.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), PlotError> {
+    let io_err = |io: std::io::Error| PlotError::Io {
+        path: path.to_path_buf(),
+        io,
+    };
+    let name = path.file_name().ok_or_else(|| {
+        io_err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "not a file name",
+        ))
+    })?;
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !dir.is_dir() {
+        return Err(io_err(std::io::Error::new(
+            std::io::ErrorKind::NotFound,
+            format!("directory {} does not exist", dir.display()),
+        )));
+    }
+    static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let tmp = dir.join(format!(
+        ".{}.{}-{}.tmp",
+        name.to_string_lossy(),
+        std::process::id(),
+        n
+    ));
+    let result = (|| {
+        let mut file = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)?;
+        file.write_all(bytes)?;
+        file.sync_all()?;
+        drop(file);
+        std::fs::rename(&tmp, path)
+    })();
+    result.map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        io_err(e)
+    })
+}
