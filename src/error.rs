@@ -24,17 +24,23 @@ impl fmt::Display for Source {
 }
 
 /// A problem with one value of a model, found by validation.
+///
+/// Values the user wrote are shown with `{:?}`, which switches to exponent
+/// notation for very small and very large numbers (`-1e-9`, not
+/// `-0.000000001`) and always shows that a number is a float.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Problem {
-    #[error("must be a finite number, got {value}")]
+    #[error("must be a finite number, got {value:?}")]
     NotFinite { value: f64 },
-    #[error("must be positive, got {value}")]
+    #[error("must be positive, got {value:?}")]
     NotPositive { value: f64 },
-    #[error("must not be negative, got {value}")]
+    #[error("must not be negative, got {value:?}")]
     Negative { value: f64 },
     #[error("must be at least 1")]
     ZeroCount,
-    #[error("{value} is outside [{min}, {max}]")]
+    #[error("the beams have {total} elements in all, more than the {max} the analysis supports (it uses dense matrices)")]
+    TooManyElements { total: usize, max: usize },
+    #[error("{value:?} is outside [{min:?}, {max:?}]")]
     OutOfRange { value: f64, min: f64, max: f64 },
     #[error("must not be empty")]
     EmptyId,
@@ -42,8 +48,11 @@ pub enum Problem {
     DuplicateId { id: String },
     #[error("no {kind} with id `{id}`")]
     UnknownId { kind: &'static str, id: String },
-    #[error("give exactly one of `beam`, `body` or `ground`")]
-    AmbiguousPoint,
+    #[error(
+        "give exactly one of `beam`, `body` or `ground` (this point gives {})",
+        given_keys(given)
+    )]
+    AmbiguousPoint { given: Vec<&'static str> },
     #[error("`{key}` is required here")]
     MissingKey { key: &'static str },
     #[error("`{key}` is not allowed here: {why}")]
@@ -53,7 +62,9 @@ pub enum Problem {
     },
     #[error("a direction must have non-zero length")]
     ZeroDirection,
-    #[error("the points do not coincide initially: gap {gap:.3e} m ({a:?} vs {b:?})")]
+    #[error(
+        "the points do not coincide initially: a is at {a:?}, b at {b:?}, a gap of {gap:.3e} m"
+    )]
     PointsApart { gap: f64, a: [f64; 2], b: [f64; 2] },
     #[error("point b is {gap:.3e} m off the slider axis through point a")]
     OffAxis { gap: f64 },
@@ -65,13 +76,25 @@ pub enum Problem {
     ZeroLength,
     #[error("the model has no bodies (no beam, rigid body or point mass)")]
     NoBodies,
-    #[error("the spring's free length {free_length} m is not positive (preload {preload} N, stiffness {stiffness} N/m, initial length {length} m)")]
+    #[error("the spring's free length {free_length:.3e} m is not positive (preload {preload:?} N, stiffness {stiffness:?} N/m, initial length {length:.3e} m)")]
     NonPositiveFreeLength {
         free_length: f64,
         preload: f64,
         stiffness: f64,
         length: f64,
     },
+}
+
+/// "`beam` and `ground`", or "none of them" for an empty list.
+fn given_keys(keys: &[&str]) -> String {
+    match keys {
+        [] => String::from("none of them"),
+        [one] => format!("only `{one}`"),
+        [init @ .., last] => {
+            let init: Vec<String> = init.iter().map(|k| format!("`{k}`")).collect();
+            format!("{} and `{last}`", init.join(", "))
+        }
+    }
 }
 
 /// Why a model could not be read.
@@ -88,6 +111,15 @@ pub enum ModelError {
         line: usize,
         column: usize,
         message: String,
+    },
+    /// A number JSON allows but an `f64` cannot hold (e.g. `1e999`).
+    /// serde_json reports it as a syntax error; the path locates it better.
+    #[error("{source_name}:{line}:{column}: {path}: number out of range: model values must be finite (magnitude below 1.8e308)")]
+    NumberOutOfRange {
+        source_name: Source,
+        line: usize,
+        column: usize,
+        path: String,
     },
     #[error("{source_name}: {path}: {message}")]
     Schema {
@@ -106,8 +138,8 @@ pub enum ModelError {
 /// Why an analysis failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum AnalysisError {
-    #[error("the mass matrix is singular in the direction of {dof} (a body without inertia in a free direction)")]
-    SingularMass { dof: String },
+    #[error("{path}: the mass matrix is singular in the direction of {dof} (a body without inertia in a free direction)")]
+    SingularMass { dof: String, path: String },
     #[error("the system has no free coordinates left after the constraints")]
     NoFreedom,
     #[error("the eigen solver did not converge ({size}×{size} problem)")]

@@ -78,7 +78,7 @@ pub struct EnergyFractions {
 /// One mode.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Mode {
-    /// 0-based, ascending frequency.
+    /// Mode number, 1-based, in ascending frequency.
     pub index: usize,
     /// Natural frequency [SI: Hz]; 0 for rigid modes.
     pub frequency_hz: f64,
@@ -160,6 +160,7 @@ pub fn modal(
                 .unwrap_or(0);
             AnalysisError::SingularMass {
                 dof: system.dof_label(i),
+                path: system.dof_model_path(i),
             }
         }
         EigenFailure::NoConvergence => AnalysisError::EigenSolver { size: ns.dim() },
@@ -195,7 +196,7 @@ pub fn modal(
             value.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
         };
         modes.push(Mode {
-            index: i,
+            index: i + 1,
             frequency_hz,
             eigenvalue: value,
             kind,

@@ -1,10 +1,10 @@
 //! `ancf-modal modal`: frequencies and mode shapes.
 
-use super::{load_model, write_output};
+use super::{load_model, source_label, write_output};
 use ancf_modal::analysis::{modal_at_reference, ModalSettings};
 use ancf_modal::output::modal_report::{modal_csv, modal_json, modal_table};
 use ancf_modal::System;
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::Args;
 use std::path::PathBuf;
 
@@ -30,7 +30,8 @@ pub fn run(args: ModalArgs) -> Result<()> {
         modes: Some(args.modes as usize),
         ..ModalSettings::default()
     };
-    let result = modal_at_reference(&system, &settings)?;
+    let result = modal_at_reference(&system, &settings)
+        .with_context(|| source_label(args.model.as_deref()))?;
     if let Some(path) = &args.csv {
         write_output(path, &modal_csv(&result))?;
     }

@@ -18,10 +18,21 @@ impl Model {
     /// Parse and validate a model from JSON text.
     pub fn from_json(text: &str, source: Source) -> Result<Model, ModelError> {
         let de = &mut serde_json::Deserializer::from_str(text);
-        let model: Model = serde_path_to_error::deserialize(de).map_err(|e| {
+        let model: Model = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
             let path = e.path().to_string();
+            let path = if path == "." { String::from("$") } else { path };
             let inner = e.into_inner();
-            if inner.is_syntax() || inner.is_eof() {
+            // serde_json has no public error code; this message is its
+            // `NumberOutOfRange` (a literal like `1e999`), which is a value
+            // problem rather than malformed JSON, so name the path too.
+            if inner.is_syntax() && inner.to_string().starts_with("number out of range") {
+                ModelError::NumberOutOfRange {
+                    source_name: source.clone(),
+                    line: inner.line(),
+                    column: inner.column(),
+                    path,
+                }
+            } else if inner.is_syntax() || inner.is_eof() {
                 ModelError::Syntax {
                     source_name: source.clone(),
                     line: inner.line(),
@@ -29,13 +40,20 @@ impl Model {
                     message: strip_position(&inner.to_string()),
                 }
             } else {
-                let path = if path == "." { String::from("$") } else { path };
                 ModelError::Schema {
                     source_name: source.clone(),
                     path,
                     message: strip_position(&inner.to_string()),
                 }
             }
+        })?;
+        // Trailing characters after the model (a second document, a stray
+        // brace) are malformed JSON too.
+        de.end().map_err(|e| ModelError::Syntax {
+            source_name: source.clone(),
+            line: e.line(),
+            column: e.column(),
+            message: strip_position(&e.to_string()),
         })?;
         model
             .validate()

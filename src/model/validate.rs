@@ -8,6 +8,11 @@ use crate::error::Problem;
 /// Two joint points closer than this [SI: m] coincide.
 pub const COINCIDENCE_TOLERANCE: f64 = 1e-9;
 
+/// Most beam elements, over all beams, the analysis accepts: it works with
+/// dense matrices (about 4 coordinates per node), so far larger meshes would
+/// exhaust memory instead of failing with a message.
+pub const MAX_ELEMENTS: usize = 2000;
+
 /// A validation failure: the JSON path and what is wrong there.
 pub type Failure = (String, Problem);
 
@@ -93,9 +98,16 @@ impl Model {
     /// Resolve a point's ids; `path` is its JSON path for messages.
     pub fn resolve<'m>(&'m self, p: &PointSpec, path: &str) -> Result<PointTarget<'m>, Failure> {
         let fail = |key: &str, problem| Err((format!("{path}.{key}"), problem));
-        let given = [p.beam.is_some(), p.body.is_some(), p.ground.is_some()];
-        if given.iter().filter(|g| **g).count() != 1 {
-            return Err((path.to_string(), Problem::AmbiguousPoint));
+        let given: Vec<&'static str> = [
+            ("beam", p.beam.is_some()),
+            ("body", p.body.is_some()),
+            ("ground", p.ground.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(key, set)| set.then_some(key))
+        .collect();
+        if given.len() != 1 {
+            return Err((path.to_string(), Problem::AmbiguousPoint { given }));
         }
         if let Some(id) = &p.beam {
             if p.local.is_some() {
@@ -197,6 +209,7 @@ impl Model {
         }
         check_finite_pair(self.gravity, "gravity")?;
         self.validate_ids()?;
+        let mut total_elements = 0usize;
         for (i, b) in self.beams.iter().enumerate() {
             let p = format!("beams[{i}]");
             check_finite_pair(b.start, &format!("{p}.start"))?;
@@ -204,6 +217,14 @@ impl Model {
             check_positive(b.length, &format!("{p}.length"))?;
             if b.elements == 0 {
                 return Err((format!("{p}.elements"), Problem::ZeroCount));
+            }
+            total_elements = total_elements.saturating_add(b.elements);
+            if total_elements > MAX_ELEMENTS {
+                let problem = Problem::TooManyElements {
+                    total: total_elements,
+                    max: MAX_ELEMENTS,
+                };
+                return Err((format!("{p}.elements"), problem));
             }
             check_positive(b.section.height, &format!("{p}.section.height"))?;
             check_positive(b.section.width, &format!("{p}.section.width"))?;
@@ -277,6 +298,24 @@ impl Model {
         let mut sensors = std::collections::HashSet::new();
         for (i, s) in self.sensors.iter().enumerate() {
             check_id(&s.id, &format!("sensors[{i}].id"), &mut sensors)?;
+        }
+        // Optional ids of joints, springs and loads label them in reports
+        // (e.g. redundant constraints); each list is its own namespace.
+        let optional = [
+            (
+                "joints",
+                self.joints.iter().map(|j| &j.id).collect::<Vec<_>>(),
+            ),
+            ("springs", self.springs.iter().map(|s| &s.id).collect()),
+            ("loads", self.loads.iter().map(|l| &l.id).collect()),
+        ];
+        for (list, ids) in optional {
+            let mut seen = std::collections::HashSet::new();
+            for (i, id) in ids.into_iter().enumerate() {
+                if let Some(id) = id {
+                    check_id(id, &format!("{list}[{i}].id"), &mut seen)?;
+                }
+            }
         }
         Ok(())
     }

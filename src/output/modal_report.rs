@@ -31,12 +31,12 @@ pub fn modal_table(model_name: &str, r: &ModalResult) -> String {
     );
     for m in &r.modes {
         if m.kind == ModeKind::Rigid {
-            let _ = writeln!(s, "{:>5}  {:>14}  {:<8}", m.index + 1, "0", m.kind);
+            let _ = writeln!(s, "{:>5}  {:>14}  {:<8}", m.index, "0", m.kind);
         } else {
             let _ = writeln!(
                 s,
                 "{:>5}  {:>14.3}  {:<8}  {:>7.2}  {:>7.2}  {:>7.2}",
-                m.index + 1,
+                m.index,
                 m.frequency_hz,
                 m.kind,
                 100.0 * m.energy.bending,
@@ -69,7 +69,7 @@ pub fn modal_csv(r: &ModalResult) -> String {
         let _ = writeln!(
             s,
             "{},{:.10e},{:.10e},{},{:.6},{:.6},{:.6}",
-            m.index + 1,
+            m.index,
             m.frequency_hz,
             m.eigenvalue,
             m.kind,

@@ -164,6 +164,28 @@ impl System {
         format!("coordinate {i}")
     }
 
+    /// JSON path of the model value that gives coordinate i its mass,
+    /// e.g. `rigid_bodies[0].inertia`.
+    pub fn dof_model_path(&self, i: usize) -> String {
+        for (k, b) in self.beams.iter().enumerate() {
+            if (b.dof0..b.dof0 + 4 * b.node_count()).contains(&i) {
+                return format!("beams[{k}].material.density");
+            }
+        }
+        for (k, r) in self.rigid_bodies.iter().enumerate() {
+            if (r.dof0..r.dof0 + 3).contains(&i) {
+                let key = if i == r.dof0 + 2 { "inertia" } else { "mass" };
+                return format!("rigid_bodies[{k}].{key}");
+            }
+        }
+        for (k, p) in self.point_masses.iter().enumerate() {
+            if (p.dof0..p.dof0 + 2).contains(&i) {
+                return format!("point_masses[{k}].mass");
+            }
+        }
+        String::from("$")
+    }
+
     /// Total mass [SI: kg].
     pub fn total_mass(&self) -> f64 {
         self.beams.iter().map(BeamMesh::mass).sum::<f64>()
