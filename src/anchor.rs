@@ -115,6 +115,16 @@ impl Anchor {
         v
     }
 
+    /// Acceleration r̈ = (∂r/∂q) q̈ + (d/dt ∂r/∂q) q̇ (the second term is the
+    /// centripetal part of a rigid-body point).
+    pub fn acceleration(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> Vector2<f64> {
+        let mut r = self.velocity(q, qdd);
+        if let Anchor::Rigid { dofs, local } = self {
+            r -= rot(q[dofs[2]], *local) * qd[dofs[2]].powi(2);
+        }
+        r
+    }
+
     /// ∂r/∂q into the first `ndof` columns of `out` (others untouched).
     pub fn position_jacobian(&self, q: &[f64], out: &mut PosJac) {
         match self {

@@ -144,4 +144,42 @@ pub enum AnalysisError {
     NoFreedom,
     #[error("the eigen solver did not converge ({size}×{size} problem)")]
     EigenSolver { size: usize },
+    /// Statics: the loads push the whole assembly as a rigid body.
+    #[error("the assembly cannot carry the load: it has no support, so the loads move it as a rigid body (fix it to the ground with a joint)")]
+    NoSupport,
+    /// Statics: the reduced tangent is singular in a direction the load pushes.
+    #[error("the assembly cannot carry the load: it is a mechanism, free to move without stiffness in a motion that moves {dof} most (add a support or a spring there)")]
+    Mechanism { dof: String },
+    /// Statics: Newton's method failed even with the smallest load increment.
+    #[error("the static equilibrium did not converge: at load factor {load_factor:.6} Newton's method stopped after {iterations} iterations with an unbalanced force of {residual:.3e} N (no equilibrium near the load path, or a limit point)")]
+    NotConverged {
+        load_factor: f64,
+        iterations: usize,
+        residual: f64,
+    },
+    /// Statics: the equilibrium loses stability on the load path.
+    #[error("the static equilibrium loses stability at load factor {load_factor:.6}: the stiffness against a motion that moves {dof} most reaches zero there (buckling or snap-through); past it no stable equilibrium follows the load path")]
+    Unstable { load_factor: f64, dof: String },
+    /// Statics: gravity alone, ramped up, makes the equilibrium unstable.
+    #[error("the static equilibrium under gravity alone loses stability at {gravity_factor:.6} × g: the stiffness against a motion that moves {dof} most reaches zero there")]
+    UnstableUnderGravity { gravity_factor: f64, dof: String },
+}
+
+/// Why a time integration failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TransientError {
+    #[error("time step must be positive and finite, got {step} s")]
+    InvalidStep { step: f64 },
+    #[error("end time {end_time} s must be finite and longer than one step ({step} s)")]
+    InvalidEndTime { end_time: f64, step: f64 },
+    #[error("spectral radius must be in [0, 1], got {value}")]
+    InvalidSpectralRadius { value: f64 },
+    #[error("Newton iteration failed at t = {time:.9e} s after {iterations} iterations (residual {residual:.3e})")]
+    NewtonFailure {
+        time: f64,
+        residual: f64,
+        iterations: usize,
+    },
+    #[error("the iteration matrix is singular at t = {time:.9e} s (in the direction of {dof})")]
+    Singular { time: f64, dof: String },
 }

@@ -187,6 +187,51 @@ impl System {
         }
     }
 
+    /// Adds the constraint forces C_qᵀλ into `out` (no dense C_q formed).
+    pub fn add_constraint_forces(&self, q: &[f64], lambda: &[f64], out: &mut [f64]) {
+        let mut j = ConstraintJac::zeros();
+        for (c, &row) in self.constraints.iter().zip(&self.constraint_rows) {
+            c.jacobian(q, &mut j);
+            for (k, d) in c.pair().dofs().enumerate() {
+                out[d] += (0..c.rows())
+                    .map(|r| j[(r, k)] * lambda[row + r])
+                    .sum::<f64>();
+            }
+        }
+    }
+
+    /// Adds the viscous forces of dampers (∂(damping power)/∂q̇) into `out`
+    /// and, if given, their q̇-Jacobian into `matrix`. Returns whether the
+    /// system has any damper.
+    pub fn add_damping(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        out: &mut [f64],
+        mut matrix: Option<&mut Mat<f64>>,
+    ) -> bool {
+        let mut any = false;
+        let (mut f, mut c) = (PairGrad::zeros(), PairHess::zeros());
+        for fe in &self.force_elements {
+            let mut v = PairGrad::zeros();
+            for (i, d) in fe.pair().dofs().enumerate() {
+                v[i] = qd[d];
+            }
+            if !fe.damping(q, &v, &mut f, &mut c) {
+                continue;
+            }
+            any = true;
+            let dofs: Vec<usize> = fe.pair().dofs().collect();
+            for (i, &d) in dofs.iter().enumerate() {
+                out[d] += f[i];
+            }
+            if let Some(m) = matrix.as_deref_mut() {
+                scatter_mat(&dofs, &c, m);
+            }
+        }
+        any
+    }
+
     /// Adds ∂(C_qᵀλ)/∂q = Σ λᵢ ∂²Cᵢ/∂q² into `out`.
     pub fn add_constraint_hessian(&self, q: &[f64], lambda: &[f64], out: &mut Mat<f64>) {
         let mut h = PairHess::zeros();
