@@ -1,5 +1,6 @@
 //! Analyses on an assembled [`crate::System`].
 
+pub mod calibrate;
 pub mod dispersion;
 pub mod eigen;
 pub mod lu;

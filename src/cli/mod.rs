@@ -1,6 +1,7 @@
 //! Subcommands. Each file parses its flags, validates them, calls the
 //! library and prints; nothing numerical lives here.
 
+mod calibrate;
 mod modal;
 
 use ancf_modal::model::Model;
@@ -21,11 +22,14 @@ pub struct Cli {
 pub enum Command {
     /// Natural frequencies and mode shapes of the linearized assembly.
     Modal(modal::ModalArgs),
+    /// Fit model parameters (equivalent geometry) to measured frequencies.
+    Calibrate(calibrate::CalibrateArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Modal(a) => modal::run(a),
+        Command::Calibrate(a) => calibrate::run(a),
     }
 }
 
