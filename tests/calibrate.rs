@@ -149,6 +149,33 @@ fn height_and_width_are_recovered_from_two_bending_frequencies() {
 }
 
 #[test]
+fn a_rigid_body_mass_and_a_spring_stiffness_are_recovered() {
+    // Parameters of other kinds (∂M/∂p a unit entry, ∂K/∂k a spring Hessian)
+    // through the same Levenberg–Marquardt path: generate the targets at known
+    // values of the rich model, start from its own values.
+    let m = rich_model();
+    let mut truth = m.clone();
+    truth.rigid_bodies[0].mass = 0.6e-3;
+    truth.springs[0].stiffness = 3500.0;
+    let f = freqs(&modal_all(&truth), ModeKind::Bending);
+    let r = calibrate(
+        &m,
+        &request(&["slot.mass", "s1.stiffness"], &[f[0], f[1]]),
+        &CalibrationSettings::default(),
+    )
+    .expect("fit succeeds");
+    let (mass, k) = (r.parameters[0].fitted, r.parameters[1].fitted);
+    assert!(
+        ((mass - 0.6e-3) / 0.6e-3).abs() <= 1e-6,
+        "slot mass {mass} kg"
+    );
+    assert!(
+        ((k - 3500.0) / 3500.0).abs() <= 1e-6,
+        "spring stiffness {k} N/m"
+    );
+}
+
+#[test]
 fn width_is_not_identifiable_on_a_bare_beam() {
     let beam = free_beam(8);
     let f = freqs(
