@@ -2,6 +2,7 @@
 //! library and prints; nothing numerical lives here.
 
 mod calibrate;
+mod convergence;
 mod modal;
 
 use ancf_modal::model::Model;
@@ -24,12 +25,15 @@ pub enum Command {
     Modal(modal::ModalArgs),
     /// Fit model parameters (equivalent geometry) to measured frequencies.
     Calibrate(calibrate::CalibrateArgs),
+    /// Mesh convergence of the first bending frequencies (log-log errors, O(h⁴)).
+    Convergence(convergence::ConvergenceArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Modal(a) => modal::run(a),
         Command::Calibrate(a) => calibrate::run(a),
+        Command::Convergence(a) => convergence::run(a),
     }
 }
 

@@ -21,6 +21,9 @@ pub struct ModalArgs {
     /// Also write the modes as CSV to this file.
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
+    /// Also draw the first six elastic mode shapes (of those reported) to this file (.svg or .png).
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
 }
 
 pub fn run(args: ModalArgs) -> Result<()> {
@@ -34,6 +37,9 @@ pub fn run(args: ModalArgs) -> Result<()> {
         .with_context(|| source_label(args.model.as_deref()))?;
     if let Some(path) = &args.csv {
         write_output(path, &modal_csv(&result))?;
+    }
+    if let Some(path) = &args.plot {
+        ancf_modal::output::figures::write_mode_shapes(&system, &system.q0, &result, path)?;
     }
     if args.json {
         println!(

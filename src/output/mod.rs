@@ -1,6 +1,7 @@
 //! Outputs: human-readable tables, JSON documents, CSV files, atomic writes.
 
 pub mod calibrate_report;
+pub mod figures;
 pub mod files;
 pub mod modal_report;
 pub mod plot;
