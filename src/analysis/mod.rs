@@ -5,8 +5,10 @@ pub mod dispersion;
 pub mod eigen;
 pub mod lu;
 pub mod modal;
+pub mod prestress;
 pub mod reduce;
 pub mod spectrum;
+pub mod statics;
 pub mod transient;
 
 pub use modal::{modal, modal_at_reference, ModalResult, ModalSettings, Mode, ModeKind};
