@@ -10,8 +10,8 @@
 mod common;
 
 use ancf_modal::analysis::calibrate::{
-    calibrate, CalibrationRequest, CalibrationSettings, EigenFrequencies, FrequencyModel,
-    ModeSelection, ParameterSet, ParameterSpec,
+    calibrate, calibrate_with, CalibrationRequest, CalibrationSettings, EigenFrequencies,
+    FrequencyModel, ModeSelection, ParameterSet, ParameterSpec, SingleFrequency,
 };
 use ancf_modal::analysis::{ModalSettings, ModeKind};
 use ancf_modal::error::{CalibrationError, Source};
@@ -253,6 +253,64 @@ fn one_height_two_targets_is_the_least_squares_fit() {
     assert!(
         ((h - expected) / expected).abs() <= 1e-8,
         "least-squares height {h} vs {expected}"
+    );
+}
+
+#[test]
+fn an_evaluator_without_sensitivities_fits_by_bracketing_alone() {
+    // The Euler–Bernoulli formula as the "experiment": f = (βL)²/(2πL²)
+    // √(E h²/(12 ρ)), so the height for a target is known in closed form.
+    let beam = free_beam(8);
+    let eb = SingleFrequency::new("euler-bernoulli", |m: &Model| {
+        let b = &m.beams[0];
+        let (e, rho, h, l) = (
+            b.material.young,
+            b.material.density,
+            b.section.height,
+            b.length,
+        );
+        let bl = common::FREE_FREE_BL[0];
+        Ok(bl * bl / (2.0 * std::f64::consts::PI * l * l) * (e * h * h / (12.0 * rho)).sqrt())
+    });
+    let target = 5000.0;
+    let r = calibrate_with(
+        &beam,
+        &request(&["height"], &[target]),
+        &CalibrationSettings::default(),
+        &eb,
+        &[1],
+    )
+    .expect("fit succeeds");
+    let expected = H * target / common::euler_bernoulli_hz(common::FREE_FREE_BL[0], common::L, H);
+    let h = r.parameters[0].fitted;
+    assert!(
+        ((h - expected) / expected).abs() <= 1e-9,
+        "height {h} vs closed form {expected}"
+    );
+    assert_eq!(r.method, "euler-bernoulli");
+    assert!(r.sensitivities_hz.is_none());
+    // Without sensitivities a parameter that does nothing is found at the bounds.
+    let e = calibrate_with(
+        &beam,
+        &request(&["width"], &[target]),
+        &CalibrationSettings::default(),
+        &eb,
+        &[1],
+    )
+    .unwrap_err();
+    assert!(matches!(e, CalibrationError::NoEffect { .. }), "{e}");
+    // Two targets need sensitivities.
+    let e = calibrate_with(
+        &beam,
+        &request(&["height"], &[target, 2.0 * target]),
+        &CalibrationSettings::default(),
+        &eb,
+        &[1, 2],
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, CalibrationError::NeedsSensitivities { .. }),
+        "{e}"
     );
 }
 

@@ -275,3 +275,34 @@ fn track(
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
+
+/// One frequency from any function of the model, e.g. a time-domain
+/// experiment with an FFT. It has no sensitivities, so it fits one parameter
+/// to one target (Brent).
+pub struct SingleFrequency<F> {
+    method: &'static str,
+    f: F,
+}
+
+impl<F> SingleFrequency<F>
+where
+    F: Fn(&Model) -> Result<f64, CalibrationError>,
+{
+    /// `method` names the evaluator in reports; `f` gives the frequency [Hz].
+    pub fn new(method: &'static str, f: F) -> Self {
+        SingleFrequency { method, f }
+    }
+}
+
+impl<F> FrequencyModel for SingleFrequency<F>
+where
+    F: Fn(&Model) -> Result<f64, CalibrationError>,
+{
+    fn method(&self) -> &'static str {
+        self.method
+    }
+
+    fn frequencies(&self, model: &Model) -> Result<Vec<f64>, CalibrationError> {
+        Ok(vec![(self.f)(model)?])
+    }
+}
