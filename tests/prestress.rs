@@ -251,3 +251,168 @@ fn constraint_term_gives_the_pendulum_its_stiffness() {
         );
     }
 }
+
+/// The pre-stressed paper assembly at its equilibrium.
+fn paper_prestressed() -> (Model, System) {
+    let m = Model::from_file(std::path::Path::new("models/rcbo_prestressed.json"))
+        .expect("models/rcbo_prestressed.json is valid");
+    let sys = System::new(&m);
+    (m, sys)
+}
+
+/// g(q) = Q_int − Q_ext + C_qᵀλ at fixed λ.
+fn generalized_residual(sys: &System, q: &[f64], lambda: &[f64]) -> Vec<f64> {
+    let n = sys.ndof();
+    let (mut fi, mut fe) = (vec![0.0; n], vec![0.0; n]);
+    sys.internal_force(q, &mut fi);
+    sys.external_force(q, 0.0, 1.0, &mut fe);
+    let mut cq = faer::Mat::zeros(sys.constraint_count(), n);
+    sys.constraint_jacobian(q, &mut cq);
+    (0..n)
+        .map(|j| {
+            fi[j] - fe[j]
+                + (0..sys.constraint_count())
+                    .map(|i| cq[(i, j)] * lambda[i])
+                    .sum::<f64>()
+        })
+        .collect()
+}
+
+#[test]
+fn prestressed_tangent_is_symmetric_and_the_derivative_of_the_residual() {
+    let (_, sys) = paper_prestressed();
+    let eq = solve_equilibrium(&sys, &StaticSettings::default()).expect("equilibrium");
+    let n = sys.ndof();
+    let mut k = faer::Mat::zeros(n, n);
+    sys.tangent_stiffness(&eq.linearization(), &mut k);
+    let kmax = (0..n)
+        .flat_map(|i| (0..n).map(move |j| (i, j)))
+        .fold(0.0f64, |a, (i, j)| a.max(k[(i, j)].abs()));
+    let asym = (0..n)
+        .flat_map(|i| (0..n).map(move |j| (i, j)))
+        .fold(0.0f64, |a, (i, j)| a.max((k[(i, j)] - k[(j, i)]).abs()));
+    assert!(
+        asym <= 1e-12 * kmax,
+        "pre-stressed tangent asymmetry {asym:e} vs max entry {kmax:e} (conservative loads: a Hessian)"
+    );
+    // Central differences of g at fixed λ, column by column; the steps are
+    // 1e-9 m for positions and 1e-7 for slopes and angles.
+    let mut worst: f64 = 0.0;
+    for j in 0..n {
+        let h = if sys.dof_label(j).contains("r'") || sys.dof_label(j).contains("rotation") {
+            1e-7
+        } else {
+            1e-9
+        };
+        let (mut qp, mut qm) = (eq.q.clone(), eq.q.clone());
+        qp[j] += h;
+        qm[j] -= h;
+        let (gp, gm) = (
+            generalized_residual(&sys, &qp, &eq.lambda),
+            generalized_residual(&sys, &qm, &eq.lambda),
+        );
+        let col: Vec<f64> = (0..n).map(|i| (gp[i] - gm[i]) / (2.0 * h)).collect();
+        let cmax = (0..n).fold(0.0f64, |a, i| a.max(k[(i, j)].abs()));
+        for i in 0..n {
+            worst = worst.max((col[i] - k[(i, j)]).abs() / cmax);
+        }
+    }
+    assert!(
+        worst <= 1e-5,
+        "tangent vs central differences: worst column-relative error {worst:e} (limit 1e-5)"
+    );
+}
+
+#[test]
+fn prestressed_assembly_is_in_force_and_moment_balance() {
+    // Newton's third law on the whole moving contact: the constant loads, the
+    // spring's force on the blade (k (l − l₀) from its geometry) and the
+    // forces of the two ground joints must cancel, and so must their moments.
+    let (m, sys) = paper_prestressed();
+    let eq = solve_equilibrium(&sys, &StaticSettings::default()).expect("equilibrium");
+    let report = ancf_modal::output::static_report::static_report(&m, &sys, &eq);
+    let anchor = |id: &str| -> nalgebra::Vector2<f64> {
+        let c = sys
+            .constraints
+            .iter()
+            .chain(std::iter::empty())
+            .find(|c| c.label() == id);
+        match c {
+            Some(c) => c.pair().b.position(&eq.q),
+            None => sys
+                .force_elements
+                .iter()
+                .find(|f| f.label() == id)
+                .unwrap()
+                .pair()
+                .b
+                .position(&eq.q),
+        }
+    };
+    let mut force = nalgebra::Vector2::zeros();
+    let mut moment = 0.0;
+    let mut add = |at: nalgebra::Vector2<f64>, f: nalgebra::Vector2<f64>| {
+        force += f;
+        moment += at.x * f.y - at.y * f.x;
+    };
+    for l in &sys.loads {
+        add(l.anchor.position(&eq.q), l.force);
+    }
+    for j in ["fixed_pin", "fixed_contact"] {
+        let r = report.reactions.iter().find(|r| r.joint == j).unwrap();
+        add(anchor(j), nalgebra::Vector2::new(r.force[0], r.force[1]));
+    }
+    let spring = &m.springs[0];
+    let ground = nalgebra::Vector2::new(spring.a.ground.unwrap()[0], spring.a.ground.unwrap()[1]);
+    let blade_point = anchor("helical_spring");
+    let d = ground - blade_point;
+    let l0 = (ground - sys.force_elements[0].pair().b.position(&sys.q0)).norm()
+        - spring.preload.unwrap() / spring.stiffness;
+    let tension = spring.stiffness * (d.norm() - l0);
+    add(blade_point, d / d.norm() * tension);
+    let scale = 11.77;
+    assert!(
+        force.norm() <= 1e-8 * scale,
+        "net force on the assembly {force:?} N"
+    );
+    assert!(
+        moment.abs() <= 1e-8 * scale * 0.025,
+        "net moment on the assembly {moment:e} N m"
+    );
+}
+
+#[test]
+fn zero_load_gives_the_reference_frequencies() {
+    // Without loads, gravity or preload the equilibrium is the reference and
+    // the pre-stressed modes are the unstressed ones.
+    let h = 2e-3 * L;
+    let sys = System::new(&pinned_roller(16, h, euler_load(h)));
+    let r = prestressed_modal(
+        &sys,
+        &StaticSettings {
+            load_scale: 0.0,
+            ..Default::default()
+        },
+        &ModalSettings::default(),
+    )
+    .expect("pre-stressed modal");
+    let moved = r
+        .equilibrium
+        .q
+        .iter()
+        .zip(&sys.q0)
+        .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+    assert!(
+        moved <= 1e-14,
+        "equilibrium at zero load is the reference (to round-off): moved {moved:e}"
+    );
+    for (a, b) in r.reference.modes.iter().zip(&r.prestressed.modes) {
+        assert!(
+            (a.frequency_hz - b.frequency_hz).abs() <= 1e-9 * a.frequency_hz.max(1.0),
+            "mode {}: {} vs {} Hz",
+            a.index + 1,
+            a.frequency_hz,
+            b.frequency_hz
+        );
+    }
+}

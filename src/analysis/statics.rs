@@ -41,6 +41,7 @@
 
 use super::eigen::{solve_generalized, EigenFailure};
 use super::reduce::NullSpace;
+use crate::anchor::Anchor;
 use crate::error::AnalysisError;
 use crate::system::{Linearization, System};
 use faer::linalg::solvers::Solve;
@@ -586,7 +587,11 @@ impl<'a> Solver<'a> {
 
     /// The error for a load that drives a zero-stiffness motion.
     fn free_motion_error(&self, motion: &[f64]) -> AnalysisError {
-        if is_rigid_motion(self.system, &self.system.q0, motion) {
+        let grounded = self.system.constraints.iter().any(|c| {
+            matches!(c.pair().a, Anchor::Ground { .. })
+                || matches!(c.pair().b, Anchor::Ground { .. })
+        });
+        if !grounded && is_rigid_motion(self.system, &self.system.q0, motion) {
             AnalysisError::NoSupport
         } else {
             AnalysisError::Mechanism {
@@ -781,8 +786,8 @@ impl TangentSolver {
                         &mut x
                     };
                     let w = if mu.abs() <= modes.zero { s } else { s / mu };
-                    for r in 0..d {
-                        target[r] += modes.vectors[(r, i)] * w;
+                    for (r, t) in target.iter_mut().enumerate() {
+                        *t += modes.vectors[(r, i)] * w;
                     }
                 }
                 if check {
@@ -821,14 +826,14 @@ pub(crate) struct ReducedModes {
 }
 
 /// Cholesky factor of a clearly positive definite matrix: every pivot keeps
-/// at least 1e-13 of its diagonal entry (a scale-free test: it is the same
+/// at least 1e-10 of its diagonal entry (a scale-free test: it is the same
 /// for any units of the coordinates).
 fn definite_factor(a: &Mat<f64>) -> Option<faer::linalg::solvers::Llt<f64>> {
     let llt = a.llt(Side::Lower).ok()?;
     let l = llt.L();
     let ok = (0..a.nrows()).all(|i| {
         let d = a[(i, i)];
-        d > 0.0 && l[(i, i)] * l[(i, i)] > 1e-13 * d
+        d > 0.0 && l[(i, i)] * l[(i, i)] > 1e-10 * d
     });
     ok.then_some(llt)
 }

@@ -4,6 +4,7 @@
 mod calibrate;
 mod convergence;
 mod modal;
+mod statics;
 
 use ancf_modal::model::Model;
 use anyhow::Result;
@@ -27,6 +28,8 @@ pub enum Command {
     Calibrate(calibrate::CalibrateArgs),
     /// Mesh convergence of the first bending frequencies (log-log errors, O(h⁴)).
     Convergence(convergence::ConvergenceArgs),
+    /// Static equilibrium under the model's constant loads and gravity.
+    Static(statics::StaticArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -34,6 +37,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Modal(a) => modal::run(a),
         Command::Calibrate(a) => calibrate::run(a),
         Command::Convergence(a) => convergence::run(a),
+        Command::Static(a) => statics::run(a),
     }
 }
 

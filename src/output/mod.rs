@@ -5,3 +5,4 @@ pub mod figures;
 pub mod files;
 pub mod modal_report;
 pub mod plot;
+pub mod static_report;
