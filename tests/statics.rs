@@ -151,3 +151,171 @@ fn starved_newton_reports_non_convergence() {
         other => panic!("expected NotConverged, got {other:?}"),
     }
 }
+
+mod cli {
+    use super::*;
+    use assert_cmd::Command;
+
+    fn write_model(
+        dir: &tempfile::TempDir,
+        name: &str,
+        m: &ancf_modal::Model,
+    ) -> std::path::PathBuf {
+        let path = dir.path().join(name);
+        std::fs::write(&path, m.to_json()).unwrap();
+        path
+    }
+
+    fn run(args: &[&str]) -> (i32, String, String) {
+        let out = Command::cargo_bin("ancf-modal")
+            .unwrap()
+            .args(args)
+            .output()
+            .unwrap();
+        (
+            out.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    }
+
+    #[test]
+    fn load_without_support_is_one_error_line_and_exit_1() {
+        let dir = tempfile::tempdir().unwrap();
+        let m = model(json!({
+            "name": "free", "beams": [blade(8)],
+            "loads": [{"at": {"beam": "blade", "s": L}, "force": [0.0, 1.0]}]
+        }));
+        let path = write_model(&dir, "free.json", &m);
+        let plot = dir.path().join("eq.svg");
+        for args in [
+            vec![
+                "static",
+                path.to_str().unwrap(),
+                "--plot",
+                plot.to_str().unwrap(),
+            ],
+            vec!["modal", path.to_str().unwrap(), "--prestress"],
+        ] {
+            let (code, stdout, stderr) = run(&args);
+            assert_eq!(code, 1, "{args:?}: exit code; stderr {stderr}");
+            assert!(stdout.is_empty(), "{args:?}: nothing on stdout: {stdout}");
+            assert_eq!(stderr.lines().count(), 1, "{args:?}: one line: {stderr}");
+            assert!(
+                stderr.starts_with("Error: ") && stderr.contains("no support"),
+                "{args:?}: {stderr}"
+            );
+        }
+        assert!(!plot.exists(), "no plot is written when the statics fail");
+    }
+
+    #[test]
+    fn load_past_euler_is_refused_with_the_critical_factor() {
+        // A pinned-roller column under 1.2 × its Euler load: no stable
+        // equilibrium on the load path.
+        let h = 2e-3 * L;
+        let pcr = std::f64::consts::PI.powi(2) * ei(h) / (L * L);
+        let m = model(json!({
+            "name": "column",
+            "beams": [{"id": "b", "start": [0.0, 0.0], "angle_deg": 0.0, "length": L, "elements": 16,
+                       "nodes_at_attachments": false, "section": {"height": h, "width": W},
+                       "material": {"young": E, "density": RHO}}],
+            "joints": [
+                {"type": "pin", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "b", "s": 0.0}},
+                {"type": "slider", "a": {"ground": [L, 0.0]}, "b": {"beam": "b", "s": L}, "axis": [1.0, 0.0]}
+            ],
+            "loads": [{"at": {"beam": "b", "s": L}, "force": [-1.2 * pcr, 0.0]}]
+        }));
+        let dir = tempfile::tempdir().unwrap();
+        let path = write_model(&dir, "column.json", &m);
+        let (code, _, stderr) = run(&["static", path.to_str().unwrap()]);
+        assert_eq!(code, 1, "exit code; stderr {stderr}");
+        assert!(
+            stderr.starts_with("Error: ") && stderr.contains("loses stability at load factor 0.83"),
+            "{stderr}"
+        );
+        // Below it the sweep tabulates, and stops past it with the reason.
+        let (code, stdout, stderr) = run(&[
+            "modal",
+            path.to_str().unwrap(),
+            "--sweep-load",
+            "0:1:5",
+            "--json",
+        ]);
+        assert_eq!(code, 0, "sweep exit code; stderr {stderr}");
+        let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        let points = v["sweep"].as_array().unwrap();
+        assert_eq!(
+            points.len(),
+            4,
+            "factors 0, 0.25, 0.5, 0.75 are stable (critical 1/1.2)"
+        );
+        assert!(v["stopped"].as_str().unwrap().contains("loses stability"));
+        // f₁ falls with compression: f₁² ∝ 1 − P/P_cr (Euler–Bernoulli).
+        let f1: Vec<f64> = points
+            .iter()
+            .map(|p| p["frequencies_hz"][0].as_f64().unwrap())
+            .collect();
+        let expected = (1.0 - 0.75 * 1.2f64).sqrt();
+        let got = f1[3] / f1[0];
+        assert!(
+            (got - expected).abs() <= 1e-3,
+            "f₁(0.75)/f₁(0) = {got:.5}, √(1 − 0.9) = {expected:.5}"
+        );
+    }
+
+    #[test]
+    fn prestress_json_and_static_json_keys() {
+        let (code, stdout, stderr) = run(&[
+            "modal",
+            "models/rcbo_prestressed.json",
+            "--prestress",
+            "--json",
+            "--modes",
+            "6",
+        ]);
+        assert_eq!(code, 0, "stderr {stderr}");
+        let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        assert_eq!(v["prestress"], json!(true));
+        let modes = v["modes"].as_array().unwrap();
+        assert_eq!(modes.len(), 6);
+        for m in modes {
+            let (f, f0, shift) = (
+                m["frequency_hz"].as_f64().unwrap(),
+                m["unstressed_hz"].as_f64().unwrap(),
+                m["shift_percent"].as_f64().unwrap(),
+            );
+            assert!(
+                (shift - 100.0 * (f - f0) / f0).abs() <= 1e-9,
+                "shift is (f − f0)/f0 in %"
+            );
+        }
+        let (code, stdout, stderr) = run(&["static", "models/rcbo_prestressed.json", "--json"]);
+        assert_eq!(code, 0, "stderr {stderr}");
+        let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        for key in [
+            "nodes",
+            "bodies",
+            "reactions",
+            "springs",
+            "residual",
+            "load_scale",
+        ] {
+            assert!(!v[key].is_null(), "static JSON has `{key}`");
+        }
+    }
+
+    #[test]
+    fn bad_sweep_and_load_scale_flags_are_usage_errors() {
+        for args in [
+            vec!["modal", "--sweep-load", "0:1"],
+            vec!["modal", "--sweep-load", "0:1:0"],
+            vec!["modal", "--sweep-load", "a:1:3"],
+            vec!["modal", "--load-scale", "2"],
+            vec!["static", "--load-scale", "nan"],
+        ] {
+            let (code, _, stderr) = run(&args);
+            assert_eq!(code, 2, "{args:?}: usage error exit code; stderr {stderr}");
+        }
+    }
+}

@@ -7,6 +7,7 @@ pub mod lu;
 pub mod modal;
 pub mod prestress;
 pub mod reduce;
+mod reduced_tangent;
 pub mod spectrum;
 pub mod statics;
 pub mod transient;
