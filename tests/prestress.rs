@@ -313,8 +313,8 @@ fn prestressed_tangent_is_symmetric_and_the_derivative_of_the_residual() {
         );
         let col: Vec<f64> = (0..n).map(|i| (gp[i] - gm[i]) / (2.0 * h)).collect();
         let cmax = (0..n).fold(0.0f64, |a, i| a.max(k[(i, j)].abs()));
-        for i in 0..n {
-            worst = worst.max((col[i] - k[(i, j)]).abs() / cmax);
+        for (i, c) in col.iter().enumerate() {
+            worst = worst.max((c - k[(i, j)]).abs() / cmax);
         }
     }
     assert!(
