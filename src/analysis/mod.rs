@@ -2,9 +2,11 @@
 
 pub mod dispersion;
 pub mod eigen;
+pub mod impulse;
 pub mod lu;
 pub mod modal;
 pub mod reduce;
+pub mod sensor;
 pub mod spectrum;
 pub mod transient;
 

@@ -1,6 +1,8 @@
 //! Subcommands. Each file parses its flags, validates them, calls the
 //! library and prints; nothing numerical lives here.
 
+mod identify;
+mod impulse;
 mod modal;
 
 use ancf_modal::model::Model;
@@ -19,12 +21,18 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// The main job: modal analysis, the impulse experiment and the paper's Table 3.
+    Identify(identify::IdentifyArgs),
+    /// The paper's time-domain test: half-sine pulse, sensor, spectrum, first bending peak.
+    Impulse(impulse::ImpulseArgs),
     /// Natural frequencies and mode shapes of the linearized assembly.
     Modal(modal::ModalArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
+        Command::Identify(a) => identify::run(a),
+        Command::Impulse(a) => impulse::run(a),
         Command::Modal(a) => modal::run(a),
     }
 }

@@ -1,5 +1,6 @@
 //! Outputs: human-readable tables, JSON documents, CSV files, atomic writes.
 
 pub mod files;
+pub mod impulse_report;
 pub mod modal_report;
 pub mod plot;
