@@ -1,9 +1,12 @@
 //! Subcommands. Each file parses its flags, validates them, calls the
 //! library and prints; nothing numerical lives here.
 
+mod calibrate;
+mod convergence;
 mod identify;
 mod impulse;
 mod modal;
+mod statics;
 
 use ancf_modal::model::Model;
 use anyhow::Result;
@@ -27,6 +30,12 @@ pub enum Command {
     Impulse(impulse::ImpulseArgs),
     /// Natural frequencies and mode shapes of the linearized assembly.
     Modal(modal::ModalArgs),
+    /// Fit model parameters (equivalent geometry) to measured frequencies.
+    Calibrate(calibrate::CalibrateArgs),
+    /// Mesh convergence of the first bending frequencies (log-log errors, O(h⁴)).
+    Convergence(convergence::ConvergenceArgs),
+    /// Static equilibrium under the model's constant loads and gravity.
+    Static(statics::StaticArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -34,6 +43,9 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Identify(a) => identify::run(a),
         Command::Impulse(a) => impulse::run(a),
         Command::Modal(a) => modal::run(a),
+        Command::Calibrate(a) => calibrate::run(a),
+        Command::Convergence(a) => convergence::run(a),
+        Command::Static(a) => statics::run(a),
     }
 }
 

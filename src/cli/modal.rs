@@ -21,6 +21,48 @@ pub struct ModalArgs {
     /// Also write the modes as CSV to this file.
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
+    /// Also draw the first six elastic mode shapes (of those reported) to this file (.svg or .png).
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
+    /// Linearize at the static equilibrium under the model's constant loads
+    /// and gravity (pre-stress) and show the unstressed frequencies beside.
+    #[arg(long)]
+    pub prestress: bool,
+    /// Factor on the applied loads for --prestress (gravity is not scaled).
+    #[arg(long, value_name = "S", requires = "prestress", allow_negative_numbers = true, value_parser = super::statics::finite)]
+    pub load_scale: Option<f64>,
+    /// Frequencies at the equilibrium for N load factors from A to B (first
+    /// min(--modes, 6) elastic modes); --plot draws them, --csv writes them.
+    #[arg(long, value_name = "A:B:N", conflicts_with_all = ["prestress", "load_scale"], value_parser = parse_sweep, allow_hyphen_values = true)]
+    pub sweep_load: Option<Sweep>,
+}
+
+/// A load-factor range `A:B:N`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sweep {
+    pub from: f64,
+    pub to: f64,
+    pub count: usize,
+}
+
+fn parse_sweep(s: &str) -> Result<Sweep, String> {
+    let parts: Vec<&str> = s.split(':').collect();
+    let [a, b, n] = parts[..] else {
+        return Err(format!(
+            "`{s}` is not A:B:N (from, to, number of load factors)"
+        ));
+    };
+    let from = super::statics::finite(a)?;
+    let to = super::statics::finite(b)?;
+    let count: usize = n
+        .parse()
+        .map_err(|_| format!("`{n}` is not a whole number of load factors"))?;
+    if !(1..=10_000).contains(&count) {
+        return Err(format!(
+            "the number of load factors must be 1 to 10000, got {count}"
+        ));
+    }
+    Ok(Sweep { from, to, count })
 }
 
 pub fn run(args: ModalArgs) -> Result<()> {
@@ -30,10 +72,19 @@ pub fn run(args: ModalArgs) -> Result<()> {
         modes: Some(args.modes as usize),
         ..ModalSettings::default()
     };
+    if let Some(sweep) = args.sweep_load {
+        return super::statics::run_sweep(&args, &model, &system, sweep, &settings);
+    }
+    if args.prestress {
+        return super::statics::run_prestress(&args, &model, &system, &settings);
+    }
     let result = modal_at_reference(&system, &settings)
         .with_context(|| source_label(args.model.as_deref()))?;
     if let Some(path) = &args.csv {
         write_output(path, &modal_csv(&result))?;
+    }
+    if let Some(path) = &args.plot {
+        ancf_modal::output::figures::write_mode_shapes(&system, &system.q0, &result, path)?;
     }
     if args.json {
         println!(

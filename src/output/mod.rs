@@ -1,6 +1,9 @@
 //! Outputs: human-readable tables, JSON documents, CSV files, atomic writes.
 
+pub mod calibrate_report;
+pub mod figures;
 pub mod files;
 pub mod impulse_report;
 pub mod modal_report;
 pub mod plot;
+pub mod static_report;

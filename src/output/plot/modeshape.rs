@@ -292,6 +292,7 @@ fn draw_geometry<DB: DrawingBackend>(
     let to = |p: &[f64; 2]| -> Option<Pt> { Some((map.coord(p[0])?, map.coord(p[1])?)) };
     for beam in &g.beams {
         let pts: Vec<Pt> = beam.iter().filter_map(to).collect();
+        let pts = thin_to_pixels(chart, &pts, MIN_SEGMENT_PX);
         chart.draw_series(LineSeries::new(pts, look.line))?;
     }
     chart.draw_series(
@@ -306,4 +307,39 @@ fn draw_geometry<DB: DrawingBackend>(
             + Circle::new((0, 0), 5, look.joint)
     }))?;
     Ok(())
+}
+
+/// Shortest drawn segment of a beam centre line [px].
+const MIN_SEGMENT_PX: i32 = 6;
+
+/// The points of `pts` at least `min_px` pixels apart (the first and last
+/// always). plotters outlines a thick polyline segment by segment from
+/// integer pixels, so densely sampled curves (1–2 px segments) come out
+/// jagged; chords of a few pixels stay within a fraction of a pixel of the
+/// curve.
+fn thin_to_pixels<DB: DrawingBackend>(
+    chart: &ChartContext<'_, DB, Coord>,
+    pts: &[Pt],
+    min_px: i32,
+) -> Vec<Pt> {
+    let far = |a: &Pt, b: &Pt| {
+        let (p, q) = (chart.backend_coord(a), chart.backend_coord(b));
+        (p.0 - q.0).pow(2) + (p.1 - q.1).pow(2) >= min_px * min_px
+    };
+    let mut kept: Vec<Pt> = Vec::with_capacity(pts.len());
+    for (i, p) in pts.iter().enumerate() {
+        let last = i + 1 == pts.len();
+        match kept.last() {
+            None => kept.push(*p),
+            Some(q) if far(q, p) => kept.push(*p),
+            // The end point replaces a kept point too close to it.
+            Some(_) if last && kept.len() > 1 => {
+                kept.pop();
+                kept.push(*p);
+            }
+            Some(_) if last => kept.push(*p),
+            Some(_) => {}
+        }
+    }
+    kept
 }

@@ -1,0 +1,384 @@
+//! The reduced tangent of the statics: its factorization and Newton
+//! corrections, and the diagnosis when it is not positive definite.
+//!
+//! On an orthonormal basis N of null(C_q), the reduced tangent NᵀKN [SI: N/m,
+//! N, N m/rad by coordinate] is factored by Cholesky when it is clearly
+//! positive definite, else decomposed into the modes of (NᵀKN, NᵀMN) — the
+//! generalized eigenproblem of [`super::modal`], whose mass scaling makes
+//! "zero stiffness" independent of units (|ω²| ≤ 64 ε max|ω²|). A load
+//! component on a zero mode is a load nothing carries: the whole assembly
+//! unsupported (a rigid motion while no joint holds it to the ground), else
+//! a mechanism, named by the coordinate with the largest kinetic share
+//! √M_ii |φ_i|. After a converged load step, a negative lowest ω² means a
+//! loss of stability, located by regula falsi (Illinois) on ω²₁ between the
+//! last stable load and this one.
+
+use super::eigen::{solve_generalized, EigenFailure};
+use super::reduce::NullSpace;
+use super::statics::{
+    argmax_abs, dot, norm2, norm_inf, Damping, NewtonFailure, Ramp, Snapshot, Solver, State,
+};
+use crate::anchor::Anchor;
+use crate::error::AnalysisError;
+use crate::system::{Linearization, System};
+use faer::linalg::solvers::Solve;
+use faer::{Mat, Side};
+
+impl Solver<'_> {
+    /// Modes of the reduced pair (K_r, M_r) and the zero threshold.
+    pub(crate) fn reduced_modes(
+        &self,
+        kr: &Mat<f64>,
+        ns: &NullSpace,
+    ) -> Result<ReducedModes, AnalysisError> {
+        let mr = ns.project(&self.mass);
+        let eig = solve_generalized(kr, &mr).map_err(|e| match e {
+            EigenFailure::SingularMass { direction } => {
+                let full = ns.expand(&direction, self.system.ndof());
+                let i = argmax_abs(&full);
+                AnalysisError::SingularMass {
+                    dof: self.system.dof_label(i),
+                    path: self.system.dof_model_path(i),
+                }
+            }
+            EigenFailure::NoConvergence => AnalysisError::EigenSolver { size: kr.nrows() },
+        })?;
+        let lmax = eig.values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let zero = super::ModalSettings::default().rigid_tolerance * f64::EPSILON * lmax;
+        Ok(ReducedModes {
+            values: eig.values,
+            vectors: eig.vectors,
+            zero,
+        })
+    }
+
+    /// The error for a load that drives a zero-stiffness motion.
+    pub(crate) fn free_motion_error(&self, motion: &[f64]) -> AnalysisError {
+        let grounded = self.system.constraints.iter().any(|c| {
+            matches!(c.pair().a, Anchor::Ground { .. })
+                || matches!(c.pair().b, Anchor::Ground { .. })
+        });
+        if !grounded && is_rigid_motion(self.system, &self.system.q0, motion) {
+            AnalysisError::NoSupport
+        } else {
+            AnalysisError::Mechanism {
+                dof: self.system.dof_label(self.kinetic_argmax(motion)),
+            }
+        }
+    }
+
+    /// Coordinate with the largest kinetic-energy share √M_ii |φ_i|.
+    pub(crate) fn kinetic_argmax(&self, phi: &[f64]) -> usize {
+        let w: Vec<f64> = phi
+            .iter()
+            .enumerate()
+            .map(|(i, p)| p * self.mass[(i, i)].max(0.0).sqrt())
+            .collect();
+        argmax_abs(&w)
+    }
+
+    /// Lowest eigenvalue ω² of the reduced tangent at a converged state,
+    /// its expanded mode and the zero threshold; `None` for a system without
+    /// free coordinates. Unless `exact`, a clearly definite tangent returns
+    /// ω² = +∞ without solving the eigenproblem.
+    pub(crate) fn lowest_mode(
+        &self,
+        state: &State,
+        exact: bool,
+    ) -> Result<Option<LowestMode>, AnalysisError> {
+        let sys = self.system;
+        let n = sys.ndof();
+        let mut k = Mat::zeros(n, n);
+        sys.tangent_stiffness(
+            &Linearization {
+                q: &state.q,
+                lambda: Some(&state.lambda),
+                time: self.settings.time,
+                load_scale: state.loads,
+            },
+            &mut k,
+        );
+        let mut cq = Mat::zeros(sys.constraint_count(), n);
+        sys.constraint_jacobian(&state.q, &mut cq);
+        let ns = NullSpace::new(&cq);
+        if ns.dim() == 0 {
+            return Ok(None);
+        }
+        let kr = ns.project(&k);
+        if !exact && definite_factor(&kr).is_some() {
+            return Ok(Some(LowestMode {
+                value: f64::INFINITY,
+                shape: Vec::new(),
+                zero: 0.0,
+            }));
+        }
+        let modes = self.reduced_modes(&kr, &ns)?;
+        let xr: Vec<f64> = (0..ns.dim()).map(|r| modes.vectors[(r, 0)]).collect();
+        Ok(Some(LowestMode {
+            value: modes.values[0],
+            shape: ns.expand(&xr, n),
+            zero: modes.zero,
+        }))
+    }
+
+    /// Err(Unstable) if `next` is past a loss of stability, located between
+    /// the stable `prev` and `next` by regula falsi (Illinois) on ω²₁.
+    pub(crate) fn check_stable(
+        &self,
+        prev: &State,
+        next: &State,
+        which: Ramp,
+    ) -> Result<(), AnalysisError> {
+        let Some(low) = self.lowest_mode(next, false)? else {
+            return Ok(());
+        };
+        if low.value >= -low.zero {
+            return Ok(());
+        }
+        let param = |s: &State| match which {
+            Ramp::Gravity => s.gravity,
+            Ramp::Loads => s.loads,
+        };
+        let mut dof = self.system.dof_label(self.kinetic_argmax(&low.shape));
+        let mut a = prev.clone();
+        let (mut sa, mut fa) = (param(prev), 0.0);
+        if let Some(m) = self.lowest_mode(prev, true)? {
+            fa = m.value;
+        }
+        let (mut sb, mut fb) = (param(next), low.value);
+        let scale = fa.abs().max(fb.abs());
+        let mut critical = sb;
+        let mut side = 0i8;
+        for _ in 0..40 {
+            let sc = if fa > 0.0 {
+                sa - fa * (sb - sa) / (fb - fa)
+            } else {
+                0.5 * (sa + sb)
+            };
+            critical = sc;
+            if (sb - sa).abs() <= 1e-9 * sa.abs().max(sb.abs()) {
+                break;
+            }
+            let mut c = a.clone();
+            match which {
+                Ramp::Gravity => c.gravity = sc,
+                Ramp::Loads => c.loads = sc,
+            }
+            if self.newton(&mut c, Damping::Full).is_err() {
+                break;
+            }
+            let Some(m) = self.lowest_mode(&c, true)? else {
+                break;
+            };
+            if m.value.abs() <= 1e-10 * scale {
+                break;
+            }
+            if m.value < 0.0 {
+                (sb, fb) = (sc, m.value);
+                dof = self.system.dof_label(self.kinetic_argmax(&m.shape));
+                if side == -1 {
+                    fa *= 0.5;
+                }
+                side = -1;
+            } else {
+                (sa, fa) = (sc, m.value);
+                a = c;
+                if side == 1 {
+                    fb *= 0.5;
+                }
+                side = 1;
+            }
+        }
+        Err(match which {
+            Ramp::Loads => AnalysisError::Unstable {
+                load_factor: critical,
+                dof,
+            },
+            Ramp::Gravity => AnalysisError::UnstableUnderGravity {
+                gravity_factor: critical,
+                dof,
+            },
+        })
+    }
+}
+
+/// Factorization of the reduced tangent.
+pub(crate) enum Factor {
+    Empty,
+    Cholesky(faer::linalg::solvers::Llt<f64>),
+    Modes(ReducedModes),
+}
+
+/// The tangent of one Newton iteration, ready to compute corrections.
+pub(crate) struct TangentSolver {
+    pub(crate) k: Mat<f64>,
+    pub(crate) ns: NullSpace,
+    pub(crate) factor: Factor,
+}
+
+impl TangentSolver {
+    /// Newton correction for the residuals of `snap` (its r and C, the
+    /// constraint rows of its own C_q): Δq = Δq_p + N Δz with
+    /// Δq_p = −Aᵀ(AAᵀ)⁻¹C and NᵀKN Δz = −Nᵀ(r + K Δq_p). With `check`, a
+    /// residual on a zero-stiffness mode is an error (the load is not carried);
+    /// otherwise that part is dropped.
+    pub(crate) fn correction(
+        &self,
+        snap: &Snapshot,
+        f_ref: f64,
+        check: bool,
+        solver: &Solver,
+    ) -> Result<Vec<f64>, NewtonFailure> {
+        let n = self.k.nrows();
+        let mut dq = vec![0.0; n];
+        if let Some(g) = &snap.gram {
+            let rhs = Mat::from_fn(snap.rows.len(), 1, |a, _| -snap.c[snap.rows[a]]);
+            let y = g.solve(&rhs);
+            for (j, d) in dq.iter_mut().enumerate() {
+                *d = (0..snap.rows.len())
+                    .map(|a| snap.cq[(snap.rows[a], j)] * y[(a, 0)])
+                    .sum();
+            }
+        }
+        let b: Vec<f64> = (0..n)
+            .map(|i| -(snap.r[i] + (0..n).map(|j| self.k[(i, j)] * dq[j]).sum::<f64>()))
+            .collect();
+        let br = restrict(&self.ns, &b);
+        let d = br.len();
+        let dz: Vec<f64> = match &self.factor {
+            Factor::Empty => Vec::new(),
+            Factor::Cholesky(llt) => {
+                let x = llt.solve(Mat::from_fn(d, 1, |i, _| br[i]));
+                (0..d).map(|i| x[(i, 0)]).collect()
+            }
+            Factor::Modes(modes) => {
+                let mut x = vec![0.0; d];
+                let mut driven = vec![0.0; d];
+                for (i, &mu) in modes.values.iter().enumerate() {
+                    let s: f64 = (0..d).map(|r| modes.vectors[(r, i)] * br[r]).sum();
+                    let target = if mu.abs() <= modes.zero {
+                        &mut driven
+                    } else {
+                        &mut x
+                    };
+                    let w = if mu.abs() <= modes.zero { s } else { s / mu };
+                    for (r, t) in target.iter_mut().enumerate() {
+                        *t += modes.vectors[(r, i)] * w;
+                    }
+                }
+                if check {
+                    // The force this free motion would have to take: M_r φ s.
+                    let mr = self.ns.project(&solver.mass);
+                    let force: Vec<f64> = (0..d)
+                        .map(|r| (0..d).map(|c| mr[(r, c)] * driven[c]).sum())
+                        .collect();
+                    if norm_inf(&force) > (1e-8 * f_ref).max(solver.noise) {
+                        let motion = self.ns.expand(&driven, n);
+                        return Err(NewtonFailure::Fatal(solver.free_motion_error(&motion)));
+                    }
+                }
+                x
+            }
+        };
+        for (d, e) in dq.iter_mut().zip(self.ns.expand(&dz, n)) {
+            *d += e;
+        }
+        Ok(dq)
+    }
+}
+
+/// The lowest mode of a reduced tangent.
+pub(crate) struct LowestMode {
+    pub(crate) value: f64,
+    pub(crate) shape: Vec<f64>,
+    pub(crate) zero: f64,
+}
+
+/// Eigen-decomposition of a reduced pencil with its zero threshold.
+pub(crate) struct ReducedModes {
+    pub values: Vec<f64>,
+    pub vectors: Mat<f64>,
+    pub zero: f64,
+}
+
+/// Cholesky factor of a clearly positive definite matrix: every pivot keeps
+/// at least 1e-10 of its diagonal entry (a scale-free test: it is the same
+/// for any units of the coordinates).
+pub(crate) fn definite_factor(a: &Mat<f64>) -> Option<faer::linalg::solvers::Llt<f64>> {
+    let llt = a.llt(Side::Lower).ok()?;
+    let l = llt.L();
+    let ok = (0..a.nrows()).all(|i| {
+        let d = a[(i, i)];
+        d > 0.0 && l[(i, i)] * l[(i, i)] > 1e-10 * d
+    });
+    ok.then_some(llt)
+}
+
+/// Nᵀv.
+pub(crate) fn restrict(ns: &NullSpace, v: &[f64]) -> Vec<f64> {
+    let mut out: Vec<f64> = ns.free.iter().map(|&g| v[g]).collect();
+    for k in 0..ns.basis.ncols() {
+        out.push(
+            ns.involved
+                .iter()
+                .enumerate()
+                .map(|(r, &g)| ns.basis[(r, k)] * v[g])
+                .sum(),
+        );
+    }
+    out
+}
+
+/// Whether `phi` is (to 1e-6) a rigid motion of the whole assembly at q.
+pub(crate) fn is_rigid_motion(system: &System, q: &[f64], phi: &[f64]) -> bool {
+    let n = system.ndof();
+    let norm = norm2(phi);
+    if norm == 0.0 {
+        return false;
+    }
+    // Translation x, y and rotation about the origin, as coordinate fields.
+    let mut fields = vec![vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+    for b in &system.beams {
+        for k in 0..b.node_count() {
+            let i = b.dof0 + 4 * k;
+            fields[0][i] = 1.0;
+            fields[1][i + 1] = 1.0;
+            fields[2][i] = -q[i + 1];
+            fields[2][i + 1] = q[i];
+            fields[2][i + 2] = -q[i + 3];
+            fields[2][i + 3] = q[i + 2];
+        }
+    }
+    for r in &system.rigid_bodies {
+        let i = r.dof0;
+        fields[0][i] = 1.0;
+        fields[1][i + 1] = 1.0;
+        fields[2][i] = -q[i + 1];
+        fields[2][i + 1] = q[i];
+        fields[2][i + 2] = 1.0;
+    }
+    for p in &system.point_masses {
+        let i = p.dof0;
+        fields[0][i] = 1.0;
+        fields[1][i + 1] = 1.0;
+        fields[2][i] = -q[i + 1];
+        fields[2][i + 1] = q[i];
+    }
+    // Least-squares fit of phi by the three fields (Gram–Schmidt).
+    let mut residual = phi.to_vec();
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    for mut f in fields {
+        for b in &basis {
+            let p = dot(&f, b);
+            f.iter_mut().zip(b).for_each(|(x, y)| *x -= p * y);
+        }
+        let nf = norm2(&f);
+        if nf > 1e-12 {
+            f.iter_mut().for_each(|x| *x /= nf);
+            let p = dot(&residual, &f);
+            residual.iter_mut().zip(&f).for_each(|(x, y)| *x -= p * y);
+            basis.push(f);
+        }
+    }
+    norm2(&residual) <= 1e-6 * norm
+}

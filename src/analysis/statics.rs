@@ -1,0 +1,618 @@
+//! Static equilibrium of the constrained assembly.
+//!
+//! Solves, for the coordinates q [SI: m, –, rad] and the constraint
+//! multipliers λ,
+//!
+//! ```text
+//! Q_int(q) − Q_ext(q) + C_qᵀ(q) λ = 0,     C(q) = 0,
+//! ```
+//!
+//! i.e. the equations of motion with q̈ = 0: beam elastic forces and spring
+//! forces (preloaded springs and torsion springs included) against constant
+//! loads and gravity, the joints (supports to the ground among them)
+//! carrying the rest.
+//!
+//! **Which loads.** A load enters with its value at `time` (default 0):
+//! `constant` loads in full, a `step` starting at 0 in full, a `half_sine`
+//! (zero at t = 0) and a step starting later not at all. Applied loads are
+//! multiplied by the load factor `load_scale`; gravity is not.
+//!
+//! **Method.** Newton's method on the full equations in null-space form:
+//! each step restores the constraints to first order with the minimum-norm
+//! correction Δq_p = −A⁺C (A: the independent rows of C_q), then solves the
+//! reduced tangent problem NᵀK N Δz = −Nᵀ(r + K Δq_p) on an orthonormal
+//! basis N of null(C_q), where K = ∂(Q_int − Q_ext)/∂q + ∂(C_qᵀλ)/∂q is the
+//! full tangent at the current multipliers. The multipliers are the
+//! least-squares ones at every iterate, λ = −(AAᵀ)⁻¹A(Q_int − Q_ext), so the
+//! residual r = Q_int − Q_ext + C_qᵀλ is the unbalanced force that no joint
+//! can carry. A backtracking line search on ‖r‖ (plus the constraint
+//! violation) damps the steps; load stepping (continuation) with adaptive
+//! increments carries large deflections: gravity is ramped first, then the
+//! applied loads up to their factor.
+//!
+//! **Failures.** A reduced tangent that is singular in a direction the load
+//! pushes means the assembly cannot carry the load: the error names the free
+//! motion (the whole assembly unsupported, or the coordinate a mechanism
+//! moves most). After each converged load step the reduced tangent must be
+//! positive (semi)definite; when it is not, the equilibrium has lost
+//! stability (buckling, a limit point) and the critical load factor is
+//! located by regula falsi on the lowest eigenvalue ω² of
+//! (NᵀKN, NᵀMN) and reported instead of an unstable or wrong equilibrium.
+//! The reduced-tangent machinery (factoring, corrections, zero modes,
+//! stability) lives in the sibling module `reduced_tangent`.
+
+use super::reduce::NullSpace;
+use super::reduced_tangent::{definite_factor, Factor, TangentSolver};
+use crate::error::AnalysisError;
+use crate::system::{Linearization, System};
+use faer::linalg::solvers::Solve;
+use faer::{Mat, Side};
+
+/// Settings of a static solution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticSettings {
+    /// Factor on the applied loads (not on gravity).
+    pub load_scale: f64,
+    /// Time at which the loads' time functions are evaluated [SI: s].
+    pub time: f64,
+    /// Relative force-residual tolerance (against the largest force).
+    pub tolerance: f64,
+    /// Newton iterations allowed per load step.
+    pub max_iterations: usize,
+    /// First load increment, as a fraction of each ramp.
+    pub initial_increment: f64,
+    /// Smallest load increment before giving up, as a fraction of each ramp.
+    pub min_increment: f64,
+    /// Most load steps (accepted and rejected) in all.
+    pub max_steps: usize,
+    /// Check that every converged load step is stable, and stop with
+    /// [`AnalysisError::Unstable`] at the first that is not.
+    pub check_stability: bool,
+}
+
+impl Default for StaticSettings {
+    fn default() -> Self {
+        StaticSettings {
+            load_scale: 1.0,
+            time: 0.0,
+            tolerance: 1e-10,
+            max_iterations: 25,
+            initial_increment: 1.0,
+            min_increment: 1e-4,
+            max_steps: 400,
+            check_stability: true,
+        }
+    }
+}
+
+/// A converged static equilibrium.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Equilibrium {
+    /// Coordinates at equilibrium.
+    pub q: Vec<f64>,
+    /// Constraint multipliers (C_qᵀλ is the generalized joint force on q,
+    /// with the sign of an internal force).
+    pub lambda: Vec<f64>,
+    /// The applied-load factor the equilibrium is at.
+    pub load_scale: f64,
+    /// Time at which the loads were evaluated [SI: s].
+    pub time: f64,
+    /// Accepted load steps.
+    pub steps: usize,
+    /// Newton iterations over all steps.
+    pub iterations: usize,
+    /// Final unbalanced force ‖Q_int − Q_ext + C_qᵀλ‖∞ [SI: N, N m].
+    pub residual: f64,
+    /// Final constraint violation ‖C‖∞ [SI: m, rad].
+    pub constraint_violation: f64,
+}
+
+impl Equilibrium {
+    /// The linearization at this equilibrium (multipliers included).
+    pub fn linearization(&self) -> Linearization<'_> {
+        Linearization {
+            q: &self.q,
+            lambda: Some(&self.lambda),
+            time: self.time,
+            load_scale: self.load_scale,
+        }
+    }
+}
+
+/// Static equilibrium under the model's loads × `settings.load_scale`
+/// and gravity, from the reference configuration.
+pub fn solve_equilibrium(
+    system: &System,
+    settings: &StaticSettings,
+) -> Result<Equilibrium, AnalysisError> {
+    let solver = Solver::new(system, settings);
+    let mut state = solver.reference_state();
+    if solver.has_gravity {
+        solver.ramp(&mut state, Ramp::Gravity, 1.0)?;
+    }
+    solver.ramp(&mut state, Ramp::Loads, settings.load_scale)?;
+    Ok(solver.finish(state))
+}
+
+/// Continue an equilibrium to another applied-load factor (same time and
+/// gravity), e.g. for a load sweep.
+pub fn continue_equilibrium(
+    system: &System,
+    from: &Equilibrium,
+    load_scale: f64,
+    settings: &StaticSettings,
+) -> Result<Equilibrium, AnalysisError> {
+    let settings = StaticSettings {
+        load_scale,
+        time: from.time,
+        ..*settings
+    };
+    let solver = Solver::new(system, &settings);
+    let mut state = State {
+        q: from.q.clone(),
+        lambda: from.lambda.clone(),
+        gravity: 1.0,
+        loads: from.load_scale,
+        steps: from.steps,
+        iterations: from.iterations,
+        residual: from.residual,
+        violation: from.constraint_violation,
+    };
+    solver.ramp(&mut state, Ramp::Loads, load_scale)?;
+    Ok(solver.finish(state))
+}
+
+/// Where the continuation is.
+#[derive(Debug, Clone)]
+pub(crate) struct State {
+    pub(crate) q: Vec<f64>,
+    pub(crate) lambda: Vec<f64>,
+    /// Fraction of gravity applied.
+    pub(crate) gravity: f64,
+    /// Applied-load factor.
+    pub(crate) loads: f64,
+    pub(crate) steps: usize,
+    pub(crate) iterations: usize,
+    pub(crate) residual: f64,
+    pub(crate) violation: f64,
+}
+
+/// How Newton steps are damped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Damping {
+    Full,
+    LineSearch,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Ramp {
+    Gravity,
+    Loads,
+}
+
+/// Why one Newton solve at a fixed load failed.
+pub(crate) enum NewtonFailure {
+    /// Out of iterations or no descent: retry with a smaller increment.
+    Stalled { iterations: usize, residual: f64 },
+    /// A definite answer (no support, mechanism).
+    Fatal(AnalysisError),
+}
+
+/// What the residual looks like at one q.
+pub(crate) struct Snapshot {
+    /// r = Q_int − Q_ext + C_qᵀλ.
+    pub(crate) r: Vec<f64>,
+    pub(crate) lambda: Vec<f64>,
+    pub(crate) c: Vec<f64>,
+    pub(crate) cq: Mat<f64>,
+    pub(crate) ns: NullSpace,
+    /// Independent constraint rows.
+    pub(crate) rows: Vec<usize>,
+    /// Cholesky factor of A Aᵀ (A = independent rows of C_q).
+    pub(crate) gram: Option<faer::linalg::solvers::Llt<f64>>,
+    pub(crate) merit: f64,
+}
+
+pub(crate) struct Solver<'a> {
+    pub(crate) system: &'a System,
+    pub(crate) settings: StaticSettings,
+    pub(crate) has_gravity: bool,
+    pub(crate) gravity_force: Vec<f64>,
+    pub(crate) mass: Mat<f64>,
+    /// Scale of each coordinate for step sizes: a length for positions, 1
+    /// for slopes and angles.
+    pub(crate) scales: Vec<f64>,
+    /// Characteristic length of the assembly [SI: m].
+    pub(crate) length: f64,
+    /// Force below which residuals are round-off of the stiffest element [SI: N].
+    pub(crate) noise: f64,
+}
+
+impl<'a> Solver<'a> {
+    pub(crate) fn new(system: &'a System, settings: &StaticSettings) -> Self {
+        let n = system.ndof();
+        let mut gravity_force = vec![0.0; n];
+        system.add_gravity(&mut gravity_force);
+        let has_gravity = gravity_force.iter().any(|&g| g != 0.0);
+        let length = characteristic_length(system);
+        let mut scales = vec![length; n];
+        for b in &system.beams {
+            for k in 0..b.node_count() {
+                scales[b.dof0 + 4 * k + 2] = 1.0;
+                scales[b.dof0 + 4 * k + 3] = 1.0;
+            }
+        }
+        for r in &system.rigid_bodies {
+            scales[r.dof0 + 2] = 1.0;
+        }
+        let stiff = system
+            .beams
+            .iter()
+            .map(|b| b.section.ea)
+            .fold(0.0, f64::max);
+        Solver {
+            system,
+            settings: *settings,
+            has_gravity,
+            gravity_force,
+            mass: system.mass_matrix(),
+            scales,
+            length,
+            noise: 256.0 * f64::EPSILON * stiff,
+        }
+    }
+
+    fn reference_state(&self) -> State {
+        State {
+            q: self.system.q0.clone(),
+            lambda: vec![0.0; self.system.constraint_count()],
+            gravity: 0.0,
+            loads: 0.0,
+            steps: 0,
+            iterations: 0,
+            residual: 0.0,
+            violation: 0.0,
+        }
+    }
+
+    fn finish(&self, s: State) -> Equilibrium {
+        Equilibrium {
+            q: s.q,
+            lambda: s.lambda,
+            load_scale: s.loads,
+            time: self.settings.time,
+            steps: s.steps,
+            iterations: s.iterations,
+            residual: s.residual,
+            constraint_violation: s.violation,
+        }
+    }
+
+    /// Q_int − Q_ext at the given gravity fraction and load factor.
+    fn unbalanced(&self, q: &[f64], gravity: f64, loads: f64, out: &mut [f64]) {
+        let n = q.len();
+        let mut ext = vec![0.0; n];
+        self.system
+            .external_force(q, self.settings.time, loads, &mut ext);
+        self.system.internal_force(q, out);
+        for i in 0..n {
+            out[i] -= ext[i] - (1.0 - gravity) * self.gravity_force[i];
+        }
+    }
+
+    /// Force scale of a load level: the largest applied, internal or joint force.
+    fn force_reference(&self, snap: &Snapshot, q: &[f64], gravity: f64, loads: f64) -> f64 {
+        let n = q.len();
+        let mut ext = vec![0.0; n];
+        self.system
+            .external_force(q, self.settings.time, loads, &mut ext);
+        let mut int = vec![0.0; n];
+        self.system.internal_force(q, &mut int);
+        let g = self.gravity_force.iter().map(|x| x.abs() * gravity);
+        let f = ext
+            .iter()
+            .chain(&int)
+            .map(|x| x.abs())
+            .chain(g)
+            .fold(0.0, f64::max);
+        let joint = (0..n)
+            .map(|j| {
+                snap.rows
+                    .iter()
+                    .map(|&i| snap.cq[(i, j)] * snap.lambda[i])
+                    .sum::<f64>()
+                    .abs()
+            })
+            .fold(0.0, f64::max);
+        f.max(joint)
+    }
+
+    pub(crate) fn snapshot(&self, q: &[f64], gravity: f64, loads: f64) -> Snapshot {
+        let sys = self.system;
+        let (n, m) = (sys.ndof(), sys.constraint_count());
+        let mut f = vec![0.0; n];
+        self.unbalanced(q, gravity, loads, &mut f);
+        let mut c = vec![0.0; m];
+        sys.constraint_residual(q, &mut c);
+        let mut cq = Mat::zeros(m, n);
+        sys.constraint_jacobian(q, &mut cq);
+        let ns = NullSpace::new(&cq);
+        let rows: Vec<usize> = (0..m).filter(|i| !ns.redundant_rows.contains(i)).collect();
+        let mi = rows.len();
+        let gram_m = Mat::from_fn(mi, mi, |a, b| {
+            (0..n)
+                .map(|j| cq[(rows[a], j)] * cq[(rows[b], j)])
+                .sum::<f64>()
+        });
+        let gram = if mi > 0 {
+            gram_m.llt(Side::Lower).ok()
+        } else {
+            None
+        };
+        let mut lambda = vec![0.0; m];
+        let mut r = f.clone();
+        if let Some(g) = &gram {
+            let af = Mat::from_fn(mi, 1, |a, _| {
+                -(0..n).map(|j| cq[(rows[a], j)] * f[j]).sum::<f64>()
+            });
+            let li = g.solve(&af);
+            for (a, &i) in rows.iter().enumerate() {
+                lambda[i] = li[(a, 0)];
+            }
+            for (j, rj) in r.iter_mut().enumerate() {
+                *rj += rows.iter().map(|&i| cq[(i, j)] * lambda[i]).sum::<f64>();
+            }
+        }
+        let merit = norm2(&r) + norm2(&c) / self.length;
+        Snapshot {
+            r,
+            lambda,
+            c,
+            cq,
+            ns,
+            rows,
+            gram,
+            merit,
+        }
+    }
+
+    /// Ramp gravity (to fraction `target`) or the applied loads (to factor
+    /// `target`) with adaptive increments.
+    fn ramp(&self, state: &mut State, which: Ramp, target: f64) -> Result<(), AnalysisError> {
+        let start = match which {
+            Ramp::Gravity => state.gravity,
+            Ramp::Loads => state.loads,
+        };
+        let span = target - start;
+        let at = |t: f64| start + t * span;
+        let set = |s: &mut State, v: f64| match which {
+            Ramp::Gravity => s.gravity = v,
+            Ramp::Loads => s.loads = v,
+        };
+        let mut t = 0.0;
+        let mut dt = self.settings.initial_increment.clamp(1e-12, 1.0);
+        let mut tried = 0usize;
+        let mut first = true;
+        while first || t < 1.0 {
+            first = false;
+            tried += 1;
+            let t_try = (t + dt).min(1.0);
+            let mut trial = state.clone();
+            set(&mut trial, at(t_try));
+            let mut outcome = self.newton(&mut trial, Damping::Full);
+            if let Err(NewtonFailure::Stalled { .. }) = outcome {
+                trial = state.clone();
+                set(&mut trial, at(t_try));
+                outcome = self.newton(&mut trial, Damping::LineSearch);
+            }
+            match outcome {
+                Ok(iterations) => {
+                    trial.steps += 1;
+                    if self.settings.check_stability {
+                        self.check_stable(state, &trial, which)?;
+                    }
+                    *state = trial;
+                    t = t_try;
+                    if iterations <= 4 {
+                        dt = (2.0 * dt).min(1.0);
+                    }
+                }
+                Err(NewtonFailure::Fatal(e)) => return Err(e),
+                Err(NewtonFailure::Stalled {
+                    iterations,
+                    residual,
+                }) => {
+                    dt *= 0.25;
+                    if dt < self.settings.min_increment || tried >= self.settings.max_steps {
+                        return Err(AnalysisError::NotConverged {
+                            load_factor: match which {
+                                Ramp::Loads => at(t_try),
+                                Ramp::Gravity => 0.0,
+                            },
+                            iterations,
+                            residual,
+                        });
+                    }
+                }
+            }
+            if span == 0.0 {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// Newton iterations at the state's load level; returns the iteration count.
+    ///
+    /// [`Damping::Full`] takes whole Newton steps: a slender beam's
+    /// transverse Newton step stretches its axis to second order and
+    /// multiplies ‖r‖ by EA/P for one iteration, yet the next step (with the
+    /// tangent there, which carries that axial force geometrically) recovers
+    /// quadratically; any merit function along the straight step would
+    /// reject it. [`Damping::LineSearch`] backtracks on the merit
+    /// ‖r‖ + ‖C‖/length (Armijo), for problems where whole steps overshoot
+    /// (rigid rotations, mechanisms with springs); the continuation tries it
+    /// before it cuts the load increment.
+    pub(crate) fn newton(&self, state: &mut State, mode: Damping) -> Result<usize, NewtonFailure> {
+        let (g, l) = (state.gravity, state.loads);
+        let mut snap = self.snapshot(&state.q, g, l);
+        let f_ref = self.force_reference(&snap, &state.q, g, l);
+        let c_tol = 1e-11 * self.length;
+        let mut iterations = 0;
+        loop {
+            let r = norm_inf(&snap.r);
+            if norm_inf(&snap.c) <= c_tol && r <= self.settings.tolerance * f_ref {
+                break;
+            }
+            if iterations >= self.settings.max_iterations {
+                return Err(NewtonFailure::Stalled {
+                    iterations,
+                    residual: r,
+                });
+            }
+            iterations += 1;
+            let step = self.tangent_solver(&state.q, &snap, l)?;
+            let dq = step.correction(&snap, f_ref, true, self)?;
+            let size = self.scaled_norm(&dq);
+            let mut alpha = 1.0;
+            let mut accepted = None;
+            while alpha >= 1.0 / 1024.0 {
+                let trial: Vec<f64> = state
+                    .q
+                    .iter()
+                    .zip(&dq)
+                    .map(|(q, d)| q + alpha * d)
+                    .collect();
+                let s = self.snapshot(&trial, g, l);
+                let ok = match mode {
+                    Damping::Full => s.merit.is_finite(),
+                    Damping::LineSearch => s.merit < (1.0 - 1e-4 * alpha) * snap.merit,
+                };
+                if ok || size <= 1e-10 {
+                    accepted = Some((trial, s));
+                    break;
+                }
+                alpha *= 0.5;
+            }
+            let Some((q, s)) = accepted else {
+                return Err(NewtonFailure::Stalled {
+                    iterations,
+                    residual: r,
+                });
+            };
+            state.q = q;
+            snap = s;
+            if alpha == 1.0 && size <= 1e-10 && norm_inf(&snap.c) <= c_tol {
+                break;
+            }
+        }
+        state.lambda.clone_from(&snap.lambda);
+        state.iterations += iterations;
+        state.residual = norm_inf(&snap.r);
+        state.violation = norm_inf(&snap.c);
+        Ok(iterations)
+    }
+
+    /// max |Δq_i| / scale_i.
+    fn scaled_norm(&self, dq: &[f64]) -> f64 {
+        dq.iter()
+            .zip(&self.scales)
+            .map(|(d, s)| (d / s).abs())
+            .fold(0.0, f64::max)
+    }
+
+    /// The tangent at q with the snapshot's multipliers, reduced and factored.
+    fn tangent_solver(
+        &self,
+        q: &[f64],
+        snap: &Snapshot,
+        loads: f64,
+    ) -> Result<TangentSolver, NewtonFailure> {
+        let sys = self.system;
+        let n = sys.ndof();
+        let mut k = Mat::zeros(n, n);
+        sys.tangent_stiffness(
+            &Linearization {
+                q,
+                lambda: Some(&snap.lambda),
+                time: self.settings.time,
+                load_scale: loads,
+            },
+            &mut k,
+        );
+        let kr = snap.ns.project(&k);
+        let d = kr.nrows();
+        let factor = if d == 0 {
+            Factor::Empty
+        } else if let Some(llt) = definite_factor(&kr) {
+            Factor::Cholesky(llt)
+        } else {
+            Factor::Modes(
+                self.reduced_modes(&kr, &snap.ns)
+                    .map_err(NewtonFailure::Fatal)?,
+            )
+        };
+        Ok(TangentSolver {
+            k,
+            ns: snap.ns.clone(),
+            factor,
+        })
+    }
+}
+
+/// A length for the assembly: the larger of the longest beam and the
+/// diagonal of the box around all reference positions [SI: m]; 1 m if both vanish.
+fn characteristic_length(system: &System) -> f64 {
+    let mut pts: Vec<(f64, f64)> = Vec::new();
+    for b in &system.beams {
+        for k in 0..b.node_count() {
+            let i = b.dof0 + 4 * k;
+            pts.push((system.q0[i], system.q0[i + 1]));
+        }
+    }
+    for r in &system.rigid_bodies {
+        pts.push((system.q0[r.dof0], system.q0[r.dof0 + 1]));
+    }
+    for p in &system.point_masses {
+        pts.push((system.q0[p.dof0], system.q0[p.dof0 + 1]));
+    }
+    let (mut lo, mut hi) = ((f64::MAX, f64::MAX), (f64::MIN, f64::MIN));
+    for (x, y) in &pts {
+        lo = (lo.0.min(*x), lo.1.min(*y));
+        hi = (hi.0.max(*x), hi.1.max(*y));
+    }
+    let diag = if pts.is_empty() {
+        0.0
+    } else {
+        (hi.0 - lo.0).hypot(hi.1 - lo.1)
+    };
+    let beam = system
+        .beams
+        .iter()
+        .map(|b| b.node_s[b.node_s.len() - 1])
+        .fold(0.0, f64::max);
+    let l = diag.max(beam);
+    if l > 0.0 {
+        l
+    } else {
+        1.0
+    }
+}
+
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+pub(crate) fn norm2(a: &[f64]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+pub(crate) fn norm_inf(a: &[f64]) -> f64 {
+    a.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+pub(crate) fn argmax_abs(v: &[f64]) -> usize {
+    (0..v.len())
+        .max_by(|&a, &b| v[a].abs().total_cmp(&v[b].abs()))
+        .unwrap_or(0)
+}

@@ -1,0 +1,214 @@
+//! `ancf-modal calibrate`: fit model parameters to measured frequencies
+//! (the paper's "equivalent geometry").
+
+use super::{load_model, write_output};
+use ancf_modal::analysis::calibrate::{
+    calibrate, sweep, CalibrationRequest, CalibrationResult, CalibrationSettings, EigenFrequencies,
+    ModeSelection, ParameterSet, ParameterSpec,
+};
+use ancf_modal::analysis::ModeKind;
+use ancf_modal::error::CalibrationError;
+use ancf_modal::model::Model;
+use ancf_modal::output::calibrate_report::{calibrate_json, calibrate_table, calibration_plot};
+use ancf_modal::output::plot::{
+    calibration_figure, render, write_atomic, Figure, Format, PlotSize,
+};
+use anyhow::Result;
+use clap::{Args, ValueEnum};
+use std::path::PathBuf;
+
+/// Mode kinds a target can refer to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum KindArg {
+    Bending,
+    Axial,
+    Spring,
+}
+
+impl From<KindArg> for ModeKind {
+    fn from(k: KindArg) -> Self {
+        match k {
+            KindArg::Bending => ModeKind::Bending,
+            KindArg::Axial => ModeKind::Axial,
+            KindArg::Spring => ModeKind::Spring,
+        }
+    }
+}
+
+/// How each candidate parameter value is evaluated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    /// Eigenproblem at the reference (analytic sensitivities).
+    Eigen,
+}
+
+#[derive(Debug, Args)]
+pub struct CalibrateArgs {
+    /// Model file (JSON); the built-in paper assembly when omitted.
+    pub model: Option<PathBuf>,
+    /// Measured frequencies [Hz], comma-separated, one per mode; default:
+    /// the model's `reference.first_bending_hz`.
+    #[arg(
+        long,
+        value_name = "HZ[,HZ...]",
+        value_delimiter = ',',
+        allow_negative_numbers = true
+    )]
+    pub target: Vec<f64>,
+    /// Parameter to fit, repeatable: height, width, young, density,
+    /// ID.mass, ID.inertia, ID.torsion_stiffness, ID.stiffness (or
+    /// BEAM.height, …), optionally with bounds in SI units: NAME=LO:HI.
+    /// Default: height.
+    #[arg(long = "param", value_name = "NAME[=LO:HI]", value_parser = parse_param)]
+    pub params: Vec<ParameterSpec>,
+    /// Keep each beam's mass while its section changes (density adjusts).
+    #[arg(long)]
+    pub keep_mass: bool,
+    /// Kind of the modes the targets refer to.
+    #[arg(long, value_enum, default_value_t = KindArg::Bending)]
+    pub mode_kind: KindArg,
+    /// Mode numbers (1-based, among the modes of --mode-kind), one per
+    /// target; default 1, 2, ….
+    #[arg(long, value_name = "N[,N...]", value_delimiter = ',',
+          value_parser = clap::value_parser!(u64).range(1..))]
+    pub mode: Vec<u64>,
+    /// How each candidate is evaluated.
+    #[arg(long, value_enum, default_value_t = MethodArg::Eigen)]
+    pub method: MethodArg,
+    /// Stop when every frequency is this close to its target [Hz]
+    /// (default 1e-10 × target).
+    #[arg(long, value_name = "HZ")]
+    pub tolerance: Option<f64>,
+    /// Most model evaluations.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u64).range(2..=10000))]
+    pub max_evaluations: u64,
+    /// Write the calibrated model (a valid model file) here.
+    #[arg(long, value_name = "FITTED.json")]
+    pub out: Option<PathBuf>,
+    /// Print one JSON document instead of the table.
+    #[arg(long)]
+    pub json: bool,
+    /// Draw frequency against the (first) parameter with the iteration path
+    /// (.svg or .png).
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
+}
+
+/// `NAME` or `NAME=LO:HI`.
+fn parse_param(s: &str) -> Result<ParameterSpec, String> {
+    let Some((name, range)) = s.split_once('=') else {
+        return Ok(ParameterSpec::named(s));
+    };
+    let (lo, hi) = range
+        .split_once(':')
+        .ok_or_else(|| format!("bounds must be LO:HI, got `{range}`"))?;
+    let num = |v: &str| {
+        v.trim()
+            .parse::<f64>()
+            .map_err(|e| format!("bound `{v}`: {e}"))
+    };
+    Ok(ParameterSpec {
+        name: name.to_string(),
+        bounds: Some((num(lo)?, num(hi)?)),
+    })
+}
+
+/// The request from the flags and the model.
+pub fn request(args: &CalibrateArgs, model: &Model) -> Result<CalibrationRequest> {
+    let targets_hz = if args.target.is_empty() {
+        match &model.reference {
+            Some(r) => vec![r.first_bending_hz],
+            None => return Err(CalibrationError::NoTargets.into()),
+        }
+    } else {
+        args.target.clone()
+    };
+    let parameters = if args.params.is_empty() {
+        vec![ParameterSpec::named("height")]
+    } else {
+        args.params.clone()
+    };
+    Ok(CalibrationRequest {
+        parameters,
+        targets_hz,
+        modes: ModeSelection {
+            kind: args.mode_kind.into(),
+            numbers: args.mode.iter().map(|&n| n as usize).collect(),
+        },
+        keep_mass: args.keep_mass,
+    })
+}
+
+pub fn run(args: CalibrateArgs) -> Result<()> {
+    let plot_format = args.plot.as_deref().map(Format::from_path).transpose()?;
+    if let Some(t) = args.tolerance {
+        if !(t > 0.0 && t.is_finite()) {
+            anyhow::bail!("--tolerance must be positive and finite, got {t} Hz");
+        }
+    }
+    let model = load_model(args.model.as_deref())?;
+    let request = request(&args, &model)?;
+    let settings = CalibrationSettings {
+        tolerance_hz: args.tolerance,
+        max_evaluations: args.max_evaluations as usize,
+        ..CalibrationSettings::default()
+    };
+    let result = match args.method {
+        MethodArg::Eigen => calibrate(&model, &request, &settings)?,
+    };
+    // Everything is computed before any file is written.
+    let plot_bytes = match (&args.plot, plot_format) {
+        (Some(_), Some(format)) => {
+            let data = plot_data(&model, &request, &settings, &result)?;
+            let figure = calibration_figure(&calibration_plot(&model.name, &result, data));
+            Some(render(&Figure::from(figure), format, PlotSize::default())?)
+        }
+        _ => None,
+    };
+    if let Some(path) = &args.out {
+        write_output(path, &(result.fitted_model.to_json() + "\n"))?;
+    }
+    if let (Some(path), Some(bytes)) = (&args.plot, plot_bytes) {
+        write_atomic(path, &bytes)?;
+    }
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&calibrate_json(&model.name, &result))?
+        );
+    } else {
+        print!("{}", calibrate_table(&model.name, &result));
+        if let Some(path) = &args.out {
+            println!("calibrated model written to {}", path.display());
+        }
+    }
+    Ok(())
+}
+
+/// A sweep of the first parameter over the span of the iterates (padded),
+/// the other parameters at their fitted values.
+fn plot_data(
+    model: &Model,
+    request: &CalibrationRequest,
+    settings: &CalibrationSettings,
+    result: &CalibrationResult,
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let set = ParameterSet::resolve(model, &request.parameters, request.keep_mass)?;
+    let eval = EigenFrequencies::new(
+        model,
+        &request.modes,
+        request.targets_hz.len(),
+        settings.modal,
+    )?;
+    let fitted: Vec<f64> = result.parameters.iter().map(|p| p.fitted).collect();
+    let xs = result.history.iter().map(|h| h.parameters[0]);
+    let (lo, hi) = xs.fold((fitted[0], fitted[0]), |(a, b), x| (a.min(x), b.max(x)));
+    let p = &set.params[0];
+    let pad = 0.15 * (hi - lo).max(0.02 * fitted[0]);
+    let (lo, hi) = ((lo - pad).max(p.lower), (hi + pad).min(p.upper));
+    const POINTS: usize = 25;
+    let values: Vec<f64> = (0..POINTS)
+        .map(|k| lo + (hi - lo) * k as f64 / (POINTS - 1) as f64)
+        .collect();
+    Ok(sweep(&set, &eval, &fitted, 0, &values))
+}

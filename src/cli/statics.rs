@@ -1,0 +1,145 @@
+//! `ancf-modal static`: the static equilibrium under the model's loads
+//! (node positions, joint reactions, spring forces).
+
+//!
+//! Also the pre-stressed variants of `modal` (`--prestress`, `--sweep-load`),
+//! which share the statics settings.
+
+use super::modal::{ModalArgs, Sweep};
+use super::{load_model, source_label, write_output};
+use ancf_modal::analysis::prestress::{linspace, load_sweep, prestressed_modal};
+use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
+use ancf_modal::analysis::ModalSettings;
+use ancf_modal::output::figures::{write_figure, write_mode_shapes};
+use ancf_modal::output::modal_report::modal_csv;
+use ancf_modal::output::plot::PlotSize;
+use ancf_modal::output::static_report::{
+    equilibrium_figure, prestress_json, prestress_table, static_report, static_table, sweep_csv,
+    sweep_figure, sweep_json, sweep_table,
+};
+use ancf_modal::{Model, System};
+use anyhow::{Context, Result};
+use clap::Args;
+use std::path::PathBuf;
+
+#[derive(Debug, Args)]
+pub struct StaticArgs {
+    /// Model file (JSON); the built-in paper assembly when omitted.
+    pub model: Option<PathBuf>,
+    /// Factor on the applied loads (gravity is not scaled). Loads act with
+    /// their value at t = 0: constant loads and steps from 0 in full,
+    /// half-sine pulses not at all.
+    #[arg(long, default_value_t = 1.0, value_name = "S", allow_negative_numbers = true, value_parser = finite)]
+    pub load_scale: f64,
+    /// Print one JSON document instead of the tables.
+    #[arg(long)]
+    pub json: bool,
+    /// Also draw the reference and equilibrium shapes to this file (.svg or .png).
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
+}
+
+/// A finite number.
+pub fn finite(s: &str) -> Result<f64, String> {
+    let v: f64 = s.parse().map_err(|_| format!("`{s}` is not a number"))?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(format!("`{s}` is not a finite number"))
+    }
+}
+
+pub fn run(args: StaticArgs) -> Result<()> {
+    let model = load_model(args.model.as_deref())?;
+    let system = System::new(&model);
+    let settings = StaticSettings {
+        load_scale: args.load_scale,
+        ..StaticSettings::default()
+    };
+    let eq = solve_equilibrium(&system, &settings)
+        .with_context(|| source_label(args.model.as_deref()))?;
+    if let Some(path) = &args.plot {
+        let figure = equilibrium_figure(&system, &eq);
+        let size = PlotSize {
+            width: 900,
+            height: 900,
+        };
+        write_figure(&figure.into(), path, size)?;
+    }
+    let report = static_report(&model, &system, &eq);
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print!("{}", static_table(&report));
+    }
+    Ok(())
+}
+
+/// `modal --prestress [--load-scale S]`.
+pub fn run_prestress(
+    args: &ModalArgs,
+    model: &Model,
+    system: &System,
+    settings: &ModalSettings,
+) -> Result<()> {
+    let statics = StaticSettings {
+        load_scale: args.load_scale.unwrap_or(1.0),
+        ..StaticSettings::default()
+    };
+    let result = prestressed_modal(system, &statics, settings)
+        .with_context(|| source_label(args.model.as_deref()))?;
+    if let Some(path) = &args.csv {
+        write_output(path, &modal_csv(&result.prestressed))?;
+    }
+    if let Some(path) = &args.plot {
+        write_mode_shapes(system, &result.equilibrium.q, &result.prestressed, path)?;
+    }
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&prestress_json(&model.name, &result))?
+        );
+    } else {
+        print!("{}", prestress_table(&model.name, &result));
+    }
+    Ok(())
+}
+
+/// `modal --sweep-load A:B:N`.
+pub fn run_sweep(
+    args: &ModalArgs,
+    model: &Model,
+    system: &System,
+    sweep: Sweep,
+    settings: &ModalSettings,
+) -> Result<()> {
+    let factors = linspace(sweep.from, sweep.to, sweep.count);
+    let modes = (args.modes as usize).min(6);
+    let result = load_sweep(
+        system,
+        &factors,
+        modes,
+        &StaticSettings::default(),
+        settings,
+    )
+    .with_context(|| source_label(args.model.as_deref()))?;
+    if let Some(path) = &args.csv {
+        write_output(path, &sweep_csv(&result))?;
+    }
+    if let Some(path) = &args.plot {
+        write_figure(
+            &sweep_figure(&model.name, &result).into(),
+            path,
+            PlotSize::default(),
+        )?;
+    }
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&sweep_json(&model.name, &result))?
+        );
+    } else {
+        print!("{}", sweep_table(&model.name, &result));
+    }
+    Ok(())
+}
