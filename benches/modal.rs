@@ -1,1 +1,41 @@
-fn main() {}
+//! Modal analysis speed: the built-in paper assembly and a 500-element beam.
+//! Run: `cargo bench --bench modal`.
+
+use ancf_modal::analysis::{modal_at_reference, ModalSettings};
+use ancf_modal::error::Source;
+use ancf_modal::{Model, System};
+use criterion::{criterion_group, criterion_main, Criterion};
+
+fn beam(elements: usize) -> Model {
+    let json = format!(
+        r#"{{"name": "beam", "beams": [{{"id": "b", "start": [0, 0], "angle_deg": 0, "length": 0.025,
+        "elements": {elements}, "section": {{"height": 1.1e-3, "width": 5.2e-3}},
+        "material": {{"young": 127e9, "density": 8940}}}}]}}"#
+    );
+    Model::from_json(&json, Source::BuiltIn).unwrap()
+}
+
+fn bench(c: &mut Criterion) {
+    let model = Model::builtin();
+    let system = System::new(&model);
+    let settings = ModalSettings {
+        modes: Some(12),
+        ..ModalSettings::default()
+    };
+    c.bench_function("modal: default model (assembled system)", |b| {
+        b.iter(|| modal_at_reference(&system, &settings).unwrap())
+    });
+    c.bench_function("modal: default model (from parsed model)", |b| {
+        b.iter(|| modal_at_reference(&System::new(&model), &settings).unwrap())
+    });
+    let big = System::new(&beam(500));
+    let mut group = c.benchmark_group("large");
+    group.sample_size(10);
+    group.bench_function("modal: 500-element beam (2004 coordinates)", |b| {
+        b.iter(|| modal_at_reference(&big, &settings).unwrap())
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

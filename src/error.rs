@@ -184,6 +184,35 @@ pub enum TransientError {
     Singular { time: f64, dof: String },
 }
 
+/// Why the impulse experiment failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ImpulseError {
+    #[error(transparent)]
+    Transient(#[from] TransientError),
+    #[error(transparent)]
+    Analysis(#[from] AnalysisError),
+    #[error("spectrum: {0}")]
+    Spectrum(#[from] crate::analysis::spectrum::SpectrumError),
+    #[error("integrator correction: {0}")]
+    Dispersion(#[from] crate::analysis::dispersion::DispersionError),
+    #[error("the model has no sensor to record (add one under `sensors`)")]
+    NoSensor,
+    #[error("the model has no sensor `{id}`")]
+    UnknownSensor { id: String },
+    #[error("the model has no time-varying load to excite it (add a `half_sine` or `step` load)")]
+    NoExcitation,
+    #[error("--amplitude/--duration change half-sine loads, and the model has none")]
+    NoPulseToOverride,
+    #[error("the pulse amplitude must be finite and non-zero, got {value} N")]
+    InvalidAmplitude { value: f64 },
+    #[error("sample rate {rate} Hz must be positive and at most 1/step = {} Hz", 1.0 / .step)]
+    SampleRateTooHigh { rate: f64, step: f64 },
+    #[error(
+        "the pulse lasts {duration} s, shorter than two steps of {step} s: it cannot be resolved"
+    )]
+    PulseTooShort { duration: f64, step: f64 },
+}
+
 /// "mode at 6819.3 Hz: ∂f/∂ln(blade.height) = 6819.3 Hz, …; relative
 /// singular values 1.41, 1.3e-16".
 fn identifiability_details(

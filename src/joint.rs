@@ -28,6 +28,8 @@ pub trait Constraint: std::fmt::Debug + Send + Sync {
     fn pair(&self) -> &Pair;
     /// Number of equations.
     fn rows(&self) -> usize;
+    /// Whether equation `row` is an angle [rad] (else a length [SI: m]).
+    fn row_is_angle(&self, row: usize) -> bool;
     /// C(q) into `out[..rows]`.
     fn residual(&self, q: &[f64], out: &mut [f64]);
     /// ∂C/∂q (local) into the first `rows` rows of `out`.
@@ -52,6 +54,9 @@ impl Constraint for Pin {
     }
     fn rows(&self) -> usize {
         2
+    }
+    fn row_is_angle(&self, _row: usize) -> bool {
+        false
     }
     fn residual(&self, q: &[f64], out: &mut [f64]) {
         let d = self.pair.separation(q);
@@ -87,6 +92,9 @@ impl Constraint for Weld {
     }
     fn rows(&self) -> usize {
         3
+    }
+    fn row_is_angle(&self, row: usize) -> bool {
+        row == 2
     }
     fn residual(&self, q: &[f64], out: &mut [f64]) {
         let d = self.pair.separation(q);
@@ -143,6 +151,9 @@ impl Constraint for Slider {
     }
     fn rows(&self) -> usize {
         1
+    }
+    fn row_is_angle(&self, _row: usize) -> bool {
+        false
     }
     fn residual(&self, q: &[f64], out: &mut [f64]) {
         out[0] = self.normal(q).dot(&self.pair.separation(q));

@@ -17,6 +17,7 @@ pub mod load;
 pub mod model;
 pub mod output;
 pub mod pair;
+pub mod reference;
 pub mod spring;
 pub mod system;
 

@@ -3,11 +3,13 @@
 pub mod calibrate;
 pub mod dispersion;
 pub mod eigen;
+pub mod impulse;
 pub mod lu;
 pub mod modal;
 pub mod prestress;
 pub mod reduce;
 mod reduced_tangent;
+pub mod sensor;
 pub mod spectrum;
 pub mod statics;
 pub mod transient;

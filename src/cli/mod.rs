@@ -3,6 +3,8 @@
 
 mod calibrate;
 mod convergence;
+mod identify;
+mod impulse;
 mod modal;
 mod statics;
 
@@ -22,6 +24,10 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// The main job: modal analysis, the impulse experiment and the paper's Table 3.
+    Identify(identify::IdentifyArgs),
+    /// The paper's time-domain test: half-sine pulse, sensor, spectrum, first bending peak.
+    Impulse(impulse::ImpulseArgs),
     /// Natural frequencies and mode shapes of the linearized assembly.
     Modal(modal::ModalArgs),
     /// Fit model parameters (equivalent geometry) to measured frequencies.
@@ -34,6 +40,8 @@ pub enum Command {
 
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
+        Command::Identify(a) => identify::run(a),
+        Command::Impulse(a) => impulse::run(a),
         Command::Modal(a) => modal::run(a),
         Command::Calibrate(a) => calibrate::run(a),
         Command::Convergence(a) => convergence::run(a),

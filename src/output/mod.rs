@@ -3,6 +3,7 @@
 pub mod calibrate_report;
 pub mod figures;
 pub mod files;
+pub mod impulse_report;
 pub mod modal_report;
 pub mod plot;
 pub mod static_report;

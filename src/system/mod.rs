@@ -12,6 +12,7 @@
 
 mod assemble;
 mod build;
+mod energy;
 
 pub use assemble::{EnergyBreakdown, Linearization};
 

@@ -1,0 +1,156 @@
+//! Sensor readings: displacement, velocity or acceleration of a material
+//! point along a measuring direction, in the global frame or co-rotated with
+//! the beam.
+//!
+//! Co-rotated frame (vibrometer on a flying part): the best-fit rigid motion
+//! of the beam's nodes (2-D Procrustes: centroid c(t) and angle φ(t)
+//! minimizing Σ|pᵢ − c − R(φ)(Pᵢ − C)|²) is removed. With w = r − c the
+//! sensor point relative to the centroid, the co-rotated displacement is
+//! u = R(φ)ᵀw − (r₀ − C), and its rates follow from differentiating that
+//! exactly (φ̇, φ̈ from the node velocities and accelerations), so the rigid
+//! drift and spin of a free-free part do not leak into the spectrum.
+//! Units: [SI: m], [SI: m/s], [SI: m/s²].
+
+use super::transient::State;
+use crate::model::{SensorFrame, SensorQuantity};
+use crate::system::{SensorPoint, System};
+use nalgebra::{Matrix2, Vector2};
+
+/// A sensor with the reference data its frame needs.
+#[derive(Debug, Clone)]
+pub struct SensorProbe {
+    pub point: SensorPoint,
+    /// For the co-rotated frame: the beam's node position indices and their
+    /// reference positions relative to the reference centroid.
+    nodes: Vec<usize>,
+    reference: Vec<Vector2<f64>>,
+    /// Sensor point relative to the reference centroid.
+    offset0: Vector2<f64>,
+    /// Measuring direction in the global frame at the reference.
+    direction: Vector2<f64>,
+}
+
+/// Centroid and rotation of the best fit, with first and second rates.
+struct Fit {
+    c: [Vector2<f64>; 3],
+    phi: [f64; 3],
+}
+
+fn rot_t(phi: f64) -> Matrix2<f64> {
+    let (s, c) = phi.sin_cos();
+    Matrix2::new(c, s, -s, c)
+}
+
+/// J with Rᵀ' = Rᵀ J (d/dφ of Rᵀ(φ)).
+fn jm() -> Matrix2<f64> {
+    Matrix2::new(0.0, 1.0, -1.0, 0.0)
+}
+
+impl SensorProbe {
+    pub fn new(system: &System, point: &SensorPoint) -> SensorProbe {
+        let q0 = &system.q0;
+        let r0 = point.anchor.position(q0);
+        let (nodes, reference, offset0, direction) = match (point.frame, point.beam) {
+            (SensorFrame::Corotated, Some(b)) => {
+                let beam = &system.beams[b];
+                let nodes: Vec<usize> = (0..beam.node_count()).map(|k| beam.dof0 + 4 * k).collect();
+                let pts: Vec<Vector2<f64>> = nodes
+                    .iter()
+                    .map(|&i| Vector2::new(q0[i], q0[i + 1]))
+                    .collect();
+                let c = pts.iter().sum::<Vector2<f64>>() / pts.len() as f64;
+                let t = beam.tangent;
+                let dir = t * point.direction.x + Vector2::new(-t.y, t.x) * point.direction.y;
+                (nodes, pts.iter().map(|p| p - c).collect(), r0 - c, dir)
+            }
+            _ => (Vec::new(), Vec::new(), r0, point.direction),
+        };
+        SensorProbe {
+            point: point.clone(),
+            nodes,
+            reference,
+            offset0,
+            direction,
+        }
+    }
+
+    pub fn id(&self) -> &str {
+        &self.point.id
+    }
+
+    /// Best fit of the beam's nodes and its rates.
+    fn fit(&self, st: &State) -> Fit {
+        let n = self.nodes.len() as f64;
+        let node = |x: &[f64], i: usize| Vector2::new(x[i], x[i + 1]);
+        let mut c = [Vector2::zeros(); 3];
+        for &i in &self.nodes {
+            c[0] += node(&st.q, i);
+            c[1] += node(&st.v, i);
+            c[2] += node(&st.a, i);
+        }
+        c.iter_mut().for_each(|x| *x /= n);
+        // S = Σ P̃ × p̃, C = Σ P̃ · p̃ and their rates.
+        let (mut s, mut cc) = ([0.0; 3], [0.0; 3]);
+        for (k, &i) in self.nodes.iter().enumerate() {
+            let p = self.reference[k];
+            let d = [
+                node(&st.q, i) - c[0],
+                node(&st.v, i) - c[1],
+                node(&st.a, i) - c[2],
+            ];
+            for o in 0..3 {
+                s[o] += p.x * d[o].y - p.y * d[o].x;
+                cc[o] += p.dot(&d[o]);
+            }
+        }
+        let phi = s[0].atan2(cc[0]);
+        let den = cc[0] * cc[0] + s[0] * s[0];
+        let num = cc[0] * s[1] - s[0] * cc[1];
+        let phi_d = num / den;
+        let num_d = cc[0] * s[2] - s[0] * cc[2];
+        let den_d = 2.0 * (cc[0] * cc[1] + s[0] * s[1]);
+        let phi_dd = (num_d * den - num * den_d) / (den * den);
+        Fit {
+            c,
+            phi: [phi, phi_d, phi_dd],
+        }
+    }
+
+    /// The reading at a state, in the sensor's quantity and frame.
+    pub fn read(&self, st: &State) -> f64 {
+        self.read_as(st, self.point.quantity)
+    }
+
+    /// The reading of another quantity at the same point and frame (e.g. the
+    /// velocity of a displacement sensor, for interpolation).
+    pub fn read_as(&self, st: &State, quantity: SensorQuantity) -> f64 {
+        let anchor = &self.point.anchor;
+        let r = anchor.position(&st.q);
+        if self.nodes.is_empty() {
+            let value = match quantity {
+                SensorQuantity::Displacement => r - self.offset0,
+                SensorQuantity::Velocity => anchor.velocity(&st.q, &st.v),
+                SensorQuantity::Acceleration => anchor.acceleration(&st.q, &st.v, &st.a),
+            };
+            return value.dot(&self.direction);
+        }
+        let fit = self.fit(st);
+        let rt = rot_t(fit.phi[0]);
+        let j = jm();
+        let w = r - fit.c[0];
+        let value = match quantity {
+            SensorQuantity::Displacement => rt * w - self.offset0,
+            SensorQuantity::Velocity => {
+                let wd = anchor.velocity(&st.q, &st.v) - fit.c[1];
+                rt * (wd + j * w * fit.phi[1])
+            }
+            SensorQuantity::Acceleration => {
+                let wd = anchor.velocity(&st.q, &st.v) - fit.c[1];
+                let wdd = anchor.acceleration(&st.q, &st.v, &st.a) - fit.c[2];
+                let (pd, pdd) = (fit.phi[1], fit.phi[2]);
+                rt * (wdd + j * wd * (2.0 * pd) + j * w * pdd - w * (pd * pd))
+            }
+        };
+        value.dot(&self.direction)
+    }
+}

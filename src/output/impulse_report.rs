@@ -1,0 +1,131 @@
+//! Impulse results as a table, a JSON document and CSV.
+
+use crate::analysis::impulse::ImpulseResult;
+use crate::reference::Errors;
+use serde_json::{json, Value};
+use std::fmt::Write;
+
+/// Readable report; `reference_hz` is the measured first bending frequency.
+pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f64>) -> String {
+    let mut s = String::new();
+    let t = &r.settings.transient;
+    let st = &r.stats;
+    let _ = writeln!(
+        s,
+        "model {model_name}: {} steps of {:.3e} s to {:.3e} s, spectral radius {}",
+        st.steps, t.step, t.end_time, t.spectral_radius
+    );
+    let _ = writeln!(
+        s,
+        "Newton: {:.2} iterations/step, {} factorizations; joints held to {:.1e} m and {:.1e} rad",
+        st.newton_iterations as f64 / st.steps.max(1) as f64,
+        st.factorizations,
+        st.max_length_residual,
+        st.max_angle_residual
+    );
+    let _ = writeln!(
+        s,
+        "sensor `{}` ({:?}), {} samples at {} Hz, {} window",
+        r.sensor,
+        r.quantity,
+        r.signal.len(),
+        r.sample_rate_hz,
+        r.spectrum.window.name()
+    );
+    let _ = writeln!(s, "spectrum peaks:");
+    let _ = writeln!(s, "  {:>12}  {:>12}", "f [Hz]", "magnitude");
+    for p in &r.peaks {
+        let _ = writeln!(s, "  {:>12.3}  {:>12.4e}", p.frequency_hz, p.magnitude);
+    }
+    match &r.first_bending {
+        Some(fb) => {
+            let _ = writeln!(s, "first bending frequency:");
+            let _ = writeln!(
+                s,
+                "  FFT peak (raw)                {:>10.3} Hz   vs eigen {:+.2e}",
+                fb.raw_hz,
+                fb.raw_error()
+            );
+            let _ = writeln!(
+                s,
+                "  FFT, integrator-corrected     {:>10.3} Hz   vs eigen {:+.2e}",
+                fb.corrected_hz,
+                fb.corrected_error()
+            );
+            let _ = writeln!(
+                s,
+                "  eigenvalue problem            {:>10.3} Hz",
+                fb.eigen_hz
+            );
+            if let Some(exp) = reference_hz {
+                let e = Errors::new(fb.corrected_hz, exp);
+                let _ = writeln!(s, "  experiment (reference)        {:>10.3} Hz", exp);
+                let _ = writeln!(
+                    s,
+                    "  error (model − exp)/exp {:+.3} %; paper's convention (exp − model)/model {:+.3} %",
+                    e.error_percent, e.paper_error_percent
+                );
+            }
+        }
+        None => {
+            let _ = writeln!(s, "no bending peak identified (the model has no bending mode or the sensor does not see it)");
+        }
+    }
+    s
+}
+
+/// JSON document (DESIGN §5 keys).
+pub fn impulse_json(model_name: &str, r: &ImpulseResult, reference_hz: Option<f64>) -> Value {
+    let fb = r.first_bending;
+    let errors = fb
+        .zip(reference_hz)
+        .map(|(f, e)| Errors::new(f.corrected_hz, e));
+    json!({
+        "model": model_name,
+        "first_bending_hz": fb.map(|f| f.corrected_hz),
+        "first_bending_raw_hz": fb.map(|f| f.raw_hz),
+        "eigen_first_bending_hz": fb.map(|f| f.eigen_hz),
+        "raw_vs_eigen": fb.map(|f| f.raw_error()),
+        "corrected_vs_eigen": fb.map(|f| f.corrected_error()),
+        "peaks": r.peaks.iter().map(|p| json!({"frequency_hz": p.frequency_hz, "magnitude": p.magnitude})).collect::<Vec<_>>(),
+        "reference_hz": reference_hz,
+        "error_percent": errors.map(|e| e.error_percent),
+        "paper_error_percent": errors.map(|e| e.paper_error_percent),
+        "steps": r.stats.steps,
+        "step_s": r.settings.transient.step,
+        "end_time_s": r.settings.transient.end_time,
+        "spectral_radius": r.settings.transient.spectral_radius,
+        "newton_iterations": r.stats.newton_iterations,
+        "factorizations": r.stats.factorizations,
+        "max_joint_residual_m": r.stats.max_length_residual,
+        "max_joint_residual_rad": r.stats.max_angle_residual,
+        "sensor": r.sensor,
+        "sample_rate_hz": r.sample_rate_hz,
+        "samples": r.signal.len(),
+    })
+}
+
+/// CSV of the sensor time series: t [s], signal, force [N].
+pub fn signal_csv(r: &ImpulseResult) -> String {
+    let mut s = format!("time_s,{}_{:?},force_n\n", r.sensor, r.quantity).to_lowercase();
+    for ((t, y), f) in r.time.iter().zip(&r.signal).zip(&r.force) {
+        let _ = writeln!(s, "{t:.9e},{y:.9e},{f:.9e}");
+    }
+    s
+}
+
+/// CSV of the amplitude spectrum: f [Hz], magnitude, dB.
+pub fn spectrum_csv(r: &ImpulseResult) -> String {
+    let mut s = String::from("frequency_hz,magnitude,magnitude_db\n");
+    let db = r.spectrum.magnitude_db();
+    for ((f, m), d) in r
+        .spectrum
+        .frequency_hz
+        .iter()
+        .zip(&r.spectrum.magnitude)
+        .zip(&db)
+    {
+        let _ = writeln!(s, "{f:.6},{m:.9e},{d:.4}");
+    }
+    s
+}
