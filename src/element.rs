@@ -293,7 +293,9 @@ impl CableElement {
     }
 
     /// The quadratic form ½ δeᵀ K δe of the tangent at `e`, split into its
-    /// axial and bending parts, evaluated from the strain variations at the
+    /// axial part (stretching) and its transverse part (bending, plus the
+    /// geometric stiffness of the axial force), evaluated from the strain
+    /// variations at the
     /// quadrature points. Unlike a product with the assembled matrix, this
     /// does not cancel large stiffness entries against each other: a rigid
     /// motion of a short element gives exactly zero, so Rayleigh quotients of
@@ -308,7 +310,10 @@ impl CableElement {
             let d1 = combine(de, &qp.d1);
             let along = t.dot(&d1);
             let across2 = d1.norm_squared() - along * along;
-            out.axial += 0.5 * qp.w * ea * (along * along + (l - 1.0) / l * across2);
+            // The stretch term is axial; the tension term ε/l·|δr'⊥|² acts on
+            // transverse motion (a string's stiffness) and counts as bending.
+            out.axial += 0.5 * qp.w * ea * along * along;
+            out.bending += 0.5 * qp.w * ea * (l - 1.0) / l * across2;
         }
         for qp in &self.bending {
             let b = BendingPoint::new(e, qp);

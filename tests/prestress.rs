@@ -44,9 +44,8 @@ fn euler_load(h: f64) -> f64 {
 
 /// Eigenvalues ω² of the transverse (bending) modes at the equilibrium under
 /// the model's load × s, ascending. Modes are picked by shape (transverse
-/// node displacements dominate), not by the energy label: under a large
-/// axial force the geometric stiffness, which the energy split books as
-/// axial, outweighs the bending part.
+/// node displacements dominate), independently of the energy label that
+/// `labels_follow_the_shape_under_tension` checks.
 fn bending_eigenvalues(m: &Model, s: f64, check: bool) -> Vec<f64> {
     let sys = System::new(m);
     let settings = StaticSettings {
@@ -56,20 +55,52 @@ fn bending_eigenvalues(m: &Model, s: f64, check: bool) -> Vec<f64> {
     };
     let eq = solve_equilibrium(&sys, &settings).expect("equilibrium");
     let r = modal_at_equilibrium(&sys, &eq, &ModalSettings::default()).expect("modal");
-    let beam = &sys.beams[0];
     r.modes
         .iter()
         .filter(|m| m.kind != ModeKind::Rigid)
-        .filter(|m| {
-            let (mut ux, mut uy) = (0.0, 0.0);
-            for k in 0..beam.node_count() {
-                ux += m.shape[beam.dof0 + 4 * k].powi(2);
-                uy += m.shape[beam.dof0 + 4 * k + 1].powi(2);
-            }
-            uy > ux
-        })
+        .filter(|m| is_transverse(&sys, &m.shape))
         .map(|m| m.eigenvalue)
         .collect()
+}
+
+/// Transverse displacement dominates the mode shape.
+fn is_transverse(sys: &System, shape: &[f64]) -> bool {
+    let beam = &sys.beams[0];
+    let (mut ux, mut uy) = (0.0, 0.0);
+    for k in 0..beam.node_count() {
+        ux += shape[beam.dof0 + 4 * k].powi(2);
+        uy += shape[beam.dof0 + 4 * k + 1].powi(2);
+    }
+    uy > ux
+}
+
+#[test]
+fn labels_follow_the_shape_under_tension() {
+    // At 10 P_cr most of a transverse mode's stiffness is the tension's
+    // (string-like); it must still be labelled bending, and the stretching
+    // modes axial.
+    let h = 2e-3 * L;
+    let m = pinned_roller(16, h, 10.0 * euler_load(h));
+    let sys = System::new(&m);
+    let eq = solve_equilibrium(&sys, &StaticSettings::default()).expect("equilibrium");
+    let r = modal_at_equilibrium(&sys, &eq, &ModalSettings::default()).expect("modal");
+    for mode in r
+        .modes
+        .iter()
+        .filter(|m| m.kind != ModeKind::Rigid)
+        .take(12)
+    {
+        let expected = if is_transverse(&sys, &mode.shape) {
+            ModeKind::Bending
+        } else {
+            ModeKind::Axial
+        };
+        assert_eq!(
+            mode.kind, expected,
+            "mode {} at {:.1} Hz: label vs shape",
+            mode.index, mode.frequency_hz
+        );
+    }
 }
 
 #[test]

@@ -6,17 +6,17 @@ use std::path::{Path, PathBuf};
 
 /// Why an output file could not be written.
 #[derive(Debug, thiserror::Error)]
-#[error("{}: cannot write: {source}", path.display())]
+#[error("{}: cannot write: {io}", path.display())]
 pub struct WriteError {
     pub path: PathBuf,
-    pub source: std::io::Error,
+    pub io: std::io::Error,
 }
 
 /// Write `bytes` to `path` atomically.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
-    let err = |source| WriteError {
+    let err = |io| WriteError {
         path: path.to_path_buf(),
-        source,
+        io,
     };
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
