@@ -326,4 +326,13 @@ pub enum CalibrationError {
     NeedsSensitivities { method: &'static str },
     #[error("analysis failed at {at}: {source}")]
     Analysis { at: String, source: AnalysisError },
+    #[error("the impulse experiment failed at {at}: {source}")]
+    Impulse { at: String, source: ImpulseError },
+    #[error("the impulse experiment shows no first bending peak at {at}")]
+    NoImpulsePeak { at: String },
+    #[error("the impulse method identifies the first bending mode only (asked for {kind} mode(s) {numbers:?}); use --method eigen")]
+    ImpulseMode {
+        kind: crate::analysis::ModeKind,
+        numbers: Vec<usize>,
+    },
 }

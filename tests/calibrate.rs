@@ -572,3 +572,54 @@ fn cli_plot_is_written() {
     let svg = std::fs::read_to_string(&plot).unwrap();
     assert!(svg.contains("<svg") && svg.contains("blade.height"));
 }
+
+#[test]
+fn the_impulse_experiment_in_the_loop_agrees_with_the_eigen_fit() {
+    // Two independent evaluators of the same frequency: the FFT of the time
+    // response (corrected for the integrator's period error) and the
+    // eigenproblem. Their equivalent heights must agree.
+    use ancf_modal::analysis::calibrate::{calibrate_with, ImpulseFrequency};
+    use ancf_modal::analysis::impulse::ImpulseSettings;
+    let m = Model::builtin();
+    let req = request(&["height"], &[4600.0]);
+    let settings = CalibrationSettings {
+        tolerance_hz: Some(1e-3),
+        ..CalibrationSettings::default()
+    };
+    let eval = ImpulseFrequency::new(&req.modes, ImpulseSettings::default()).unwrap();
+    let r = calibrate_with(&m, &req, &settings, &eval, &[1]).expect("impulse fit");
+    assert_eq!(r.method, "impulse");
+    assert!(
+        (r.achieved_hz[0] - 4600.0).abs() <= 0.01,
+        "FFT frequency at the fit {} Hz",
+        r.achieved_hz[0]
+    );
+    let eigen = calibrate(&m, &req, &CalibrationSettings::default()).unwrap();
+    let (hi, he) = (r.parameters[0].fitted, eigen.parameters[0].fitted);
+    assert!(
+        ((hi - he) / he).abs() <= 1e-5,
+        "equivalent height: impulse {hi} m, eigen {he} m"
+    );
+    // The experiment identifies the first bending mode only.
+    let mut second = req.clone();
+    second.modes.numbers = vec![2];
+    assert!(matches!(
+        ImpulseFrequency::new(&second.modes, ImpulseSettings::default()),
+        Err(CalibrationError::ImpulseMode { .. })
+    ));
+}
+
+#[test]
+fn identify_reports_the_equivalent_height() {
+    let o = bin()
+        .args(["identify", "--calibrate", "--json"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let c = &v["calibration"];
+    assert_eq!(c["parameters"][0]["name"], "blade.height");
+    let exp = v["experiment_hz"].as_f64().unwrap();
+    let f = c["achieved_hz"][0].as_f64().unwrap();
+    assert!((f - exp).abs() <= 0.01, "{f} Hz vs experiment {exp} Hz");
+}

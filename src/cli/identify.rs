@@ -4,6 +4,7 @@
 use super::impulse::{experiment, ExperimentArgs};
 use super::{load_model, source_label, write_output};
 use ancf_modal::analysis::{modal_at_reference, ModalSettings};
+use ancf_modal::output::calibrate_report::calibrate_json;
 use ancf_modal::output::impulse_report::{impulse_json, signal_csv, spectrum_csv};
 use ancf_modal::output::modal_report::{modal_csv, modal_json};
 use ancf_modal::reference::{self, Errors};
@@ -26,6 +27,11 @@ pub struct IdentifyArgs {
     /// Print one JSON document instead of the report.
     #[arg(long)]
     pub json: bool,
+    /// Also fit the equivalent beam height that matches the experiment's
+    /// first bending frequency (eigenvalue-based `calibrate`); with
+    /// --out-dir the calibrated model is written as calibrated.json.
+    #[arg(long)]
+    pub calibrate: bool,
 }
 
 pub fn run(args: IdentifyArgs) -> Result<()> {
@@ -46,6 +52,11 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         .reference
         .as_ref()
         .map_or(table3.experiment_hz, |r| r.first_bending_hz);
+    let calibration = if args.calibrate {
+        Some(super::calibrate::equivalent_height(&model, experiment_hz)?)
+    } else {
+        None
+    };
     let eigen = modal.first_bending().map(|m| m.frequency_hz);
     let fft = impulse.first_bending.map(|f| f.corrected_hz);
     let rows: Vec<(&str, Option<f64>)> = vec![
@@ -71,6 +82,7 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         "reference_source": reference::source(),
         "modal": modal_json(&model.name, &modal),
         "impulse": impulse_json(&model.name, &impulse, Some(experiment_hz)),
+        "calibration": calibration.as_ref().map(|c| calibrate_json(&model.name, c)),
     });
     if let Some(dir) = &args.out_dir {
         std::fs::create_dir_all(dir)
@@ -82,6 +94,12 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         write_output(&dir.join("modes.csv"), &modal_csv(&modal))?;
         write_output(&dir.join("signal.csv"), &signal_csv(&impulse))?;
         write_output(&dir.join("spectrum.csv"), &spectrum_csv(&impulse))?;
+        if let Some(c) = &calibration {
+            write_output(
+                &dir.join("calibrated.json"),
+                &(c.fitted_model.to_json() + "\n"),
+            )?;
+        }
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
@@ -121,6 +139,19 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
             fb.corrected_error()
         );
     }
+    if let Some(c) = &calibration {
+        let p = &c.parameters[0];
+        let _ = writeln!(
+            s,
+            "equivalent geometry: {} = {:.4} mm ({:+.2} % on {:.4} mm) gives {:.3} Hz (eigenvalue, {} evaluations)",
+            p.name,
+            1e3 * p.fitted,
+            p.change_percent,
+            1e3 * p.initial,
+            c.achieved_hz[0],
+            c.evaluations
+        );
+    }
     let st = &impulse.stats;
     let _ = writeln!(
         s,
@@ -133,8 +164,13 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
     if let Some(dir) = &args.out_dir {
         let _ = writeln!(
             s,
-            "data written to {}: summary.json, modes.csv, signal.csv, spectrum.csv",
-            dir.display()
+            "data written to {}: summary.json, modes.csv, signal.csv, spectrum.csv{}",
+            dir.display(),
+            if calibration.is_some() {
+                ", calibrated.json"
+            } else {
+                ""
+            }
         );
     }
     print!("{s}");

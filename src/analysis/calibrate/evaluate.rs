@@ -13,6 +13,7 @@
 
 use super::params::ParameterSet;
 use super::sensitivity::eigenvalue_sensitivities;
+use crate::analysis::impulse::{run_impulse, ImpulseSettings};
 use crate::analysis::{modal_at_reference, ModalResult, ModalSettings, ModeKind};
 use crate::error::CalibrationError;
 use crate::model::Model;
@@ -304,5 +305,65 @@ where
 
     fn frequencies(&self, model: &Model) -> Result<Vec<f64>, CalibrationError> {
         Ok(vec![(self.f)(model)?])
+    }
+}
+
+/// The impulse experiment ([`crate::analysis::impulse`]) in the loop: each
+/// evaluation integrates the pulse response, takes the sensor's spectrum
+/// and returns the first bending peak, corrected for the integrator's
+/// period error (so it estimates the same continuous frequency as the
+/// eigenproblem). It has no sensitivities: one parameter, one target.
+#[derive(Debug, Clone)]
+pub struct ImpulseFrequency {
+    pub settings: ImpulseSettings,
+}
+
+impl ImpulseFrequency {
+    /// The experiment identifies the first bending mode only.
+    pub fn new(
+        selection: &ModeSelection,
+        settings: ImpulseSettings,
+    ) -> Result<ImpulseFrequency, CalibrationError> {
+        let first = selection.numbers.is_empty() || selection.numbers == [1];
+        if selection.kind != ModeKind::Bending || !first {
+            return Err(CalibrationError::ImpulseMode {
+                kind: selection.kind,
+                numbers: selection.numbers.clone(),
+            });
+        }
+        Ok(ImpulseFrequency { settings })
+    }
+
+    fn run(&self, model: &Model, set: Option<&ParameterSet>) -> Result<f64, CalibrationError> {
+        let result = run_impulse(model, &self.settings, &mut |_| {}).map_err(|source| {
+            CalibrationError::Impulse {
+                at: describe(model, set),
+                source,
+            }
+        })?;
+        result.first_bending.map(|f| f.corrected_hz).ok_or_else(|| {
+            CalibrationError::NoImpulsePeak {
+                at: describe(model, set),
+            }
+        })
+    }
+}
+
+impl FrequencyModel for ImpulseFrequency {
+    fn method(&self) -> &'static str {
+        "impulse"
+    }
+
+    fn frequencies(&self, model: &Model) -> Result<Vec<f64>, CalibrationError> {
+        Ok(vec![self.run(model, None)?])
+    }
+
+    fn evaluate(&self, model: &Model, set: &ParameterSet) -> Result<Evaluation, CalibrationError> {
+        Ok(Evaluation {
+            frequencies_hz: vec![self.run(model, Some(set))?],
+            sensitivities: None,
+            mode_indices: None,
+            mac: None,
+        })
     }
 }

@@ -27,7 +27,9 @@ pub mod lm;
 pub mod params;
 pub mod sensitivity;
 
-pub use evaluate::{EigenFrequencies, Evaluation, FrequencyModel, ModeSelection, SingleFrequency};
+pub use evaluate::{
+    EigenFrequencies, Evaluation, FrequencyModel, ImpulseFrequency, ModeSelection, SingleFrequency,
+};
 pub use params::{ParamTarget, Parameter, ParameterSet, ParameterSpec};
 
 use crate::analysis::{ModalSettings, ModeKind};
