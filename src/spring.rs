@@ -35,6 +35,13 @@ pub trait ForceElement: std::fmt::Debug + Send + Sync {
     ) -> bool;
 }
 
+/// A damper on the rate ṡ = gᵀq̇ of a scalar s(q) with gradient g:
+/// force c ṡ g and q̇-Jacobian c g gᵀ.
+fn viscous(g: &PairGrad, c: f64, qd: &PairGrad, force: &mut PairGrad, matrix: &mut PairHess) {
+    *force = g * (c * g.dot(qd));
+    *matrix = g * g.transpose() * c;
+}
+
 /// Translational spring-damper.
 #[derive(Debug, Clone)]
 pub struct LinearSpring {
@@ -101,8 +108,7 @@ impl ForceElement for LinearSpring {
         }
         let (mut jac, mut g) = (PairJac2::zeros(), PairGrad::zeros());
         self.length_gradient(q, &mut jac, &mut g);
-        *force = g * (self.damping * g.dot(qd));
-        *matrix = g * g.transpose() * self.damping;
+        viscous(&g, self.damping, qd, force, matrix);
         true
     }
 }
@@ -156,8 +162,7 @@ impl ForceElement for TorsionSpring {
         }
         let mut g = PairGrad::zeros();
         self.pair.relative_angle_derivatives(q, &mut g, None);
-        *force = g * (self.damping * g.dot(qd));
-        *matrix = g * g.transpose() * self.damping;
+        viscous(&g, self.damping, qd, force, matrix);
         true
     }
 }
