@@ -3,22 +3,30 @@
 
 use super::impulse::{experiment, ExperimentArgs};
 use super::{load_model, source_label, write_output};
-use ancf_modal::analysis::{modal_at_reference, ModalSettings};
+use ancf_modal::analysis::impulse::ImpulseResult;
+use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings};
+use ancf_modal::output::figures::{
+    convergence_figure, mesh_convergence_with, response_figure, spectrum_figure, with_elements,
+    write_figure, write_mode_shapes, Reference,
+};
 use ancf_modal::output::impulse_report::{impulse_json, signal_csv, spectrum_csv};
 use ancf_modal::output::modal_report::{modal_csv, modal_json};
+use ancf_modal::output::plot::{Figure, PlotSize};
 use ancf_modal::reference::{self, Errors};
-use ancf_modal::System;
+use ancf_modal::{Model, System};
 use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
 use std::fmt::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
 pub struct IdentifyArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
-    /// Directory for the data files (created if missing).
+    /// Directory for the data files and figures (created if missing):
+    /// summary.json, modes.csv, signal.csv, spectrum.csv and modes,
+    /// response, spectrum, convergence as .svg and .png.
     #[arg(long, value_name = "DIR")]
     pub out_dir: Option<PathBuf>,
     #[command(flatten)]
@@ -26,6 +34,37 @@ pub struct IdentifyArgs {
     /// Print one JSON document instead of the report.
     #[arg(long)]
     pub json: bool,
+}
+
+/// Figures `--out-dir` holds, each as .svg and .png.
+const FIGURES: [&str; 4] = ["modes", "response", "spectrum", "convergence"];
+
+/// Mode shapes, impulse response, spectrum and a quick mesh convergence
+/// (2…32 elements per beam against the 32-element mesh), in both formats.
+fn write_figures(
+    dir: &Path,
+    model: &Model,
+    system: &System,
+    modal: &ModalResult,
+    impulse: &ImpulseResult,
+) -> Result<()> {
+    let data = mesh_convergence_with(
+        |n| with_elements(model, n),
+        Reference::FinestMesh { modes: 3 },
+        &[2, 4, 8, 16, 32],
+    )
+    .context("mesh convergence for the figure")?;
+    let convergence: Figure = convergence_figure(&data).into();
+    let spectrum: Figure = spectrum_figure(model, impulse).into();
+    let response: Figure = response_figure(&model.name, impulse).into();
+    for ext in ["svg", "png"] {
+        let path = |name: &str| dir.join(format!("{name}.{ext}"));
+        write_mode_shapes(system, &system.q0, modal, &path("modes"))?;
+        write_figure(&response, &path("response"), PlotSize::default())?;
+        write_figure(&spectrum, &path("spectrum"), PlotSize::default())?;
+        write_figure(&convergence, &path("convergence"), PlotSize::default())?;
+    }
+    Ok(())
 }
 
 pub fn run(args: IdentifyArgs) -> Result<()> {
@@ -82,6 +121,7 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         write_output(&dir.join("modes.csv"), &modal_csv(&modal))?;
         write_output(&dir.join("signal.csv"), &signal_csv(&impulse))?;
         write_output(&dir.join("spectrum.csv"), &spectrum_csv(&impulse))?;
+        write_figures(dir, &model, &system, &modal, &impulse)?;
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
@@ -133,8 +173,9 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
     if let Some(dir) = &args.out_dir {
         let _ = writeln!(
             s,
-            "data written to {}: summary.json, modes.csv, signal.csv, spectrum.csv",
-            dir.display()
+            "data written to {}: summary.json, modes.csv, signal.csv, spectrum.csv, {}",
+            dir.display(),
+            FIGURES.map(|f| format!("{f}.svg/.png")).join(", ")
         );
     }
     print!("{s}");
