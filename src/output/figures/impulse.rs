@@ -97,7 +97,8 @@ pub fn spectrum_figure(model: &Model, result: &ImpulseResult) -> LineFigure {
         spec.frequency_hz.clone(),
         level,
     ));
-    panel.legend = Legend::LowerLeft;
+    // Upper right: above the aliased high modes, clear of the peaks' feet.
+    panel.legend = Legend::UpperRight;
     panel.vlines = result
         .modal
         .modes
