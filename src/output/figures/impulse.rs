@@ -55,7 +55,8 @@ pub fn response_figure(model_name: &str, result: &ImpulseResult) -> LineFigure {
         result.time.clone(),
         result.signal.clone(),
     ));
-    signal.legend = Legend::UpperRight;
+    // A long record fills the panel; the title names the sensor.
+    signal.legend = Legend::None;
     let mut force = Panel::new("Force", Scale::unit("N"));
     force.series.push(Series::line(
         "force pulse",
