@@ -3,23 +3,31 @@
 
 use super::impulse::{experiment, ExperimentArgs};
 use super::{load_model, source_label, write_output};
-use ancf_modal::analysis::{modal_at_reference, ModalSettings};
+use ancf_modal::analysis::impulse::ImpulseResult;
+use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings};
 use ancf_modal::output::calibrate_report::calibrate_json;
+use ancf_modal::output::figures::{
+    convergence_figure, mesh_convergence_with, response_figure, spectrum_figure, with_elements,
+    write_figure, write_mode_shapes, Reference,
+};
 use ancf_modal::output::impulse_report::{impulse_json, signal_csv, spectrum_csv};
 use ancf_modal::output::modal_report::{modal_csv, modal_json};
+use ancf_modal::output::plot::{Figure, PlotSize};
 use ancf_modal::reference::{self, Errors};
-use ancf_modal::System;
+use ancf_modal::{Model, System};
 use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
 use std::fmt::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
 pub struct IdentifyArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
-    /// Directory for the data files (created if missing).
+    /// Directory for the data files and figures (created if missing):
+    /// summary.json, modes.csv, signal.csv, spectrum.csv and modes,
+    /// response, spectrum, convergence as .svg and .png.
     #[arg(long, value_name = "DIR")]
     pub out_dir: Option<PathBuf>,
     #[command(flatten)]
@@ -32,6 +40,37 @@ pub struct IdentifyArgs {
     /// --out-dir the calibrated model is written as calibrated.json.
     #[arg(long)]
     pub calibrate: bool,
+}
+
+/// Figures `--out-dir` holds, each as .svg and .png.
+const FIGURES: [&str; 4] = ["modes", "response", "spectrum", "convergence"];
+
+/// Mode shapes, impulse response, spectrum and a quick mesh convergence
+/// (2…32 elements per beam against the 32-element mesh), in both formats.
+fn write_figures(
+    dir: &Path,
+    model: &Model,
+    system: &System,
+    modal: &ModalResult,
+    impulse: &ImpulseResult,
+) -> Result<()> {
+    let data = mesh_convergence_with(
+        |n| with_elements(model, n),
+        Reference::FinestMesh { modes: 3 },
+        &[2, 4, 8, 16, 32],
+    )
+    .context("mesh convergence for the figure")?;
+    let convergence: Figure = convergence_figure(&data).into();
+    let spectrum: Figure = spectrum_figure(model, impulse).into();
+    let response: Figure = response_figure(&model.name, impulse).into();
+    for ext in ["svg", "png"] {
+        let path = |name: &str| dir.join(format!("{name}.{ext}"));
+        write_mode_shapes(system, &system.q0, modal, &path("modes"))?;
+        write_figure(&response, &path("response"), PlotSize::default())?;
+        write_figure(&spectrum, &path("spectrum"), PlotSize::default())?;
+        write_figure(&convergence, &path("convergence"), PlotSize::default())?;
+    }
+    Ok(())
 }
 
 pub fn run(args: IdentifyArgs) -> Result<()> {
@@ -100,6 +139,7 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
                 &(c.fitted_model.to_json() + "\n"),
             )?;
         }
+        write_figures(dir, &model, &system, &modal, &impulse)?;
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
@@ -164,13 +204,14 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
     if let Some(dir) = &args.out_dir {
         let _ = writeln!(
             s,
-            "data written to {}: summary.json, modes.csv, signal.csv, spectrum.csv{}",
+            "data written to {}: summary.json, modes.csv, signal.csv, spectrum.csv{}, {}",
             dir.display(),
             if calibration.is_some() {
                 ", calibrated.json"
             } else {
                 ""
-            }
+            },
+            FIGURES.map(|f| format!("{f}.svg/.png")).join(", ")
         );
     }
     print!("{s}");

@@ -4,7 +4,9 @@ use super::{load_model, source_label, write_output};
 use ancf_modal::analysis::impulse::{run_impulse, ImpulseResult, ImpulseSettings};
 use ancf_modal::analysis::spectrum::Window;
 use ancf_modal::model::Model;
+use ancf_modal::output::figures::{response_path, write_impulse_figures};
 use ancf_modal::output::impulse_report::{impulse_json, impulse_table, signal_csv, spectrum_csv};
+use ancf_modal::output::plot::{Format, PlotSize};
 use anyhow::{Context, Result};
 use clap::Args;
 use std::io::{IsTerminal, Write};
@@ -67,6 +69,11 @@ pub struct ImpulseArgs {
     /// stem + `.spectrum.csv` beside it.
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
+    /// Draw the spectrum (peaks, eigenfrequencies, the reference) to FILE
+    /// (.svg or .png) and the sensor signal over the force pulse to FILE's
+    /// stem + `.response.<ext>` beside it (x.png → x.response.png).
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
 }
 
 /// Run the experiment with a progress line on a terminal.
@@ -101,6 +108,9 @@ pub fn spectrum_path(csv: &Path) -> PathBuf {
 }
 
 pub fn run(args: ImpulseArgs) -> Result<()> {
+    if let Some(path) = &args.plot {
+        Format::from_path(path)?;
+    }
     let model = load_model(args.model.as_deref())?;
     args.experiment.settings().transient.validate()?;
     let result = experiment(&model, args.model.as_deref(), &args.experiment)?;
@@ -108,6 +118,10 @@ pub fn run(args: ImpulseArgs) -> Result<()> {
     if let Some(path) = &args.csv {
         write_output(path, &signal_csv(&result))?;
         write_output(&spectrum_path(path), &spectrum_csv(&result))?;
+    }
+    if let Some(path) = &args.plot {
+        let response = response_path(path);
+        write_impulse_figures(&model, &result, path, &response, PlotSize::default())?;
     }
     if args.json {
         println!(

@@ -8,16 +8,21 @@
 //!   frequencies against the number of elements, their relative errors
 //!   against an analytic (Euler–Bernoulli) or finest-mesh reference, and
 //!   the log-log error figure with the O(h⁴) slope of Hermite cubics.
+//! * [`impulse`] — the impulse experiment: sensor signal over the force
+//!   pulse against time, and the amplitude spectrum with identified peaks,
+//!   eigenfrequency guides and the measured reference frequency.
 //!
 //! All data are SI (m, Hz); figures show lengths in millimetres.
 
 pub mod convergence;
+pub mod impulse;
 pub mod modal;
 
 pub use convergence::{
     convergence_figure, euler_bernoulli_free_free, mesh_convergence, mesh_convergence_with,
     with_elements, ConvergenceData, Reference, ReferenceKind, DEFAULT_ELEMENTS,
 };
+pub use impulse::{response_figure, response_path, spectrum_figure, write_impulse_figures};
 pub use modal::{
     assembly_geometry, mode_amplitude, mode_shape_figure, mode_shape_figure_with, ModeShapeSettings,
 };

@@ -426,7 +426,12 @@ impl Panel {
                                 colour.stroke_width(2),
                             ))?;
                         } else {
-                            chart.draw_series(LineSeries::new(part, colour.stroke_width(2)))?;
+                            // A dense curve (more points than pixel columns,
+                            // e.g. a decimated oscillation) turns sharply at
+                            // every point; mitred 2-px joins of the bitmap
+                            // backend then shoot spikes out of the panel.
+                            let width = if part.len() > columns { 1 } else { 2 };
+                            chart.draw_series(LineSeries::new(part, colour.stroke_width(width)))?;
                         }
                     }
                 }
