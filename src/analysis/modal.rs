@@ -4,6 +4,13 @@
 //! With N an orthonormal basis of null(C_q): K_r = NᵀKN, M_r = NᵀMN, and
 //! K_r x = ω² M_r x is solved by Cholesky reduction. f = √max(ω², 0)/2π [Hz].
 //!
+//! For a large reduced problem (> [`LANCZOS_MIN_SIZE`] coordinates, at most a
+//! quarter of them wanted) only the requested modes are computed, by
+//! shift-invert Lanczos ([`super::lanczos`]); max|ω²| below is then the
+//! estimate maxᵢ (K_r)ᵢᵢ/(M_r)ᵢᵢ. On free beams of 128 and 500 elements the
+//! rigid count (3) is unchanged by that estimate, and frequencies agree with
+//! the dense path to 1e-14 (tests/large_modal.rs).
+//!
 //! Zero-frequency (rigid-body or mechanism) modes are those with
 //! |ω²| ≤ tol, tol = [`ModalSettings::rigid_tolerance`] · ε · max|ω²|.
 //! Measured on free beams of 8–500 elements, the zero eigenvalues scatter at
