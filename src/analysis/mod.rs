@@ -1,9 +1,11 @@
 //! Analyses on an assembled [`crate::System`].
 
+pub mod band;
 pub mod calibrate;
 pub mod dispersion;
 pub mod eigen;
 pub mod impulse;
+pub mod lanczos;
 pub mod lu;
 pub mod modal;
 pub mod prestress;
@@ -14,4 +16,6 @@ pub mod spectrum;
 pub mod statics;
 pub mod transient;
 
-pub use modal::{modal, modal_at_reference, ModalResult, ModalSettings, Mode, ModeKind};
+pub use modal::{
+    modal, modal_at_reference, EigenMethod, ModalResult, ModalSettings, Mode, ModeKind,
+};
