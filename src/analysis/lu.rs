@@ -223,16 +223,6 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
-impl DenseLu {
-    /// Average number of stored entries per row used by a solve (diagnostic).
-    pub fn profile(&self) -> f64 {
-        (0..self.n)
-            .map(|i| (i - self.l_start[i]) + (self.u_end[i] - i))
-            .sum::<usize>() as f64
-            / self.n as f64
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

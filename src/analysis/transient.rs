@@ -18,8 +18,13 @@
 //! iteration stays small; a step stops when the estimated remaining error
 //! θ/(1 − θ)·‖Δq‖ is below the tolerance (Hairer & Wanner's test), so a
 //! well-predicted step costs one residual and one back-substitution.
-//! Norm: max over coordinates of |Δqᵢ|/sᵢ, sᵢ = the assembly's size [SI: m]
-//! for positions and 1 for slopes and angles.
+//! The step also requires every joint equation to hold to tolerance × size
+//! [SI: m] (or tolerance [rad] for weld angles), checked directly.
+//! Norm: max over coordinates of |Δqᵢ|·ℓᵢ/L, L the assembly's size [SI: m],
+//! ℓᵢ the displacement a unit change of qᵢ causes (1 for positions, the
+//! adjacent element length for slopes, the radius of gyration for rigid
+//! angles). The rate estimate θ/(1 − θ) carries over from step to step
+//! (floored at 1e-3).
 
 use super::dispersion::GenAlpha;
 use super::lu::DenseLu;
@@ -124,7 +129,7 @@ pub struct Integrator<'s> {
     /// The same for the constraint equations, and which of them are angles.
     row_weights: Vec<f64>,
     row_is_angle: Vec<bool>,
-    pub lu: DenseLu,
+    lu: DenseLu,
     tangent: Mat<f64>,
     jacobian: Mat<f64>,
     rhs: Vec<f64>,
