@@ -253,30 +253,7 @@ fn reverse_cuthill_mckee(a: &Csr) -> Vec<usize> {
         l.sort_unstable();
         l.dedup();
     }
-    let mut visited = vec![false; n];
-    let mut order = Vec::with_capacity(n);
-    while order.len() < n {
-        // Start each component at a vertex of least degree.
-        let start = (0..n)
-            .filter(|&i| !visited[i])
-            .min_by_key(|&i| adj[i].len())
-            .unwrap_or(0);
-        visited[start] = true;
-        let mut head = order.len();
-        order.push(start);
-        while head < order.len() {
-            let v = order[head];
-            let mut next: Vec<usize> = adj[v].iter().copied().filter(|&j| !visited[j]).collect();
-            next.sort_by_key(|&j| adj[j].len());
-            for j in next {
-                visited[j] = true;
-                order.push(j);
-            }
-            head += 1;
-        }
-    }
-    order.reverse();
-    order
+    super::lu::rcm_order(&adj)
 }
 
 #[cfg(test)]

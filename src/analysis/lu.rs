@@ -180,13 +180,22 @@ fn reverse_cuthill_mckee(a: &[f64], n: usize) -> Vec<usize> {
                 .collect()
         })
         .collect();
+    rcm_order(&adjacency)
+}
+
+/// Reverse Cuthill–McKee ordering of a graph given by its adjacency lists
+/// (symmetric, no self-loops): breadth-first from a least-connected
+/// vertex, neighbours by increasing degree, reversed; disconnected parts
+/// follow one another.
+pub(crate) fn rcm_order(adjacency: &[Vec<usize>]) -> Vec<usize> {
+    let n = adjacency.len();
     let mut visited = vec![false; n];
     let mut order = Vec::with_capacity(n);
     while order.len() < n {
         let start = (0..n)
             .filter(|&i| !visited[i])
             .min_by_key(|&i| adjacency[i].len())
-            .expect("an unvisited unknown");
+            .expect("an unvisited vertex");
         visited[start] = true;
         let mut head = order.len();
         order.push(start);
