@@ -60,7 +60,7 @@ fn check_shapes(system: &System, r: &ModalResult, what: &str) {
             .zip(ma)
             .map(|(x, y)| x - a.eigenvalue * y)
             .collect();
-        let red = reduce_vector(&ns, &full);
+        let red = ns.restrict(&full);
         let res = red.iter().map(|x| x * x).sum::<f64>().sqrt();
         // Normwise backward-error scale ‖|K||φ| + |λ||M||φ|‖: what rounding
         // in forming Kφ leaves (‖Kφ‖ itself is ε·λ_max‖Mφ‖-noisy for low modes).
@@ -84,21 +84,6 @@ fn check_shapes(system: &System, r: &ModalResult, what: &str) {
             res / scale
         );
     }
-}
-
-/// Nᵀ v.
-fn reduce_vector(ns: &ancf_modal::analysis::reduce::NullSpace, v: &[f64]) -> Vec<f64> {
-    let mut out: Vec<f64> = ns.free.iter().map(|&g| v[g]).collect();
-    for k in 0..ns.basis.ncols() {
-        out.push(
-            ns.involved
-                .iter()
-                .enumerate()
-                .map(|(r, &g)| ns.basis[(r, k)] * v[g])
-                .sum(),
-        );
-    }
-    out
 }
 
 fn compare(model: &Model, what: &str) {

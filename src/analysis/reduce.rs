@@ -111,6 +111,22 @@ impl NullSpace {
         out
     }
 
+    /// Nᵀv: a full-length vector restricted to the reduced coordinates
+    /// (the transpose of [`NullSpace::expand`]).
+    pub fn restrict(&self, v: &[f64]) -> Vec<f64> {
+        let mut out: Vec<f64> = self.free.iter().map(|&g| v[g]).collect();
+        for k in 0..self.basis.ncols() {
+            out.push(
+                self.involved
+                    .iter()
+                    .enumerate()
+                    .map(|(r, &g)| self.basis[(r, k)] * v[g])
+                    .sum(),
+            );
+        }
+        out
+    }
+
     /// q = N q_r (n = total coordinates).
     pub fn expand(&self, qr: &[f64], n: usize) -> Vec<f64> {
         let mut q = vec![0.0; n];

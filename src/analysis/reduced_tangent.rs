@@ -243,7 +243,7 @@ impl TangentSolver {
         let b: Vec<f64> = (0..n)
             .map(|i| -(snap.r[i] + (0..n).map(|j| self.k[(i, j)] * dq[j]).sum::<f64>()))
             .collect();
-        let br = restrict(&self.ns, &b);
+        let br = self.ns.restrict(&b);
         let d = br.len();
         let dz: Vec<f64> = match &self.factor {
             Factor::Empty => Vec::new(),
@@ -312,21 +312,6 @@ pub(crate) fn definite_factor(a: &Mat<f64>) -> Option<faer::linalg::solvers::Llt
         d > 0.0 && l[(i, i)] * l[(i, i)] > 1e-10 * d
     });
     ok.then_some(llt)
-}
-
-/// Nᵀv.
-pub(crate) fn restrict(ns: &NullSpace, v: &[f64]) -> Vec<f64> {
-    let mut out: Vec<f64> = ns.free.iter().map(|&g| v[g]).collect();
-    for k in 0..ns.basis.ncols() {
-        out.push(
-            ns.involved
-                .iter()
-                .enumerate()
-                .map(|(r, &g)| ns.basis[(r, k)] * v[g])
-                .sum(),
-        );
-    }
-    out
 }
 
 /// Whether `phi` is (to 1e-6) a rigid motion of the whole assembly at q.

@@ -448,8 +448,8 @@ impl<'s> Integrator<'s> {
         self.eta = self.eta.max(1e-3);
         std::mem::swap(state, &mut self.next);
         self.stats.steps += 1;
-        self.sys
-            .constraint_residual(&state.q, &mut self.work[..self.sys.constraint_count()]);
+        // `work[..m]` still holds C(q) of the accepted iterate, from the
+        // stop test (`constraints_satisfied`).
         let m = self.sys.constraint_count();
         for (c, &angle) in self.work[..m].iter().zip(&self.row_is_angle) {
             let worst = if angle {
