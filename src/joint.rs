@@ -30,6 +30,10 @@ pub trait Constraint: std::fmt::Debug + Send + Sync {
     fn rows(&self) -> usize;
     /// Whether equation `row` is an angle [rad] (else a length [SI: m]).
     fn row_is_angle(&self, row: usize) -> bool;
+    /// The first of two rows that form a plane vector (x, y) in the global
+    /// frame and so turn with a rigid rotation of the whole system; `None`
+    /// when every row is a rotation-invariant scalar.
+    fn vector_rows(&self) -> Option<usize>;
     /// C(q) into `out[..rows]`.
     fn residual(&self, q: &[f64], out: &mut [f64]);
     /// ∂C/∂q (local) into the first `rows` rows of `out`.
@@ -57,6 +61,9 @@ impl Constraint for Pin {
     }
     fn row_is_angle(&self, _row: usize) -> bool {
         false
+    }
+    fn vector_rows(&self) -> Option<usize> {
+        Some(0)
     }
     fn residual(&self, q: &[f64], out: &mut [f64]) {
         let d = self.pair.separation(q);
@@ -95,6 +102,9 @@ impl Constraint for Weld {
     }
     fn row_is_angle(&self, row: usize) -> bool {
         row == 2
+    }
+    fn vector_rows(&self) -> Option<usize> {
+        Some(0)
     }
     fn residual(&self, q: &[f64], out: &mut [f64]) {
         let d = self.pair.separation(q);
@@ -154,6 +164,9 @@ impl Constraint for Slider {
     }
     fn row_is_angle(&self, _row: usize) -> bool {
         false
+    }
+    fn vector_rows(&self) -> Option<usize> {
+        None
     }
     fn residual(&self, q: &[f64], out: &mut [f64]) {
         out[0] = self.normal(q).dot(&self.pair.separation(q));

@@ -4,6 +4,7 @@ pub mod band;
 pub mod calibrate;
 pub mod dispersion;
 pub mod eigen;
+pub mod frame;
 pub mod impulse;
 pub mod lanczos;
 pub mod lu;

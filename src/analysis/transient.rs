@@ -15,7 +15,9 @@
 //! on the scaled iteration matrix [M + (K + γ′C_d + ∂(C_qᵀλ)/∂q)/β′, C_qᵀ; C_q, 0]
 //! whose blocks are all of order one in h (constraint scaling). The
 //! factorization is reused across steps while the contraction rate θ of the
-//! iteration stays small; a step stops when the estimated remaining error
+//! iteration stays small, with the rigid rotation turned since it was
+//! factored compensated ([`super::frame`]), so a free assembly that spins
+//! keeps converging in one iteration; a step stops when the estimated remaining error
 //! θ/(1 − θ)·‖Δq‖ is below the tolerance (Hairer & Wanner's test), so a
 //! well-predicted step costs one residual and one back-substitution.
 //! The step also requires every joint equation to hold to tolerance × size
@@ -27,10 +29,18 @@
 //! (floored at 1e-3).
 
 use super::dispersion::GenAlpha;
+use super::frame::RotatingFrame;
 use super::lu::DenseLu;
 use crate::error::TransientError;
 use crate::system::{Linearization, System};
 use faer::Mat;
+
+/// Contraction rate θ above which a factorization that has served at least
+/// as many steps as it has unknowns is renewed (any factorization is renewed
+/// above θ = 0.3). Measured on the built-in assembly (h = 1 µs, 100 ms):
+/// 0.3 → 1.34 Newton iterations per step, 0.01 → 1.06 at one renewal per
+/// ~100 steps. The minimum service keeps large models from refactoring often.
+const REFRESH_RATE: f64 = 0.01;
 
 /// Settings of a transient run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,7 +51,12 @@ pub struct TransientSettings {
     pub end_time: f64,
     /// Spectral radius at infinity ρ∞ ∈ [0, 1].
     pub spectral_radius: f64,
-    /// Newton tolerance on the scaled correction norm [–].
+    /// Newton tolerance on the scaled correction norm [–]; joints are held
+    /// to tolerance × the assembly's size [SI: m] and weld angles to the
+    /// tolerance [rad]. The default 1e-10 puts the Newton error of the
+    /// built-in assembly's first bending frequency at 1.5e-8 (3e-6 at 1e-9:
+    /// the residual a joint keeps is proportional to the vibration, so it
+    /// acts as a compliance; measured against a 1e-12 run).
     pub tolerance: f64,
     /// Newton iterations per step before the factorization is renewed.
     pub max_iterations: usize,
@@ -53,7 +68,7 @@ impl Default for TransientSettings {
             step: 1e-6,
             end_time: 0.1,
             spectral_radius: 0.9,
-            tolerance: 1e-9,
+            tolerance: 1e-10,
             max_iterations: 8,
         }
     }
@@ -130,6 +145,8 @@ pub struct Integrator<'s> {
     row_weights: Vec<f64>,
     row_is_angle: Vec<bool>,
     lu: DenseLu,
+    /// Rigid rotation since `lu` was factored (see [`super::frame`]).
+    frame: RotatingFrame,
     tangent: Mat<f64>,
     jacobian: Mat<f64>,
     rhs: Vec<f64>,
@@ -140,6 +157,8 @@ pub struct Integrator<'s> {
     eta: f64,
     /// Renew the factorization at the start of the next Newton iteration.
     stale: bool,
+    /// Steps taken since the last factorization.
+    since_factor: usize,
     pub stats: RunStats,
 }
 
@@ -194,6 +213,7 @@ impl<'s> Integrator<'s> {
             row_weights,
             row_is_angle,
             lu: DenseLu::new(n + m),
+            frame: RotatingFrame::new(sys),
             tangent: Mat::zeros(n, n),
             jacobian: Mat::zeros(m, n),
             rhs: vec![0.0; n + m],
@@ -202,6 +222,7 @@ impl<'s> Integrator<'s> {
             next: empty,
             eta: 1.0,
             stale: true,
+            since_factor: 0,
             stats: RunStats::default(),
         })
     }
@@ -337,7 +358,9 @@ impl<'s> Integrator<'s> {
             time: t,
             dof: self.dof_name(p.column),
         })?;
+        self.frame.anchor(&self.next.q);
         self.stats.factorizations += 1;
+        self.since_factor = 0;
         self.stale = false;
         Ok(())
     }
@@ -385,6 +408,7 @@ impl<'s> Integrator<'s> {
         let inv_bh2 = 1.0 / (self.coef.beta * h * h);
         let mut restarted = false;
         self.predict(state);
+        self.frame.update(&self.next.q);
         let mut previous = f64::INFINITY;
         let mut k = 0;
         loop {
@@ -393,7 +417,9 @@ impl<'s> Integrator<'s> {
             }
             self.residual(t1);
             let residual_norm = self.rhs.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+            self.frame.to_reference(&mut self.rhs);
             self.lu.solve_in_place(&mut self.rhs, &mut self.work);
+            self.frame.from_reference(&mut self.rhs);
             let nx = &mut self.next;
             let mut norm = 0.0f64;
             for i in 0..n {
@@ -434,7 +460,8 @@ impl<'s> Integrator<'s> {
                     continue;
                 }
                 self.eta = theta / (1.0 - theta);
-                if theta > 0.3 {
+                let served = self.since_factor >= self.lu.size();
+                if theta > 0.3 || (theta > REFRESH_RATE && served) {
                     self.stale = true;
                 }
             }
@@ -448,6 +475,7 @@ impl<'s> Integrator<'s> {
         self.eta = self.eta.max(1e-3);
         std::mem::swap(state, &mut self.next);
         self.stats.steps += 1;
+        self.since_factor += 1;
         // `work[..m]` still holds C(q) of the accepted iterate, from the
         // stop test (`constraints_satisfied`).
         let m = self.sys.constraint_count();
