@@ -178,7 +178,7 @@ pub fn run_impulse(
     let mut integrator = Integrator::new(&system, settings.transient)?;
     let mut state = integrator.initial_state()?;
     let total = settings.transient.steps();
-    let mut recorder = Recorder::new(&probe, settings.sample_rate, settings.transient.end_time);
+    let mut recorder = Recorder::new(&probe, settings.sample_rate, &settings.transient);
     let mut done = 0usize;
     let stats = integrator.run(&mut state, |st| {
         recorder.record(st);
@@ -268,11 +268,14 @@ fn identify_first_bending(
 }
 
 /// Samples a sensor on a uniform grid by cubic Hermite interpolation between
-/// integrator steps (or at every step).
+/// integrator steps (or at every step). The sensor is read only at the two
+/// ends of the steps that contain a sample time.
 struct Recorder<'p> {
     probe: &'p SensorProbe,
     rate: Option<f64>,
     end: f64,
+    /// Integrator time step [SI: s].
+    step: f64,
     rate_quantity: Option<SensorQuantity>,
     previous: Option<(f64, f64, f64)>,
     next_sample: usize,
@@ -281,7 +284,8 @@ struct Recorder<'p> {
 }
 
 impl<'p> Recorder<'p> {
-    fn new(probe: &'p SensorProbe, rate: Option<f64>, end: f64) -> Self {
+    fn new(probe: &'p SensorProbe, rate: Option<f64>, transient: &TransientSettings) -> Self {
+        let end = transient.end_time;
         let rate_quantity = match probe.point.quantity {
             SensorQuantity::Displacement => Some(SensorQuantity::Velocity),
             SensorQuantity::Velocity => Some(SensorQuantity::Acceleration),
@@ -292,6 +296,7 @@ impl<'p> Recorder<'p> {
             probe,
             rate,
             end,
+            step: transient.step,
             rate_quantity,
             previous: None,
             next_sample: 0,
@@ -301,15 +306,26 @@ impl<'p> Recorder<'p> {
     }
 
     fn record(&mut self, st: &State) {
-        let value = self.probe.read(st);
         let Some(rate) = self.rate else {
             self.time.push(st.t);
-            self.signal.push(value);
+            self.signal.push(self.probe.read(st));
             return;
         };
+        let next = self.next_sample as f64 / rate;
+        if self.next_sample > 0 && next > st.t + 1.5 * self.step {
+            // No sample in this step nor in the next one.
+            self.previous = None;
+            return;
+        }
+        let value = self.probe.read(st);
         let slope = self.rate_quantity.map(|q| self.probe.read_as(st, q));
         let current = (st.t, value, slope.unwrap_or(f64::NAN));
         let Some((t0, y0, d0)) = self.previous else {
+            if self.next_sample > 0 {
+                // A sample follows within one step: this state starts it.
+                self.previous = Some(current);
+                return;
+            }
             self.time.push(0.0);
             self.signal.push(value);
             self.next_sample = 1;
