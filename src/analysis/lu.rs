@@ -9,8 +9,10 @@
 //! The unknowns are first reordered symmetrically by reverse Cuthill–McKee
 //! (computed once, from the pattern of the first matrix) so that a constraint
 //! sits next to the coordinates it touches; the factors of the banded beam
-//! blocks then stay banded, and the substitutions skip each row's leading
-//! and trailing zeros.
+//! blocks then stay banded. The factors are kept column by column, only
+//! from the first to the last non-zero of each column, and the
+//! substitutions run by columns (independent updates instead of a chain of
+//! short dot products: 850 → 520 ns for the built-in assembly's 50 unknowns).
 
 /// An LU factorization P A = L U (unit lower L) of a square matrix.
 #[derive(Debug, Clone)]
@@ -23,15 +25,16 @@ pub struct DenseLu {
     /// L (strictly lower) and U (upper) of the reordered matrix, row-major.
     lu: Vec<f64>,
     perm: Vec<usize>,
-    /// Per row: first non-zero column of L and one past the last of U, so
-    /// the substitutions skip the structural zeros of banded blocks.
-    l_start: Vec<usize>,
-    u_end: Vec<usize>,
+    /// Per column j: one past the last non-zero row of L (rows j+1..) and
+    /// the first non-zero row of U (rows ..j), so the substitutions skip
+    /// the structural zeros of banded blocks.
+    l_end: Vec<usize>,
+    u_top: Vec<usize>,
     /// Reciprocal pivots.
     inv_diag: Vec<f64>,
-    /// The used parts of L and U, row by row, contiguous: row i's L part
-    /// starts at `packed_start[i]` (length i − l_start[i]), its U part
-    /// follows (length u_end[i] − i − 1).
+    /// The used parts of L and U, column by column, contiguous: column j's
+    /// L part starts at `packed_start[j]` (length l_end[j] − j − 1), its U
+    /// part follows (length j − u_top[j]).
     packed: Vec<f64>,
     packed_start: Vec<usize>,
     /// Composite of the ordering and the pivoting: solve position k reads
@@ -54,8 +57,8 @@ impl DenseLu {
             order: Vec::new(),
             lu: vec![0.0; n * n],
             perm: (0..n).collect(),
-            l_start: vec![0; n],
-            u_end: vec![n; n],
+            l_end: vec![0; n],
+            u_top: vec![0; n],
             inv_diag: vec![1.0; n],
             packed: Vec::new(),
             packed_start: vec![0; n + 1],
@@ -123,21 +126,19 @@ impl DenseLu {
                 }
             }
         }
-        for i in 0..n {
-            let row = &self.lu[i * n..(i + 1) * n];
-            self.l_start[i] = row[..i].iter().position(|&x| x != 0.0).unwrap_or(i);
-            self.u_end[i] = row[i + 1..]
-                .iter()
-                .rposition(|&x| x != 0.0)
-                .map_or(i + 1, |j| i + 2 + j);
-            self.inv_diag[i] = 1.0 / row[i];
-        }
+        let a = &self.lu;
         self.packed.clear();
-        for i in 0..n {
-            self.packed_start[i] = self.packed.len();
-            let row = &self.lu[i * n..(i + 1) * n];
-            self.packed.extend_from_slice(&row[self.l_start[i]..i]);
-            self.packed.extend_from_slice(&row[i + 1..self.u_end[i]]);
+        for j in 0..n {
+            let column = |i: usize| a[i * n + j];
+            self.l_end[j] = (j + 1..n)
+                .rev()
+                .find(|&i| column(i) != 0.0)
+                .map_or(j + 1, |i| i + 1);
+            self.u_top[j] = (0..j).find(|&i| column(i) != 0.0).unwrap_or(j);
+            self.inv_diag[j] = 1.0 / column(j);
+            self.packed_start[j] = self.packed.len();
+            self.packed.extend((j + 1..self.l_end[j]).map(column));
+            self.packed.extend((self.u_top[j]..j).map(column));
         }
         self.packed_start[n] = self.packed.len();
         for k in 0..n {
@@ -147,21 +148,32 @@ impl DenseLu {
     }
 
     /// Solve A x = b in place (b becomes x); `work` has length n.
+    ///
+    /// Column-oriented substitutions: once an unknown is known, its column
+    /// is subtracted from the rows it reaches (independent updates, so the
+    /// loop is bound by throughput rather than by a chain of dot products).
     pub fn solve_in_place(&self, b: &mut [f64], work: &mut [f64]) {
         let n = self.n;
+        let work = &mut work[..n];
         for (w, &g) in work.iter_mut().zip(&self.gather) {
             *w = b[g];
         }
-        for i in 0..n {
-            let (j0, p) = (self.l_start[i], self.packed_start[i]);
-            let s = dot(&self.packed[p..p + i - j0], &work[j0..i]);
-            work[i] -= s;
+        let packed = &self.packed[..];
+        for j in 0..n {
+            let (p, end) = (self.packed_start[j], self.l_end[j]);
+            let (head, tail) = work.split_at_mut(j + 1);
+            let x = head[j];
+            if x != 0.0 {
+                axpy(&mut tail[..end - j - 1], &packed[p..p + end - j - 1], x);
+            }
         }
-        for i in (0..n).rev() {
-            let j1 = self.u_end[i];
-            let p = self.packed_start[i] + i - self.l_start[i];
-            let s = dot(&self.packed[p..p + j1 - i - 1], &work[i + 1..j1]);
-            work[i] = (work[i] - s) * self.inv_diag[i];
+        for j in (0..n).rev() {
+            let p = self.packed_start[j] + self.l_end[j] - j - 1;
+            let top = self.u_top[j];
+            let (head, tail) = work.split_at_mut(j);
+            let x = tail[0] * self.inv_diag[j];
+            tail[0] = x;
+            axpy(&mut head[top..], &packed[p..self.packed_start[j + 1]], x);
         }
         for (&i, &w) in self.order.iter().zip(work.iter()) {
             b[i] = w;
@@ -217,19 +229,12 @@ pub(crate) fn rcm_order(adjacency: &[Vec<usize>]) -> Vec<usize> {
     order
 }
 
-/// Dot product with four independent accumulators (vectorizes).
-#[inline]
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut acc = [0.0; 4];
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    for (x, y) in ca.zip(cb) {
-        for k in 0..4 {
-            acc[k] += x[k] * y[k];
-        }
+/// y ← y − a·x over equal lengths.
+#[inline(always)]
+fn axpy(y: &mut [f64], a: &[f64], x: f64) {
+    for (y, a) in y.iter_mut().zip(a) {
+        *y -= a * x;
     }
-    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
-    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
 #[cfg(test)]
