@@ -14,7 +14,7 @@
 //! Quadrature: 5 Gauss points for the axial part (exact for the linear part,
 //! whose integrand is of degree 4) and 3 for bending (degree 2).
 
-use nalgebra::{Matrix2, SMatrix, SVector, Vector2, Vector4};
+use nalgebra::{Matrix2, Matrix4, SMatrix, SVector, Vector2, Vector4};
 
 /// 8×8 element matrix.
 pub type Mat8 = SMatrix<f64, 8, 8>;
@@ -142,6 +142,9 @@ pub struct CableElement {
     pub section: CableSection,
     axial: [QuadPoint; AXIAL_POINTS],
     bending: [QuadPoint; BENDING_POINTS],
+    /// ρA Le ∫ SᵢSⱼ dξ over the four shape functions [SI: kg, kg m, kg m²];
+    /// the element mass matrix is this times I₂.
+    mass4: Matrix4<f64>,
 }
 
 /// Strain energy of an element split by kind [SI: J].
@@ -180,11 +183,17 @@ impl CableElement {
         };
         let ax = gauss01(AXIAL_POINTS);
         let bd = gauss01(BENDING_POINTS);
+        let mut mass4 = Matrix4::zeros();
+        for (xi, w) in gauss01(4) {
+            let s = shape(le, xi).s;
+            mass4 += s * s.transpose() * (section.rho_a * le * w);
+        }
         CableElement {
             le,
             section,
             axial: std::array::from_fn(|i| make(ax[i])),
             bending: std::array::from_fn(|i| make(bd[i])),
+            mass4,
         }
     }
 
@@ -197,17 +206,27 @@ impl CableElement {
     /// Consistent mass matrix `ρA Le ∫ SᵀS dξ` (each 4×4 entry times I₂).
     pub fn mass(&self) -> Mat8 {
         let mut m = Mat8::zeros();
-        for (xi, w) in gauss01(4) {
-            let s = shape(self.le, xi).s;
-            for i in 0..4 {
-                for j in 0..4 {
-                    let v = self.section.rho_a * self.le * w * s[i] * s[j];
-                    m[(2 * i, 2 * j)] += v;
-                    m[(2 * i + 1, 2 * j + 1)] += v;
-                }
+        for i in 0..4 {
+            for j in 0..4 {
+                m[(2 * i, 2 * j)] = self.mass4[(i, j)];
+                m[(2 * i + 1, 2 * j + 1)] = self.mass4[(i, j)];
             }
         }
         m
+    }
+
+    /// Adds the inertial force M a of element accelerations `a` into `out`
+    /// [SI: N].
+    pub fn add_inertial_force(&self, a: &Vec8, out: &mut Vec8) {
+        for i in 0..4 {
+            let (mut fx, mut fy) = (0.0, 0.0);
+            for j in 0..4 {
+                fx += self.mass4[(i, j)] * a[2 * j];
+                fy += self.mass4[(i, j)] * a[2 * j + 1];
+            }
+            out[2 * i] += fx;
+            out[2 * i + 1] += fy;
+        }
     }
 
     /// Generalized force of a uniform body force `f` per length [SI: N/m]: ∫ Sᵀ f dx.

@@ -114,15 +114,16 @@ impl DenseLu {
             }
             let pivot = a[k * n + k];
             let (upper, lower) = a.split_at_mut((k + 1) * n);
+            // Only up to the pivot row's last non-zero (banded blocks).
             let row_k = &upper[k * n + k + 1..k * n + n];
+            let width = row_k.iter().rposition(|&u| u != 0.0).map_or(0, |j| j + 1);
+            let row_k = &row_k[..width];
             for i in 0..n - k - 1 {
                 let row = &mut lower[i * n..i * n + n];
-                let f = row[k] / pivot;
-                row[k] = f;
-                if f != 0.0 {
-                    for (x, &u) in row[k + 1..].iter_mut().zip(row_k) {
-                        *x -= f * u;
-                    }
+                if row[k] != 0.0 {
+                    let f = row[k] / pivot;
+                    row[k] = f;
+                    axpy(&mut row[k + 1..k + 1 + width], row_k, f);
                 }
             }
         }

@@ -137,8 +137,6 @@ pub struct Integrator<'s> {
     beta_p: f64,
     gamma_p: f64,
     mass: Mat<f64>,
-    /// Non-zeros of M as (row, col, value).
-    mass_entries: Vec<(usize, usize, f64)>,
     /// 1/sᵢ of the correction norm.
     weights: Vec<f64>,
     /// The same for the constraint equations, and which of them are angles.
@@ -173,14 +171,6 @@ impl<'s> Integrator<'s> {
         let h = settings.step;
         let (n, m) = (sys.ndof(), sys.constraint_count());
         let mass = sys.mass_matrix();
-        let mut mass_entries = Vec::new();
-        for j in 0..n {
-            for i in 0..n {
-                if mass[(i, j)] != 0.0 {
-                    mass_entries.push((i, j, mass[(i, j)]));
-                }
-            }
-        }
         let size = characteristic_length(sys);
         let row_is_angle: Vec<bool> = sys
             .constraints
@@ -208,7 +198,6 @@ impl<'s> Integrator<'s> {
             gamma_p: coef.gamma / (coef.beta * h),
             coef,
             mass,
-            mass_entries,
             weights,
             row_weights,
             row_is_angle,
@@ -302,14 +291,7 @@ impl<'s> Integrator<'s> {
         let n = self.sys.ndof();
         let st = &self.next;
         let (dyn_part, con_part) = self.rhs.split_at_mut(n);
-        dyn_part.fill(0.0);
-        for &(i, j, mij) in &self.mass_entries {
-            dyn_part[i] += mij * st.a[j];
-        }
-        self.sys.internal_force(&st.q, &mut self.force);
-        for (r, f) in dyn_part.iter_mut().zip(&self.force) {
-            *r += f;
-        }
+        self.sys.inertial_and_internal_force(&st.q, &st.a, dyn_part);
         self.sys.external_force(&st.q, t, 1.0, &mut self.force);
         for (r, f) in dyn_part.iter_mut().zip(&self.force) {
             *r -= f;

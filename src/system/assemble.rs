@@ -83,15 +83,40 @@ impl System {
 
     /// Internal force Q_int(q) = Q_s + ∂U_springs/∂q, overwriting `out`.
     pub fn internal_force(&self, q: &[f64], out: &mut [f64]) {
+        self.forces_into(q, None, out);
+    }
+
+    /// M a + Q_int(q), overwriting `out`: the inertial and internal forces
+    /// of the equations of motion, element by element [SI: N, N m].
+    pub fn inertial_and_internal_force(&self, q: &[f64], a: &[f64], out: &mut [f64]) {
+        self.forces_into(q, Some(a), out);
+    }
+
+    fn forces_into(&self, q: &[f64], a: Option<&[f64]>, out: &mut [f64]) {
         out.fill(0.0);
         for b in &self.beams {
             for (k, e) in b.elements.iter().enumerate() {
                 let dofs = b.element_dofs(k);
                 let mut f = Vec8::zeros();
                 e.elastic_force_into(&element_vec(q, &dofs), &mut f);
+                if let Some(a) = a {
+                    e.add_inertial_force(&element_vec(a, &dofs), &mut f);
+                }
                 for (i, &d) in dofs.iter().enumerate() {
                     out[d] += f[i];
                 }
+            }
+        }
+        if let Some(a) = a {
+            for r in &self.rigid_bodies {
+                let d = r.dof0;
+                out[d] += r.mass * a[d];
+                out[d + 1] += r.mass * a[d + 1];
+                out[d + 2] += r.inertia * a[d + 2];
+            }
+            for p in &self.point_masses {
+                out[p.dof0] += p.mass * a[p.dof0];
+                out[p.dof0 + 1] += p.mass * a[p.dof0 + 1];
             }
         }
         let mut g = PairGrad::zeros();
