@@ -259,7 +259,9 @@ fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, PlotError>
     encoder.set_depth(png::BitDepth::Eight);
     // Plots are flat colour: per-row adaptive filtering shrinks them ~2×.
     encoder.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
-    encoder.set_compression(png::Compression::Best);
+    // Best compression took half of `identify`'s run time (0.55 → 0.36 s CPU
+    // with Default) for files no smaller (the four figures: 452 kB vs 457 kB).
+    encoder.set_compression(png::Compression::Default);
     let err = |e: png::EncodingError| PlotError::PngEncode(e.to_string());
     let mut writer = encoder.write_header().map_err(err)?;
     writer.write_image_data(rgb).map_err(err)?;
