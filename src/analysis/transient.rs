@@ -371,14 +371,17 @@ impl<'s> Integrator<'s> {
         } = self.coef;
         let nx = &mut self.next;
         nx.t = from.t + h;
-        for i in 0..from.q.len() {
-            let abar = (from.a[i] - alpha_m * from.abar[i]) / (1.0 - alpha_m);
-            nx.abar[i] = abar;
-            nx.a[i] = from.a[i];
-            nx.q[i] =
-                from.q[i] + h * from.v[i] + h * h * ((0.5 - beta) * from.abar[i] + beta * abar);
-            nx.v[i] = from.v[i] + h * ((1.0 - gamma) * from.abar[i] + gamma * abar);
+        let n = from.q.len();
+        // Equal-length slices: the loop runs without bounds checks.
+        let (q0, v0, a0, ab0) = (&from.q[..n], &from.v[..n], &from.a[..n], &from.abar[..n]);
+        let (q1, v1, ab1) = (&mut nx.q[..n], &mut nx.v[..n], &mut nx.abar[..n]);
+        for i in 0..n {
+            let abar = (a0[i] - alpha_m * ab0[i]) / (1.0 - alpha_m);
+            ab1[i] = abar;
+            q1[i] = q0[i] + h * v0[i] + h * h * ((0.5 - beta) * ab0[i] + beta * abar);
+            v1[i] = v0[i] + h * ((1.0 - gamma) * ab0[i] + gamma * abar);
         }
+        nx.a.copy_from_slice(&from.a);
         nx.lambda.copy_from_slice(&from.lambda);
     }
 
@@ -404,13 +407,17 @@ impl<'s> Integrator<'s> {
             self.frame.from_reference(&mut self.rhs);
             let nx = &mut self.next;
             let mut norm = 0.0f64;
+            let (gamma_p, beta_p) = (self.gamma_p, self.beta_p);
+            let (dq, w) = (&self.rhs[..n], &self.weights[..n]);
+            let (q, v) = (&mut nx.q[..n], &mut nx.v[..n]);
+            let (a, abar) = (&mut nx.a[..n], &mut nx.abar[..n]);
             for i in 0..n {
-                let d = self.rhs[i];
-                nx.q[i] += d;
-                nx.v[i] += self.gamma_p * d;
-                nx.a[i] += self.beta_p * d;
-                nx.abar[i] += inv_bh2 * d;
-                norm = norm.max(d.abs() * self.weights[i]);
+                let d = dq[i];
+                q[i] += d;
+                v[i] += gamma_p * d;
+                a[i] += beta_p * d;
+                abar[i] += inv_bh2 * d;
+                norm = norm.max(d.abs() * w[i]);
             }
             for (l, d) in nx.lambda.iter_mut().zip(&self.rhs[n..]) {
                 *l += self.beta_p * d;

@@ -96,14 +96,15 @@ impl System {
         out.fill(0.0);
         for b in &self.beams {
             for (k, e) in b.elements.iter().enumerate() {
-                let dofs = b.element_dofs(k);
+                // An element's 8 coordinates are contiguous in q.
+                let dofs = b.dof0 + 4 * k..b.dof0 + 4 * k + 8;
                 let mut f = Vec8::zeros();
-                e.elastic_force_into(&element_vec(q, &dofs), &mut f);
+                e.elastic_force_into(&Vec8::from_column_slice(&q[dofs.clone()]), &mut f);
                 if let Some(a) = a {
-                    e.add_inertial_force(&element_vec(a, &dofs), &mut f);
+                    e.add_inertial_force(&Vec8::from_column_slice(&a[dofs.clone()]), &mut f);
                 }
-                for (i, &d) in dofs.iter().enumerate() {
-                    out[d] += f[i];
+                for (o, fi) in out[dofs].iter_mut().zip(f.iter()) {
+                    *o += fi;
                 }
             }
         }
