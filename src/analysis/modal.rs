@@ -52,7 +52,8 @@ pub enum EigenMethod {
     /// falls back to the dense solver.
     #[default]
     Auto,
-    /// Dense Cholesky reduction + QR algorithm, all modes.
+    /// Dense Cholesky reduction: all eigenvalues, vectors for the
+    /// requested modes ([`super::eigen::solve_generalized`]).
     Dense,
     /// Shift-invert Lanczos ([`super::lanczos`]) for the requested modes only.
     Lanczos,
@@ -214,7 +215,7 @@ pub fn modal(
     let (eig, lmax) = match partial {
         Some(e) => (e, max_eigenvalue_estimate(&kr, &mr)),
         None => {
-            let e = solve_generalized(&kr, &mr).map_err(eigen_error)?;
+            let e = solve_generalized(&kr, &mr, count).map_err(eigen_error)?;
             let lmax = e.values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             (e, lmax)
         }
