@@ -172,7 +172,7 @@ pub fn modal(
     let n = system.ndof();
     let mut k = Mat::zeros(n, n);
     system.tangent_stiffness(at, &mut k);
-    let m = system.mass_matrix();
+    let mass = system.mass();
     let mut cq = Mat::zeros(system.constraint_count(), n);
     system.constraint_jacobian(at.q, &mut cq);
     let ns = NullSpace::new(&cq);
@@ -180,7 +180,7 @@ pub fn modal(
         return Err(AnalysisError::NoFreedom);
     }
     let kr = ns.project(&k);
-    let mr = ns.project(&m);
+    let mr = ns.project(mass.dense());
     let eigen_error = |e: EigenFailure| match e {
         EigenFailure::SingularMass { direction } => {
             let full = ns.expand(&direction, n);
@@ -239,7 +239,7 @@ pub fn modal(
             // Rayleigh quotient with the cancellation-free energy form: the
             // dense solver's ω² carries an absolute error ~ε·max|ω²|.
             let energy = system.stiffness_quadratic_form(at, &shape);
-            let refined = 2.0 * energy.total() / system.mass_quadratic_form(&m, &shape);
+            let refined = 2.0 * energy.total() / mass.quadratic_form(&shape);
             let (kind, fractions) = classify(energy);
             (kind, fractions, refined)
         };
