@@ -75,37 +75,52 @@ impl NullSpace {
         self.free.len() + self.basis.ncols()
     }
 
-    /// NᵀAN for a symmetric n × n matrix A.
+    /// NᵀAN for a symmetric n × n matrix A: the free–free block copied,
+    /// then AZ on the involved columns (one axpy per nonzero of Z) for the
+    /// free–basis block and ZᵀAZ (symmetrized) for the basis block.
     pub fn project(&self, a: &Mat<f64>) -> Mat<f64> {
-        let (f, k) = (self.free.len(), self.basis.ncols());
+        let (f, k, n) = (self.free.len(), self.basis.ncols(), a.nrows());
         let mut out = Mat::zeros(f + k, f + k);
-        for (i, &gi) in self.free.iter().enumerate() {
-            for (j, &gj) in self.free.iter().enumerate() {
-                out[(i, j)] = a[(gi, gj)];
+        for (j, &gj) in self.free.iter().enumerate() {
+            let src = a.col_as_slice(gj);
+            for (dst, &gi) in out.col_as_slice_mut(j).iter_mut().zip(&self.free) {
+                *dst = src[gi];
             }
         }
         if k == 0 {
             return out;
         }
-        let z = &self.basis;
-        // A_fD Z (f × k)
-        let a_fd = Mat::from_fn(f, self.involved.len(), |i, j| {
-            a[(self.free[i], self.involved[j])]
-        });
-        let afz = &a_fd * z;
-        let a_dd = Mat::from_fn(self.involved.len(), self.involved.len(), |i, j| {
-            a[(self.involved[i], self.involved[j])]
-        });
-        let zaz = z.transpose() * (&a_dd * z);
-        for i in 0..f {
-            for j in 0..k {
-                out[(i, f + j)] = afz[(i, j)];
-                out[(f + j, i)] = afz[(i, j)];
+        // az[:, c] = A Z[:, c] over the involved coordinates (n × k, column-major).
+        let mut az = vec![0.0; n * k];
+        for (c, col) in az.chunks_exact_mut(n).enumerate() {
+            for (r, &g) in self.involved.iter().enumerate() {
+                let z = self.basis[(r, c)];
+                if z != 0.0 {
+                    col.iter_mut()
+                        .zip(a.col_as_slice(g))
+                        .for_each(|(t, s)| *t += z * s);
+                }
             }
         }
-        for i in 0..k {
-            for j in 0..k {
-                out[(f + i, f + j)] = 0.5 * (zaz[(i, j)] + zaz[(j, i)]);
+        for (c, col) in az.chunks_exact(n).enumerate() {
+            for (i, &gi) in self.free.iter().enumerate() {
+                out[(i, f + c)] = col[gi];
+                out[(f + c, i)] = col[gi];
+            }
+        }
+        let zaz = |c1: usize, c2: usize| -> f64 {
+            let col = &az[c2 * n..(c2 + 1) * n];
+            self.involved
+                .iter()
+                .enumerate()
+                .map(|(r, &g)| self.basis[(r, c1)] * col[g])
+                .sum()
+        };
+        for c1 in 0..k {
+            for c2 in 0..=c1 {
+                let v = 0.5 * (zaz(c1, c2) + zaz(c2, c1));
+                out[(f + c1, f + c2)] = v;
+                out[(f + c2, f + c1)] = v;
             }
         }
         out
