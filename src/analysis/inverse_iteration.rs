@@ -236,17 +236,18 @@ fn orthonormalize(y: &mut [f64], cols: &mut [f64], cluster: &[usize], norms: &mu
     }
 }
 
-/// Fixed start vectors (a Weyl sequence, different for every column),
-/// row-major n × w.
+/// Fixed start vectors in [−0.5, 0.5) (an integer hash of row and
+/// column, different for every column), row-major n × w.
 fn start_block(n: usize, w: usize) -> Vec<f64> {
-    const A: f64 = 0.618_033_988_749_894_9;
-    const B: f64 = 0.414_213_562_373_095_1;
-    let mut y = vec![0.0; n * w];
-    for (i, row) in y.chunks_exact_mut(w).enumerate() {
-        for (j, v) in row.iter_mut().enumerate() {
-            let x = (i as f64 + 1.0) * A + j as f64 * B;
-            *v = x - x.floor() - 0.5;
-        }
-    }
-    y
+    const SCALE: f64 = 1.0 / (1u64 << 53) as f64;
+    (0..n * w)
+        .map(|k| {
+            let (i, j) = ((k / w) as u64, (k % w) as u64);
+            let h = (i + 1)
+                .wrapping_mul(0x9e37_79b9_7f4a_7c15)
+                .wrapping_add((j + 1).wrapping_mul(0xbf58_476d_1ce4_e5b9));
+            let h = (h ^ (h >> 29)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            (h >> 11) as f64 * SCALE - 0.5
+        })
+        .collect()
 }

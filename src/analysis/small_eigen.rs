@@ -135,9 +135,9 @@ impl HouseholderTridiagonal {
 }
 
 /// Overwrites x with v (v₀ = 1) such that (I − β v vᵀ) x = α e₁; returns (α, β).
-fn reflector(x: &mut [f64]) -> (f64, f64) {
+pub(crate) fn reflector(x: &mut [f64]) -> (f64, f64) {
     let x0 = x[0];
-    let mut rest: f64 = x[1..].iter().map(|v| v * v).sum();
+    let mut rest = dot(&x[1..], &x[1..]);
     let mut scale = 1.0;
     if rest != 0.0 && !(1e-250..=1e250).contains(&rest) {
         // Sum of squares out of range: rescale by the largest entry.
