@@ -14,7 +14,7 @@
 //! and the QR algorithm with all vectors are faster. Both paths are backward
 //! stable, so the eigenvalues carry absolute errors of order ε‖C‖.
 
-use super::small_eigen::lowest_eigenpairs;
+use super::small_eigen::{dot, lowest_eigenpairs};
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
@@ -134,6 +134,8 @@ struct Cholesky {
     /// Row-major n × n; row i holds L[i, first[i]..=i].
     l: Vec<f64>,
     first: Vec<usize>,
+    /// 1 / L[i, i].
+    inv_diag: Vec<f64>,
 }
 
 impl Cholesky {
@@ -149,6 +151,7 @@ impl Cholesky {
             }
         }
         let mut l = vec![0.0; n * n];
+        let mut inv_diag = vec![0.0; n];
         for i in 0..n {
             let (done, rest) = l.split_at_mut(i * n);
             let row = &mut rest[..n];
@@ -157,15 +160,21 @@ impl Cholesky {
                 let f = fi.max(first[j]);
                 let lj = &done[j * n..j * n + j + 1];
                 let s = m[(i, j)] - dot(&row[f..j], &lj[f..j]);
-                row[j] = s / lj[j];
+                row[j] = s * inv_diag[j];
             }
             let pivot = m[(i, i)] - dot(&row[fi..i], &row[fi..i]);
             if !(pivot > 0.0 && pivot.is_finite()) {
                 return None;
             }
             row[i] = pivot.sqrt();
+            inv_diag[i] = 1.0 / row[i];
         }
-        Some(Cholesky { n, l, first })
+        Some(Cholesky {
+            n,
+            l,
+            first,
+            inv_diag,
+        })
     }
 
     fn row(&self, i: usize) -> &[f64] {
@@ -189,9 +198,9 @@ impl Cholesky {
     /// axpy of a whole row, and L's envelope limits k.
     fn reduce(&self, k: &Mat<f64>) -> Vec<f64> {
         let n = self.n;
-        let mut y = vec![0.0; n * n];
+        let mut y = Vec::with_capacity(n * n);
         for r in 0..n {
-            y[r * n..(r + 1) * n].copy_from_slice(k.col_as_slice(r));
+            y.extend_from_slice(k.col_as_slice(r));
         }
         self.forward_rows(&mut y, n);
         // y row-major is Yᵀ column-major; transpose so rows of Yᵀ are contiguous.
@@ -223,7 +232,7 @@ impl Cholesky {
                     target.iter_mut().zip(src).for_each(|(t, s)| *t -= lrk * s);
                 }
             }
-            let inv = 1.0 / row[r];
+            let inv = self.inv_diag[r];
             target.iter_mut().for_each(|t| *t *= inv);
         }
     }
@@ -234,7 +243,7 @@ impl Cholesky {
             let (head, rest) = b.split_at_mut(j * w);
             let xj = &mut rest[..w];
             let row = self.row(j);
-            let inv = 1.0 / row[j];
+            let inv = self.inv_diag[j];
             xj.iter_mut().for_each(|t| *t *= inv);
             for (k, &ljk) in row.iter().enumerate().take(j).skip(self.first[j]) {
                 if ljk != 0.0 {
@@ -244,10 +253,6 @@ impl Cholesky {
             }
         }
     }
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 /// Eigenvalues (ascending) and eigenvectors of a symmetric matrix by the
