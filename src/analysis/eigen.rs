@@ -51,11 +51,12 @@ pub const IN_HOUSE_MAX: usize = 160;
 
 /// Size up to which the in-house solver is used for any number of vectors.
 ///
-/// Measured (n × n, vectors for all / 12 eigenvalues, against faer's QR
-/// algorithm with all vectors): n = 40 88 / 51 / 89 µs, n = 60 331 / 111 /
-/// 212 µs, n = 100 1375 / 351 / 693 µs, n = 160 6600 / 1033 / 2176 µs.
-/// Inverse iteration with re-orthogonalization costs O(n·w²) in a cluster
-/// of w vectors, so faer wins for many vectors and large n.
+/// Measured on a matrix whose eigenvalues form one cluster (the worst case
+/// for inverse iteration), M = I; in-house with vectors for all / for 12
+/// eigenvalues against faer's QR algorithm with all vectors: n = 40
+/// 77 / 47 / 88 µs, n = 60 275 / 107 / 210 µs, n = 100 996 / 336 / 679 µs,
+/// n = 160 3164 / 1053 / 2211 µs. Re-orthogonalization costs O(n·w²) in a
+/// cluster of w vectors, so faer wins for many vectors and large n.
 pub const IN_HOUSE_ALL_MAX: usize = 48;
 
 /// Solve K x = λ M x for symmetric K and symmetric positive definite M: all

@@ -214,13 +214,19 @@ fn orthonormalize(y: &mut [f64], cols: &mut [f64], cluster: &[usize], norms: &mu
             cols[j * n + i] = v;
         }
     }
+    let mut coef = vec![0.0; w];
     for j in 0..w {
         let (done, rest) = cols.split_at_mut(j * n);
         let x = &mut rest[..n];
         let earlier = &done[cluster[j] * n..];
+        let coef = &mut coef[..j - cluster[j]];
         for _ in 0..2 {
-            for q in earlier.chunks_exact(n) {
-                let c = dot(q, x);
+            // All coefficients against the same x (independent dots), then
+            // one pass of updates.
+            for (c, q) in coef.iter_mut().zip(earlier.chunks_exact(n)) {
+                *c = dot(q, x);
+            }
+            for (&c, q) in coef.iter().zip(earlier.chunks_exact(n)) {
                 x.iter_mut().zip(q).for_each(|(a, b)| *a -= c * b);
             }
         }
