@@ -312,19 +312,18 @@ fn trailing_pair(a: f64, c: f64, b: f64) -> (f64, f64) {
 /// Two implicit QR steps on the unreduced block l…h, shifts `mu1` and then
 /// `mu2`, the second bulge three rows behind the first.
 fn double_sweep(d: &mut [f64], e: &mut [f64], l: usize, h: usize, mu1: f64, mu2: f64) {
-    let (mut xa, mut za) = (d[l] - mu1, e[l]);
-    let (mut xb, mut zb) = (0.0, 0.0);
-    for ka in l..h + 3 {
-        if ka < h {
-            (xa, za) = chase(d, e, ka, l, h, xa, za);
-        }
-        if ka >= l + 3 {
-            let kb = ka - 3;
-            if kb == l {
-                (xb, zb) = (d[l] - mu2, e[l]);
-            }
-            (xb, zb) = chase(d, e, kb, l, h, xb, zb);
-        }
+    let mut first = (d[l] - mu1, e[l]);
+    for k in l..l + 3 {
+        first = chase(d, e, k, l, h, first.0, first.1);
+    }
+    // Rows l and l+1 are final for the first step: the second bulge starts.
+    let mut second = (d[l] - mu2, e[l]);
+    for k in l + 3..h {
+        first = chase(d, e, k, l, h, first.0, first.1);
+        second = chase(d, e, k - 3, l, h, second.0, second.1);
+    }
+    for k in h - 3..h {
+        second = chase(d, e, k, l, h, second.0, second.1);
     }
 }
 
