@@ -85,7 +85,11 @@ pub fn solve_generalized(
     if l.min_pivot_ratio() <= SINGULAR_PIVOT {
         return Err(singular());
     }
-    let mut eig = lowest_eigenpairs(l.reduce(k), n, wanted)?;
+    // Should the QR sweeps or the inverse iteration not converge (not seen
+    // on any model so far), the faer path gets its chance.
+    let Ok(mut eig) = lowest_eigenpairs(l.reduce(k), n, wanted) else {
+        return solve_generalized_faer(k, m, wanted);
+    };
     l.backward_rows(&mut eig.vectors, wanted);
     let y = &eig.vectors;
     Ok(GeneralizedEigen {
