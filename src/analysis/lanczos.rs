@@ -263,7 +263,7 @@ fn run(p: &Problem, lu: &BandLu, sigma: f64, count: usize) -> Result<Outcome, Ei
         let mp = Mat::from_fn(take, take, |i, j| {
             0.5 * (dot(&x[i], &mx[j]) + dot(&x[j], &mx[i]))
         });
-        let small = solve_generalized(&kp, &mp).map_err(|_| EigenFailure::NoConvergence)?;
+        let small = solve_generalized(&kp, &mp, take).map_err(|_| EigenFailure::NoConvergence)?;
         let values = small.values;
         let mut vectors = Mat::zeros(n, take);
         let mut converged = take == count;

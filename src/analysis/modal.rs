@@ -52,7 +52,8 @@ pub enum EigenMethod {
     /// falls back to the dense solver.
     #[default]
     Auto,
-    /// Dense Cholesky reduction + QR algorithm, all modes.
+    /// Dense Cholesky reduction: all eigenvalues, vectors for the
+    /// requested modes ([`super::eigen::solve_generalized`]).
     Dense,
     /// Shift-invert Lanczos ([`super::lanczos`]) for the requested modes only.
     Lanczos,
@@ -171,7 +172,7 @@ pub fn modal(
     let n = system.ndof();
     let mut k = Mat::zeros(n, n);
     system.tangent_stiffness(at, &mut k);
-    let m = system.mass_matrix();
+    let mass = system.mass();
     let mut cq = Mat::zeros(system.constraint_count(), n);
     system.constraint_jacobian(at.q, &mut cq);
     let ns = NullSpace::new(&cq);
@@ -179,7 +180,7 @@ pub fn modal(
         return Err(AnalysisError::NoFreedom);
     }
     let kr = ns.project(&k);
-    let mr = ns.project(&m);
+    let mr = ns.project(mass.dense());
     let eigen_error = |e: EigenFailure| match e {
         EigenFailure::SingularMass { direction } => {
             let full = ns.expand(&direction, n);
@@ -214,7 +215,7 @@ pub fn modal(
     let (eig, lmax) = match partial {
         Some(e) => (e, max_eigenvalue_estimate(&kr, &mr)),
         None => {
-            let e = solve_generalized(&kr, &mr).map_err(eigen_error)?;
+            let e = solve_generalized(&kr, &mr, count).map_err(eigen_error)?;
             let lmax = e.values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             (e, lmax)
         }
@@ -238,7 +239,7 @@ pub fn modal(
             // Rayleigh quotient with the cancellation-free energy form: the
             // dense solver's ω² carries an absolute error ~ε·max|ω²|.
             let energy = system.stiffness_quadratic_form(at, &shape);
-            let refined = 2.0 * energy.total() / system.mass_quadratic_form(&m, &shape);
+            let refined = 2.0 * energy.total() / mass.quadratic_form(&shape);
             let (kind, fractions) = classify(energy);
             (kind, fractions, refined)
         };

@@ -2,11 +2,13 @@
 //!
 //! Given C_q (m × n), an orthonormal basis N of null(C_q) is built so that
 //! K_r = NᵀKN, M_r = NᵀMN. Only the coordinates that some constraint touches
-//! need the SVD; all others map to themselves, so N stays sparse and the
+//! need the factorization (Householder QR of the independent rows); all
+//! others map to themselves, so N stays sparse and the
 //! reduction costs O(n²) instead of O(n³). Rows are normalized first, so a
 //! rotational row [rad] and a positional row [m] weigh alike; constraints
 //! whose rows add nothing (e.g. a second clamp of the same node) are named.
 
+use super::small_eigen::{dot, reflector};
 use faer::Mat;
 
 /// Relative singular value below which a constraint row is dependent.
@@ -53,15 +55,7 @@ impl NullSpace {
             }
         });
         let redundant_rows = dependent_rows(&a);
-        let rank = m - redundant_rows.len();
-        let basis = if d == 0 {
-            Mat::zeros(0, 0)
-        } else {
-            // Full SVD of Aᵀ A's row space: the last d − rank right singular vectors.
-            let svd = a.svd().expect("SVD of a small constraint matrix converges");
-            let v = svd.V();
-            Mat::from_fn(d, d - rank, |i, k| v[(i, rank + k)])
-        };
+        let basis = null_basis(&a, &redundant_rows);
         NullSpace {
             free,
             involved,
@@ -75,37 +69,52 @@ impl NullSpace {
         self.free.len() + self.basis.ncols()
     }
 
-    /// NᵀAN for a symmetric n × n matrix A.
+    /// NᵀAN for a symmetric n × n matrix A: the free–free block copied,
+    /// then AZ on the involved columns (one axpy per nonzero of Z) for the
+    /// free–basis block and ZᵀAZ (symmetrized) for the basis block.
     pub fn project(&self, a: &Mat<f64>) -> Mat<f64> {
-        let (f, k) = (self.free.len(), self.basis.ncols());
+        let (f, k, n) = (self.free.len(), self.basis.ncols(), a.nrows());
         let mut out = Mat::zeros(f + k, f + k);
-        for (i, &gi) in self.free.iter().enumerate() {
-            for (j, &gj) in self.free.iter().enumerate() {
-                out[(i, j)] = a[(gi, gj)];
+        for (j, &gj) in self.free.iter().enumerate() {
+            let src = a.col_as_slice(gj);
+            for (dst, &gi) in out.col_as_slice_mut(j).iter_mut().zip(&self.free) {
+                *dst = src[gi];
             }
         }
         if k == 0 {
             return out;
         }
-        let z = &self.basis;
-        // A_fD Z (f × k)
-        let a_fd = Mat::from_fn(f, self.involved.len(), |i, j| {
-            a[(self.free[i], self.involved[j])]
-        });
-        let afz = &a_fd * z;
-        let a_dd = Mat::from_fn(self.involved.len(), self.involved.len(), |i, j| {
-            a[(self.involved[i], self.involved[j])]
-        });
-        let zaz = z.transpose() * (&a_dd * z);
-        for i in 0..f {
-            for j in 0..k {
-                out[(i, f + j)] = afz[(i, j)];
-                out[(f + j, i)] = afz[(i, j)];
+        // az[:, c] = A Z[:, c] over the involved coordinates (n × k, column-major).
+        let mut az = vec![0.0; n * k];
+        for (c, col) in az.chunks_exact_mut(n).enumerate() {
+            for (r, &g) in self.involved.iter().enumerate() {
+                let z = self.basis[(r, c)];
+                if z != 0.0 {
+                    col.iter_mut()
+                        .zip(a.col_as_slice(g))
+                        .for_each(|(t, s)| *t += z * s);
+                }
             }
         }
-        for i in 0..k {
-            for j in 0..k {
-                out[(f + i, f + j)] = 0.5 * (zaz[(i, j)] + zaz[(j, i)]);
+        for (c, col) in az.chunks_exact(n).enumerate() {
+            for (i, &gi) in self.free.iter().enumerate() {
+                out[(i, f + c)] = col[gi];
+                out[(f + c, i)] = col[gi];
+            }
+        }
+        let zaz = |c1: usize, c2: usize| -> f64 {
+            let col = &az[c2 * n..(c2 + 1) * n];
+            self.involved
+                .iter()
+                .enumerate()
+                .map(|(r, &g)| self.basis[(r, c1)] * col[g])
+                .sum()
+        };
+        for c1 in 0..k {
+            for c2 in 0..=c1 {
+                let v = 0.5 * (zaz(c1, c2) + zaz(c2, c1));
+                out[(f + c1, f + c2)] = v;
+                out[(f + c2, f + c1)] = v;
             }
         }
         out
@@ -141,6 +150,44 @@ impl NullSpace {
         }
         q
     }
+}
+
+/// Orthonormal basis (d × (d − r)) of the vectors orthogonal to the r
+/// independent rows of `a` (m × d): Householder QR of those rows as columns,
+/// B = Q R, whose last d − r columns of Q are the basis.
+fn null_basis(a: &Mat<f64>, dependent: &[usize]) -> Mat<f64> {
+    let d = a.ncols();
+    let mut columns: Vec<Vec<f64>> = (0..a.nrows())
+        .filter(|i| !dependent.contains(i))
+        .map(|i| (0..d).map(|k| a[(i, k)]).collect())
+        .collect();
+    let r = columns.len();
+    // Reflector j acts on entries j…d−1: (vⱼ, βⱼ).
+    let mut reflectors: Vec<(Vec<f64>, f64)> = Vec::with_capacity(r);
+    for j in 0..r {
+        let (done, rest) = columns.split_at_mut(j + 1);
+        let v = &mut done[j][j..];
+        let (_, beta) = reflector(v);
+        for other in rest {
+            householder_apply(v, beta, &mut other[j..]);
+        }
+        reflectors.push((v.to_vec(), beta));
+    }
+    let mut basis = Mat::zeros(d, d - r);
+    for c in 0..d - r {
+        let q = basis.col_as_slice_mut(c);
+        q[r + c] = 1.0;
+        for (j, (v, beta)) in reflectors.iter().enumerate().rev() {
+            householder_apply(v, *beta, &mut q[j..]);
+        }
+    }
+    basis
+}
+
+/// x ← (I − β v vᵀ) x.
+fn householder_apply(v: &[f64], beta: f64, x: &mut [f64]) {
+    let s = beta * dot(v, x);
+    x.iter_mut().zip(v).for_each(|(xi, vi)| *xi -= s * vi);
 }
 
 /// Rows of a (row-normalized) matrix that depend on earlier rows (modified

@@ -32,7 +32,7 @@ impl Solver<'_> {
         ns: &NullSpace,
     ) -> Result<ReducedModes, AnalysisError> {
         let mr = ns.project(&self.mass);
-        let eig = solve_generalized(kr, &mr).map_err(|e| match e {
+        let eig = solve_generalized(kr, &mr, kr.nrows()).map_err(|e| match e {
             EigenFailure::SingularMass { direction } => {
                 let full = ns.expand(&direction, self.system.ndof());
                 let i = argmax_abs(&full);

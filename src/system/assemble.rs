@@ -60,25 +60,10 @@ fn scatter_mat<const R: usize, const C: usize>(
 }
 
 impl System {
-    /// Constant mass matrix [SI: kg, kg m, kg m²].
+    /// Constant mass matrix [SI: kg, kg m, kg m²] (a copy of the cached
+    /// [`System::mass`]).
     pub fn mass_matrix(&self) -> Mat<f64> {
-        let n = self.ndof();
-        let mut m = Mat::zeros(n, n);
-        for b in &self.beams {
-            for (k, e) in b.elements.iter().enumerate() {
-                scatter_mat(&b.element_dofs(k), &e.mass(), &mut m);
-            }
-        }
-        for r in &self.rigid_bodies {
-            m[(r.dof0, r.dof0)] += r.mass;
-            m[(r.dof0 + 1, r.dof0 + 1)] += r.mass;
-            m[(r.dof0 + 2, r.dof0 + 2)] += r.inertia;
-        }
-        for p in &self.point_masses {
-            m[(p.dof0, p.dof0)] += p.mass;
-            m[(p.dof0 + 1, p.dof0 + 1)] += p.mass;
-        }
-        m
+        self.mass().dense().clone()
     }
 
     /// Internal force Q_int(q) = Q_s + ∂U_springs/∂q, overwriting `out`.

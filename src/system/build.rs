@@ -116,6 +116,7 @@ impl System {
             constraint_rows: Vec::new(),
             ndof: dof,
             nrows: 0,
+            mass: std::sync::OnceLock::new(),
         };
         sys.add_joints(model);
         sys.add_springs(model);

@@ -13,8 +13,10 @@
 mod assemble;
 mod build;
 mod energy;
+mod mass;
 
 pub use assemble::{EnergyBreakdown, Linearization};
+pub use mass::MassMatrix;
 
 use crate::anchor::Anchor;
 use crate::element::{CableElement, CableSection};
@@ -23,6 +25,7 @@ use crate::load::PointLoad;
 use crate::model::{SensorFrame, SensorQuantity};
 use crate::spring::ForceElement;
 use nalgebra::Vector2;
+use std::sync::OnceLock;
 
 /// A meshed beam.
 #[derive(Debug, Clone)]
@@ -123,6 +126,8 @@ pub struct System {
     pub constraint_rows: Vec<usize>,
     ndof: usize,
     nrows: usize,
+    /// M, assembled on first use (the masses are fixed once built).
+    mass: OnceLock<MassMatrix>,
 }
 
 impl System {
@@ -134,6 +139,11 @@ impl System {
     /// Number of constraint equations.
     pub fn constraint_count(&self) -> usize {
         self.nrows
+    }
+
+    /// The constant mass matrix, assembled on the first call.
+    pub fn mass(&self) -> &MassMatrix {
+        self.mass.get_or_init(|| MassMatrix::assemble(self))
     }
 
     /// Human-readable name of coordinate i, e.g. `beam blade node 3 r'x`.
