@@ -332,3 +332,35 @@ fn a_damped_spring_decays_at_its_damping_ratio() {
         "energy decay rate {slope} 1/s vs −2ζω = {expected} 1/s"
     );
 }
+
+/// The recorder reads the sensor only around sample times. At 50 kHz with
+/// h = 1 µs every 20th step is a sample time, where the interpolated sample
+/// must equal the sensor value recorded at that step, and none may be lost.
+#[test]
+fn sampled_signal_equals_the_step_values_at_step_times() {
+    let model = Model::builtin();
+    let mut every_step = ImpulseSettings::default();
+    every_step.transient.end_time = 2e-3;
+    every_step.sample_rate = None;
+    let reference = run_impulse(&model, &every_step, &mut |_| {}).unwrap();
+    let mut sampled = every_step.clone();
+    sampled.sample_rate = Some(50_000.0);
+    let r = run_impulse(&model, &sampled, &mut |_| {}).unwrap();
+    assert_eq!(r.time.len(), 101, "samples over 2 ms at 50 kHz");
+    let scale = reference.signal.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for (k, (&t, &y)) in r.time.iter().zip(&r.signal).enumerate() {
+        let step = 20 * k;
+        let dt = (reference.time[step] - t).abs();
+        assert!(
+            dt < 1e-12,
+            "sample {k}: t = {t} s vs step time {}",
+            reference.time[step]
+        );
+        let err = (reference.signal[step] - y).abs() / scale;
+        assert!(
+            err < 1e-9,
+            "sample {k} at t = {t} s: {y} vs step value {} (relative {err:e}, tolerance 1e-9)",
+            reference.signal[step]
+        );
+    }
+}
