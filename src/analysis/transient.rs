@@ -54,7 +54,7 @@ pub struct TransientSettings {
     /// Newton tolerance on the scaled correction norm [–]; joints are held
     /// to tolerance × the assembly's size [SI: m] and weld angles to the
     /// tolerance [rad]. The default 1e-10 puts the Newton error of the
-    /// built-in assembly's first bending frequency at 1.5e-8 (3e-6 at 1e-9:
+    /// built-in assembly's first bending frequency at 1.5e-8 (2e-6 at 1e-9:
     /// the residual a joint keeps is proportional to the vibration, so it
     /// acts as a compliance; measured against a 1e-12 run).
     pub tolerance: f64,
