@@ -145,7 +145,10 @@ pub struct Integrator<'s> {
     lu: DenseLu,
     /// Rigid rotation since `lu` was factored (see [`super::frame`]).
     frame: RotatingFrame,
+    /// K at the last factorization, then the iteration block (scratch).
     tangent: Mat<f64>,
+    /// Damper q̇-Jacobian C_d (scratch).
+    damping: Mat<f64>,
     jacobian: Mat<f64>,
     rhs: Vec<f64>,
     work: Vec<f64>,
@@ -204,6 +207,7 @@ impl<'s> Integrator<'s> {
             lu: DenseLu::new(n + m),
             frame: RotatingFrame::new(sys),
             tangent: Mat::zeros(n, n),
+            damping: Mat::zeros(n, n),
             jacobian: Mat::zeros(m, n),
             rhs: vec![0.0; n + m],
             work: vec![0.0; n + m],
@@ -315,27 +319,22 @@ impl<'s> Integrator<'s> {
             load_scale: 1.0,
         };
         self.sys.tangent_stiffness(&at, &mut self.tangent);
-        let mut damping = Mat::zeros(n, n);
+        self.damping.fill(0.0);
         let scratch = &mut self.work[..n];
-        if self
+        let damped = self
             .sys
-            .add_damping(&st.q, &st.v, scratch, Some(&mut damping))
-        {
-            for j in 0..n {
-                for i in 0..n {
-                    self.tangent[(i, j)] += self.gamma_p * damping[(i, j)];
-                }
-            }
-        }
+            .add_damping(&st.q, &st.v, scratch, Some(&mut self.damping));
         self.sys.constraint_jacobian(&st.q, &mut self.jacobian);
-        let inv = 1.0 / self.beta_p;
-        let mut a = self.mass.clone();
+        // tangent ← M + (K + γ′C_d)/β′, in place.
+        let (inv, gamma_p) = (1.0 / self.beta_p, self.gamma_p);
         for j in 0..n {
             for i in 0..n {
-                a[(i, j)] += inv * self.tangent[(i, j)];
+                let c = if damped { self.damping[(i, j)] } else { 0.0 };
+                self.tangent[(i, j)] =
+                    self.mass[(i, j)] + inv * (self.tangent[(i, j)] + gamma_p * c);
             }
         }
-        fill_saddle(self.lu.matrix_mut(), &a, &self.jacobian, n, m);
+        fill_saddle(self.lu.matrix_mut(), &self.tangent, &self.jacobian, n, m);
         self.lu.factor().map_err(|p| TransientError::Singular {
             time: t,
             dof: self.dof_name(p.column),
