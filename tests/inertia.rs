@@ -22,8 +22,8 @@ fn element_inertial_force_equals_the_assembled_mass_matrix_product() {
         let ma: f64 = (0..n).map(|j| m[(i, j)] * a[j]).sum();
         let err = (combined[i] - internal[i] - ma).abs() / scale;
         assert!(
-            err < 1e-13,
-            "(M a)[{i}] element-wise vs assembled: relative error {err:e} (tolerance 1e-13)"
+            err < 1e-15,
+            "(M a)[{i}] element-wise vs assembled: relative error {err:e} (tolerance 1e-15)"
         );
     }
 }
@@ -55,8 +55,8 @@ fn a_uniform_acceleration_needs_the_total_mass_times_it() {
         let expected = sys.total_mass() * acc[axis];
         let err = (total - expected).abs() / expected.abs();
         assert!(
-            err < 1e-13,
-            "Σ force along axis {axis}: {total} N vs m a = {expected} N (relative {err:e}, tolerance 1e-13)"
+            err < 1e-15,
+            "Σ force along axis {axis}: {total} N vs m a = {expected} N (relative {err:e}, tolerance 1e-15)"
         );
     }
 }

@@ -358,8 +358,8 @@ fn sampled_signal_equals_the_step_values_at_step_times() {
         );
         let err = (reference.signal[step] - y).abs() / scale;
         assert!(
-            err < 1e-9,
-            "sample {k} at t = {t} s: {y} vs step value {} (relative {err:e}, tolerance 1e-9)",
+            err < 1e-11,
+            "sample {k} at t = {t} s: {y} vs step value {} (relative {err:e}, tolerance 1e-11)",
             reference.signal[step]
         );
     }
