@@ -320,28 +320,43 @@ impl CableElement {
     /// motion of a short element gives exactly zero, so Rayleigh quotients of
     /// smooth modes keep full relative precision on any mesh.
     pub fn quadratic_form(&self, e: &Vec8, de: &Vec8) -> EnergySplit {
+        let mut out = [EnergySplit::default()];
+        self.add_quadratic_forms(e, std::slice::from_ref(de), &mut out);
+        out[0]
+    }
+
+    /// [`CableElement::quadratic_form`] of several variations at one state,
+    /// added into `out` (one entry per variation): the state's quantities at
+    /// each quadrature point (|r'|, curvature and its derivatives) are
+    /// computed once for all of them.
+    pub fn add_quadratic_forms(&self, e: &Vec8, des: &[Vec8], out: &mut [EnergySplit]) {
+        assert_eq!(des.len(), out.len(), "one output per variation");
         let CableSection { ea, ei, .. } = self.section;
-        let mut out = EnergySplit::default();
         for qp in &self.axial {
             let r1 = combine(e, &qp.d1);
             let l = r1.norm();
-            let t = r1 / l;
-            let d1 = combine(de, &qp.d1);
-            let along = t.dot(&d1);
-            let across2 = d1.norm_squared() - along * along;
+            let (t, n) = (r1 / l, perp_neg(r1) / l);
             // The stretch term is axial; the tension term ε/l·|δr'⊥|² acts on
             // transverse motion (a string's stiffness) and counts as bending.
-            out.axial += 0.5 * qp.w * ea * along * along;
-            out.bending += 0.5 * qp.w * ea * (l - 1.0) / l * across2;
+            let stretch = 0.5 * qp.w * ea;
+            let tension = stretch * (l - 1.0) / l;
+            for (de, o) in des.iter().zip(out.iter_mut()) {
+                let d1 = combine(de, &qp.d1);
+                let (along, across) = (t.dot(&d1), n.dot(&d1));
+                o.axial += stretch * along * along;
+                o.bending += tension * across * across;
+            }
         }
         for qp in &self.bending {
             let b = BendingPoint::new(e, qp);
-            let (d1, d2) = (combine(de, &qp.d1), combine(de, &qp.d2));
-            let dk = b.p.dot(&d1) + b.q.dot(&d2);
-            let second = d1.dot(&(b.h11 * d1)) + 2.0 * d1.dot(&(b.h12 * d2));
-            out.bending += 0.5 * qp.w * ei * (dk * dk + b.kappa * second);
+            let c = 0.5 * qp.w * ei;
+            for (de, o) in des.iter().zip(out.iter_mut()) {
+                let (d1, d2) = (combine(de, &qp.d1), combine(de, &qp.d2));
+                let dk = b.p.dot(&d1) + b.q.dot(&d2);
+                let second = d1.dot(&(b.h11 * d1)) + 2.0 * d1.dot(&(b.h12 * d2));
+                o.bending += c * (dk * dk + b.kappa * second);
+            }
         }
-        out
     }
 
     /// Tangent stiffness `∂Q_s/∂e`, added into `out`.

@@ -227,30 +227,39 @@ pub fn modal(
     };
     let tol = settings.rigid_tolerance * f64::EPSILON * lmax;
     let mut rigid_modes = eig.values.iter().filter(|v| v.abs() <= tol).count();
+    let shapes: Vec<Vec<f64>> = (0..count)
+        .map(|i| {
+            let xr: Vec<f64> = (0..dim).map(|r| eig.vectors[(r, i)]).collect();
+            ns.expand(&xr, n)
+        })
+        .collect();
+    // Rayleigh quotients with the cancellation-free energy form, for the
+    // modes above the solver's noise bound: the dense solver's ω² carries an
+    // absolute error ~ε·max|ω²|.
+    let elastic: Vec<usize> = (0..count).filter(|&i| eig.values[i].abs() > tol).collect();
+    let phis: Vec<&[f64]> = elastic.iter().map(|&i| shapes[i].as_slice()).collect();
+    let mut energies = vec![EnergyBreakdown::default(); elastic.len()];
+    system.stiffness_quadratic_forms(at, &phis, &mut energies);
+    let mut energy_of = elastic.iter().zip(&energies).peekable();
     let mut modes = Vec::with_capacity(count);
-    for i in 0..count {
-        let value = eig.values[i];
-        let xr: Vec<f64> = (0..ns.dim()).map(|r| eig.vectors[(r, i)]).collect();
-        let shape = ns.expand(&xr, n);
+    for (i, shape) in shapes.into_iter().enumerate() {
         let zero = EnergyFractions {
             axial: 0.0,
             bending: 0.0,
             springs: 0.0,
         };
-        let (kind, energy, value) = if value.abs() <= tol {
-            (ModeKind::Rigid, zero, value)
-        } else {
-            // Rayleigh quotient with the cancellation-free energy form: the
-            // dense solver's ω² carries an absolute error ~ε·max|ω²|.
-            let energy = system.stiffness_quadratic_form(at, &shape);
-            let refined = 2.0 * energy.total() / mass.quadratic_form(&shape);
-            if refined.abs() <= tol {
-                // Above the solver's noise bound, but it strains nothing.
-                rigid_modes += 1;
-                (ModeKind::Rigid, zero, refined)
-            } else {
-                let (kind, fractions) = classify(energy);
-                (kind, fractions, refined)
+        let (kind, energy, value) = match energy_of.next_if(|(&j, _)| j == i) {
+            None => (ModeKind::Rigid, zero, eig.values[i]),
+            Some((_, energy)) => {
+                let refined = 2.0 * energy.total() / mass.quadratic_form(&shape);
+                if refined.abs() <= tol {
+                    // Above the solver's noise bound, but it strains nothing.
+                    rigid_modes += 1;
+                    (ModeKind::Rigid, zero, refined)
+                } else {
+                    let (kind, fractions) = classify(*energy);
+                    (kind, fractions, refined)
+                }
             }
         };
         let frequency_hz = if kind == ModeKind::Rigid {

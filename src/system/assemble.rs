@@ -7,7 +7,7 @@
 
 use super::System;
 use crate::anchor::Hess;
-use crate::element::{Mat8, Vec8};
+use crate::element::{EnergySplit, Mat8, Vec8};
 use crate::joint::ConstraintJac;
 use crate::pair::{PairGrad, PairHess};
 use faer::Mat;
@@ -274,17 +274,40 @@ impl System {
     /// full relative precision for smooth shapes even on meshes with very
     /// short elements.
     pub fn stiffness_quadratic_form(&self, at: &Linearization, phi: &[f64]) -> EnergyBreakdown {
+        let mut out = [EnergyBreakdown::default()];
+        self.stiffness_quadratic_forms(at, &[phi], &mut out);
+        out[0]
+    }
+
+    /// [`System::stiffness_quadratic_form`] of several shapes, written into
+    /// `out` (one entry per shape). Each element's state quantities and each
+    /// spring's Hessian are evaluated once for all shapes.
+    pub fn stiffness_quadratic_forms(
+        &self,
+        at: &Linearization,
+        phis: &[&[f64]],
+        out: &mut [EnergyBreakdown],
+    ) {
+        assert_eq!(phis.len(), out.len(), "one output per shape");
+        out.fill(EnergyBreakdown::default());
         let q = at.q;
-        let mut e = EnergyBreakdown::default();
+        let mut des = vec![Vec8::zeros(); phis.len()];
+        let mut split = vec![EnergySplit::default(); phis.len()];
         for b in &self.beams {
             for (k, el) in b.elements.iter().enumerate() {
                 let dofs = b.element_dofs(k);
-                let s = el.quadratic_form(&element_vec(q, &dofs), &element_vec(phi, &dofs));
-                e.axial += s.axial;
-                e.bending += s.bending;
+                for (de, phi) in des.iter_mut().zip(phis) {
+                    *de = element_vec(phi, &dofs);
+                }
+                split.fill(EnergySplit::default());
+                el.add_quadratic_forms(&element_vec(q, &dofs), &des, &mut split);
+                for (e, s) in out.iter_mut().zip(&split) {
+                    e.axial += s.axial;
+                    e.bending += s.bending;
+                }
             }
         }
-        let local = |dofs: &mut dyn Iterator<Item = usize>| {
+        let local = |phi: &[f64], dofs: &mut dyn Iterator<Item = usize>| {
             let mut v = PairGrad::zeros();
             for (i, d) in dofs.enumerate() {
                 v[i] = phi[d];
@@ -294,24 +317,30 @@ impl System {
         let mut h = PairHess::zeros();
         for fe in &self.force_elements {
             fe.hessian(q, &mut h);
-            let v = local(&mut fe.pair().dofs());
-            e.springs += 0.5 * v.dot(&(h * v));
+            for (e, phi) in out.iter_mut().zip(phis) {
+                let v = local(phi, &mut fe.pair().dofs());
+                e.springs += 0.5 * v.dot(&(h * v));
+            }
         }
         let mut hl = Hess::zeros();
         for l in &self.loads {
             l.load_stiffness(q, at.time, at.load_scale, &mut hl);
-            let v = local(&mut l.anchor.dofs().iter().copied());
-            e.other -= 0.5 * v.fixed_rows::<8>(0).dot(&(hl * v.fixed_rows::<8>(0)));
+            for (e, phi) in out.iter_mut().zip(phis) {
+                let v = local(phi, &mut l.anchor.dofs().iter().copied());
+                let v8 = v.fixed_rows::<8>(0);
+                e.other -= 0.5 * v8.dot(&(hl * v8));
+            }
         }
         if let Some(lambda) = at.lambda {
             for (c, &row) in self.constraints.iter().zip(&self.constraint_rows) {
                 h.fill(0.0);
                 c.hessian_dot(q, &lambda[row..row + c.rows()], &mut h);
-                let v = local(&mut c.pair().dofs());
-                e.other += 0.5 * v.dot(&(h * v));
+                for (e, phi) in out.iter_mut().zip(phis) {
+                    let v = local(phi, &mut c.pair().dofs());
+                    e.other += 0.5 * v.dot(&(h * v));
+                }
             }
         }
-        e
     }
 
     /// Kinetic-energy form φᵀ M φ [SI: kg m² …].
