@@ -246,9 +246,8 @@ impl Cholesky {
                 }
                 k += 4;
             }
-            for k in k..r {
-                let (l, s) = (row[k], src(k));
-                target.iter_mut().zip(s).for_each(|(t, s)| *t -= l * s);
+            for (k, &l) in row.iter().enumerate().take(r).skip(k) {
+                target.iter_mut().zip(src(k)).for_each(|(t, s)| *t -= l * s);
             }
             let inv = self.inv_diag[r];
             target.iter_mut().for_each(|t| *t *= inv);
