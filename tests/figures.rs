@@ -346,9 +346,27 @@ fn deformed_centre_line_is_the_ancf_interpolation_of_the_mode() {
         "tip displacement {tip_disp:e} m = {:.4} L (expected 0.15 L)",
         tip_disp / L
     );
+    // The two tips move alike only to the mode's accuracy: a computed mode
+    // carries components of order ε·max ω²/(ω²₂ − ω²₁) along the
+    // antisymmetric second bending mode (backward-stable solvers; 1.4e-12
+    // here), so the other tip may move that much more.
+    let lmax = result
+        .modes
+        .iter()
+        .map(|m| m.eigenvalue)
+        .fold(0.0, f64::max);
+    let bending: Vec<f64> = result
+        .of_kind(ModeKind::Bending)
+        .map(|m| m.eigenvalue)
+        .collect();
+    let skew = 100.0 * f64::EPSILON * lmax / (bending[1] - bending[0]);
     let undeformed = &fig.undeformed.beams[0];
     for (p, p0) in drawn.iter().zip(undeformed) {
-        assert!(dist(*p, *p0) <= tip_disp * (1.0 + 1e-12), "tips move most");
+        assert!(
+            dist(*p, *p0) <= tip_disp * (1.0 + skew),
+            "tips move most: {:e} m vs tip {tip_disp:e} m (allowance {skew:e})",
+            dist(*p, *p0)
+        );
     }
 }
 

@@ -1,10 +1,12 @@
 //! The in-house dense symmetric eigensolver (analysis::small_eigen) and the
 //! generalized solver built on it (analysis::eigen::solve_generalized),
 //! checked against independent facts: an analytic spectrum, faer's
-//! eigenvalues, residuals, orthonormality, and a triple zero eigenvalue.
+//! eigenvalues, residuals, orthonormality, a triple zero eigenvalue, and
+//! Sturm counts (analysis::bisection) against known spectra.
 
 use ancf_modal::analysis::eigen::solve_generalized;
-use ancf_modal::analysis::small_eigen::{lowest_eigenpairs, tridiagonal_eigenvalues, Tridiagonal};
+use ancf_modal::analysis::eigen::Spectrum;
+use ancf_modal::analysis::small_eigen::{lowest_eigenpairs, SturmCounts, Tridiagonal};
 use faer::{Mat, Side};
 
 const EPS: f64 = f64::EPSILON;
@@ -110,11 +112,31 @@ fn second_difference_matrix_has_the_analytic_spectrum() {
         .map(|k| 2.0 - 2.0 * (k as f64 * std::f64::consts::PI / (n + 1) as f64).cos())
         .collect();
     let tol = 10.0 * n as f64 * EPS * 4.0;
-    for (got, want) in tridiagonal_eigenvalues(&t).unwrap().iter().zip(&exact) {
+    let sturm = SturmCounts::new(&t).unwrap();
+    let all: Vec<usize> = (0..n).collect();
+    for (got, want) in sturm.eigenvalues(&all).iter().zip(&exact) {
         assert!(
             (got - want).abs() <= tol,
-            "tridiagonal QR eigenvalue {got} vs analytic {want}: error above 10·n·ε·‖T‖ = {tol:e}"
+            "bisection eigenvalue {got} vs analytic {want}: error above 10·n·ε·‖T‖ = {tol:e}"
         );
+    }
+    // Indices in any order and repeated.
+    let picked = sturm.eigenvalues(&[59, 0, 30, 30]);
+    for (got, k) in picked.iter().zip([59, 0, 30, 30]) {
+        assert!(
+            (got - exact[k]).abs() <= tol,
+            "bisection eigenvalue {k}: {got} vs analytic {}",
+            exact[k]
+        );
+    }
+    // Counts between the analytic eigenvalues: k below the k-th gap.
+    for k in 0..=n {
+        let x = match k {
+            0 => -0.5,
+            k if k == n => 4.5,
+            k => 0.5 * (exact[k - 1] + exact[k]),
+        };
+        assert_eq!(sturm.count_below(x), k, "Sturm count below {x}");
     }
     // The same matrix dense, through tridiagonalization and inverse iteration.
     let a = Mat::from_fn(n, n, |i, j| match i.abs_diff(j) {
@@ -193,7 +215,17 @@ fn generalized_pairs_have_small_residuals_and_are_mass_orthonormal() {
     let k = with_spectrum(&spectrum, 5);
     let wanted = 9;
     let e = solve_generalized(&k, &m, wanted).unwrap();
-    assert_eq!(e.values.len(), n, "all eigenvalues are returned");
+    assert_eq!(
+        e.values.len(),
+        wanted,
+        "the wanted eigenvalues are returned"
+    );
+    let zero = 100.0 * n as f64 * EPS * norm_inf(&k);
+    assert_eq!(
+        e.spectrum.count_within(zero),
+        Some(3),
+        "eigenvalues within 100·n·ε·‖K‖ of zero: the triple zero of K"
+    );
     assert_eq!(
         e.vectors.ncols(),
         wanted,
@@ -236,6 +268,23 @@ fn generalized_with_identity_mass_matches_faer() {
     let e = solve_generalized(&k, &id, n).unwrap();
     let reference = k.self_adjoint_eigen(Side::Lower).unwrap();
     let tol = 10.0 * n as f64 * EPS * norm_inf(&k);
+    // Largest |λ| of the spectrum from 5 wanted values only: 18 · 3.5 = 63.
+    let partial = solve_generalized(&k, &id, 5).unwrap();
+    let max_abs = partial.spectrum.max_abs().unwrap();
+    assert!(
+        (max_abs - 63.0).abs() <= tol,
+        "max |λ| {max_abs} vs 63 from the constructed spectrum, within 10·n·ε·‖K‖ = {tol:e}"
+    );
+    assert!(
+        matches!(partial.spectrum, Spectrum::Counts { .. }),
+        "n = 24 takes the in-house path with Sturm counts"
+    );
+    // Exactly one eigenvalue (λ = 0, k = 5) within 1 of zero.
+    assert_eq!(
+        partial.spectrum.count_within(1.0),
+        Some(1),
+        "zero eigenvalues"
+    );
     for i in 0..n {
         assert!(
             (e.values[i] - reference.S()[i]).abs() <= tol,
@@ -253,7 +302,8 @@ fn tiny_sizes() {
     let e = lowest_eigenpairs(Vec::new(), 0, 3).unwrap();
     assert!(e.values.is_empty() && e.vectors.is_empty(), "0 × 0");
     let e = lowest_eigenpairs(vec![0.0; 16], 4, 3).unwrap();
-    assert_eq!(e.values, vec![0.0; 4], "4 × 4 zero matrix: eigenvalues");
+    assert_eq!(e.values, vec![0.0; 3], "4 × 4 zero matrix: eigenvalues");
+    assert_eq!(e.max_abs, 0.0, "4 × 4 zero matrix: largest |λ|");
     let orth = orthonormality_error(&e.vectors, 3, None);
     assert!(
         orth == 0.0,
@@ -266,4 +316,30 @@ fn tiny_sizes() {
         "2 × 2 eigenvalues {:?} vs [1, 3] within a few ε",
         e.values
     );
+}
+
+#[test]
+fn bisection_survives_underflowing_minors() {
+    // One entry of 1 and a graded rest 1e-8·k with off-diagonals 1e-13:
+    // the leading minors at shifts near the small eigenvalues fall like
+    // (1e-7)ⁱ, far below the product form's safe range, so the counts must
+    // come from the guarded ratio form. Eigenvalues: the diagonal, moved by
+    // at most e²/gap ≈ 1e-18 (second-order perturbation).
+    let n = 48;
+    let mut diag: Vec<f64> = (0..n).map(|k| 1e-8 * k as f64).collect();
+    diag[n - 1] = 1.0;
+    let t = Tridiagonal {
+        diag: diag.clone(),
+        off: vec![1e-13; n - 1],
+    };
+    let sturm = SturmCounts::new(&t).unwrap();
+    let all: Vec<usize> = (0..n).collect();
+    let tol = 4.0 * EPS;
+    for (k, got) in sturm.eigenvalues(&all).iter().enumerate() {
+        assert!(
+            (got - diag[k]).abs() <= tol,
+            "eigenvalue {k}: {got:e} vs diagonal {:e}, error above 4ε‖T‖ = {tol:e}",
+            diag[k]
+        );
+    }
 }

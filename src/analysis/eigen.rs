@@ -2,29 +2,64 @@
 //! rad²/s² for a stiffness K and a mass M].
 //!
 //! Cholesky reduction: M = L Lᵀ, C = L⁻¹ K L⁻ᵀ, C y = λ y, x = L⁻ᵀ y. The
-//! vectors come out mass-normalized (xᵀ M x = 1). Eigenvalues ascend; all of
-//! them are computed, vectors only for the lowest `wanted`.
+//! vectors come out mass-normalized (xᵀ M x = 1). The lowest `wanted`
+//! eigenvalues are returned, ascending, with their vectors; what is known of
+//! the rest of the spectrum (its largest |λ|, how many eigenvalues lie near
+//! zero) comes with them as a [`Spectrum`].
 //!
 //! Up to [`IN_HOUSE_ALL_MAX`] coordinates, or [`IN_HOUSE_MAX`] when at most
 //! a quarter of the vectors are wanted, everything is done here: an envelope
 //! Cholesky (the reduced mass matrix of a beam model is nearly banded), C's
 //! lower triangle from row-wise substitutions, and [`super::small_eigen`]
-//! (Householder tridiagonalization, QR eigenvalues, inverse-iteration
-//! vectors for the wanted ones only). Above it faer's blocked factorizations
+//! (Householder tridiagonalization, bisection for the wanted eigenvalues,
+//! inverse-iteration vectors). Above it faer's blocked factorizations
 //! and the QR algorithm with all vectors are faster. Both paths are backward
 //! stable, so the eigenvalues carry absolute errors of order ε‖C‖.
 
-use super::small_eigen::{dot, lowest_eigenpairs};
+use super::small_eigen::{dot, lowest_eigenpairs, SturmCounts};
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
 use faer::{Mat, Par, Side};
 
-/// Eigenvalues (ascending) and mass-normalized eigenvectors (columns).
+/// The lowest eigenvalues (ascending) and their mass-normalized eigenvectors
+/// (columns, one per value).
 #[derive(Debug, Clone)]
 pub struct GeneralizedEigen {
     pub values: Vec<f64>,
     pub vectors: Mat<f64>,
+    pub spectrum: Spectrum,
+}
+
+/// What a solver knows of the eigenvalues beyond those it returned.
+#[derive(Debug, Clone)]
+pub enum Spectrum {
+    /// Every eigenvalue, ascending.
+    All(Vec<f64>),
+    /// Sturm counts of the tridiagonal form, and the largest |λ|.
+    Counts { counts: SturmCounts, max_abs: f64 },
+    /// Nothing beyond the returned values (a partial solver).
+    Partial,
+}
+
+impl Spectrum {
+    /// Largest |λ| of the whole spectrum, when known.
+    pub fn max_abs(&self) -> Option<f64> {
+        match self {
+            Spectrum::All(v) => Some(v.iter().fold(0.0f64, |a, x| a.max(x.abs()))),
+            Spectrum::Counts { max_abs, .. } => Some(*max_abs),
+            Spectrum::Partial => None,
+        }
+    }
+
+    /// Number of eigenvalues with |λ| ≤ `tol`, when known.
+    pub fn count_within(&self, tol: f64) -> Option<usize> {
+        match self {
+            Spectrum::All(v) => Some(v.iter().filter(|x| x.abs() <= tol).count()),
+            Spectrum::Counts { counts, .. } => Some(counts.count_within(tol)),
+            Spectrum::Partial => None,
+        }
+    }
 }
 
 /// Why the generalized problem could not be solved.
@@ -59,8 +94,8 @@ pub const IN_HOUSE_MAX: usize = 160;
 /// cluster of w vectors, so faer wins for many vectors and large n.
 pub const IN_HOUSE_ALL_MAX: usize = 48;
 
-/// Solve K x = λ M x for symmetric K and symmetric positive definite M: all
-/// eigenvalues, and M-normalized vectors for the lowest `wanted` of them.
+/// Solve K x = λ M x for symmetric K and symmetric positive definite M: the
+/// lowest `wanted` eigenvalues with M-normalized vectors.
 pub fn solve_generalized(
     k: &Mat<f64>,
     m: &Mat<f64>,
@@ -72,6 +107,7 @@ pub fn solve_generalized(
         return Ok(GeneralizedEigen {
             values: Vec::new(),
             vectors: Mat::zeros(0, 0),
+            spectrum: Spectrum::All(Vec::new()),
         });
     }
     if n > IN_HOUSE_ALL_MAX && (n > IN_HOUSE_MAX || 4 * wanted > n) {
@@ -85,8 +121,8 @@ pub fn solve_generalized(
     if l.min_pivot_ratio() <= SINGULAR_PIVOT {
         return Err(singular());
     }
-    // Should the QR sweeps or the inverse iteration not converge (not seen
-    // on any model so far), the faer path gets its chance.
+    // Should the inverse iteration not converge (not seen on any model so
+    // far), the faer path gets its chance.
     let Ok(mut eig) = lowest_eigenpairs(l.reduce(k), n, wanted) else {
         return solve_generalized_faer(k, m, wanted);
     };
@@ -95,6 +131,10 @@ pub fn solve_generalized(
     Ok(GeneralizedEigen {
         values: eig.values,
         vectors: Mat::from_fn(n, wanted, |i, j| y[i * wanted + j]),
+        spectrum: Spectrum::Counts {
+            counts: eig.spectrum,
+            max_abs: eig.max_abs,
+        },
     })
 }
 
@@ -128,7 +168,11 @@ fn solve_generalized_faer(
     let (values, vectors) = symmetric_eigen_qr(&c, p)?;
     let mut vectors = vectors.subcols(0, wanted).to_owned();
     solve_upper_triangular_in_place(l.transpose(), vectors.as_mut(), p);
-    Ok(GeneralizedEigen { values, vectors })
+    Ok(GeneralizedEigen {
+        values: values[..wanted].to_vec(),
+        vectors,
+        spectrum: Spectrum::All(values),
+    })
 }
 
 /// M = L Lᵀ by the envelope (skyline) Cholesky algorithm, rows of L stored

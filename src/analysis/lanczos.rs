@@ -31,7 +31,9 @@
 //! residual ‖K x − λ M x‖.
 
 use super::band::{BandLu, Csr};
-use super::eigen::{solve_generalized, symmetric_eigen_qr, EigenFailure, GeneralizedEigen};
+use super::eigen::{
+    solve_generalized, symmetric_eigen_qr, EigenFailure, GeneralizedEigen, Spectrum,
+};
 use faer::{Mat, Par};
 
 /// σ as a fraction of the estimate of the largest eigenvalue (see module docs).
@@ -308,7 +310,11 @@ fn run(p: &Problem, lu: &BandLu, sigma: f64, count: usize) -> Result<Outcome, Ei
         // The whole space spanned: Rayleigh–Ritz is then as exact as a dense
         // solve, whatever the residual test says.
         if dim >= n && take == count {
-            return Ok(Outcome::Done(GeneralizedEigen { values, vectors }));
+            return Ok(Outcome::Done(GeneralizedEigen {
+                values,
+                vectors,
+                spectrum: Spectrum::Partial,
+            }));
         }
         if converged {
             let same = previous.as_ref().is_some_and(|prev| {
@@ -319,7 +325,11 @@ fn run(p: &Problem, lu: &BandLu, sigma: f64, count: usize) -> Result<Outcome, Ei
                         .all(|(a, b)| (a - b).abs() <= 1e-8 * (b.abs() + sigma))
             });
             if same || dim >= max_dim {
-                return Ok(Outcome::Done(GeneralizedEigen { values, vectors }));
+                return Ok(Outcome::Done(GeneralizedEigen {
+                    values,
+                    vectors,
+                    spectrum: Spectrum::Partial,
+                }));
             }
             previous = Some(values);
             // Look for further members of multiple eigenvalues.
@@ -327,6 +337,7 @@ fn run(p: &Problem, lu: &BandLu, sigma: f64, count: usize) -> Result<Outcome, Ei
                 return Ok(Outcome::Done(GeneralizedEigen {
                     values: previous.unwrap_or_default(),
                     vectors,
+                    spectrum: Spectrum::Partial,
                 }));
             }
             target = basis.v.len() + (count + 10).max(20);

@@ -1,6 +1,7 @@
 //! Analyses on an assembled [`crate::System`].
 
 pub mod band;
+pub mod bisection;
 pub mod calibrate;
 pub mod dispersion;
 pub mod eigen;

@@ -221,12 +221,16 @@ pub fn modal(
         Some(e) => (e, max_eigenvalue_estimate(&kr, &mr)),
         None => {
             let e = solve_generalized(&kr, &mr, count).map_err(eigen_error)?;
-            let lmax = e.values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            let lmax = e.spectrum.max_abs().unwrap_or(0.0);
             (e, lmax)
         }
     };
     let tol = settings.rigid_tolerance * f64::EPSILON * lmax;
-    let mut rigid_modes = eig.values.iter().filter(|v| v.abs() <= tol).count();
+    // Zero eigenvalues of the whole spectrum, also beyond the modes asked for.
+    let mut rigid_modes = eig
+        .spectrum
+        .count_within(tol)
+        .unwrap_or_else(|| eig.values.iter().filter(|v| v.abs() <= tol).count());
     let shapes: Vec<Vec<f64>> = (0..count)
         .map(|i| {
             let xr: Vec<f64> = (0..dim).map(|r| eig.vectors[(r, i)]).collect();

@@ -43,7 +43,7 @@ impl Solver<'_> {
             }
             EigenFailure::NoConvergence => AnalysisError::EigenSolver { size: kr.nrows() },
         })?;
-        let lmax = eig.values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let lmax = eig.spectrum.max_abs().unwrap_or(0.0);
         let zero = super::ModalSettings::default().rigid_tolerance * f64::EPSILON * lmax;
         Ok(ReducedModes {
             values: eig.values,

@@ -12,24 +12,18 @@
 //!    (p = βA v, w = p − ½β(pᵀv) v, A ← A − v wᵀ − w vᵀ). The reflector
 //!    vectors stay in the columns they annihilated; Q is never formed.
 //!    Cost 4n³/3 flops.
-//! 2. **All eigenvalues** of T by the implicit symmetric QR algorithm
-//!    without vectors: each step chases the bulge of a Givens rotation down
-//!    the unreduced block, O(n) per step and about two steps per
-//!    eigenvalue. Blocks of four or more rows take two steps at once, shifted
-//!    by both eigenvalues of the trailing 2 × 2 block (Wilkinson's first),
-//!    the second bulge three rows behind the first: the arithmetic is that
-//!    of two successive steps, but the two chains of dependent square roots
-//!    and divisions overlap. An off-diagonal entry is negligible when
-//!    |e_i| ≤ ε(|d_i| + |d_{i+1}|); a trailing 2 × 2 block that splits off is
-//!    solved in closed form.
+//! 2. **The lowest `count` eigenvalues and the largest** of T by bisection
+//!    on Sturm counts ([`super::bisection`]), sixteen side by side, O(n) per
+//!    count and 53 counts each. The Sturm counts stay available afterwards,
+//!    so the number of eigenvalues in any interval (e.g. the zero
+//!    eigenvalues beyond those asked for) costs two counts.
 //! 3. **Eigenvectors of the lowest `count` eigenvalues only**, by inverse
 //!    iteration on T ([`super::inverse_iteration`]), then back-transformed
 //!    x = Q y by the stored reflectors, all columns through each reflector
 //!    together (2n² flops a vector).
 //!
 //! Accuracy: every step is backward stable, so the eigenvalues carry an
-//! absolute error of a small multiple of ε‖C‖, as the QR algorithm with
-//! vectors does. The vectors have residuals ‖Cx − λx‖ of order nε‖C‖ and are
+//! absolute error of a small multiple of ε‖C‖, as the QR algorithm does. The vectors have residuals ‖Cx − λx‖ of order nε‖C‖ and are
 //! orthonormal to a few ε inside a cluster; across clusters (gap ≥
 //! 10⁻³‖C‖) orthogonality is ε‖C‖/gap ≤ 10³ε. A multiple eigenvalue — the
 //! three rigid-body modes of a free assembly sit at ~ε‖C‖ — gets an
@@ -37,11 +31,9 @@
 //! repeated. The gain over the QR algorithm with vectors (6n³ flops for the
 //! rotations) is that only the wanted vectors are formed.
 
+pub use super::bisection::SturmCounts;
 use super::eigen::EigenFailure;
 pub use super::inverse_iteration::{tridiagonal_eigenvectors, CLUSTER_GAP};
-
-/// QR sweeps allowed per eigenvalue before giving up.
-const SWEEPS_PER_VALUE: usize = 30;
 
 /// A symmetric tridiagonal matrix.
 #[derive(Debug, Clone, PartialEq)]
@@ -231,151 +223,45 @@ pub fn dot(a: &[f64], b: &[f64]) -> f64 {
     s
 }
 
-/// √(a² + b²) without libm's hypot unless the squares leave the range.
-fn pythag(a: f64, b: f64) -> f64 {
-    let s = a * a + b * b;
-    if s.is_finite() && s > 1e-290 {
-        s.sqrt()
-    } else {
-        a.hypot(b)
-    }
-}
-
-fn negligible(e: f64, a: f64, b: f64) -> bool {
-    e.abs() <= f64::EPSILON * (a.abs() + b.abs()) || e.abs() < f64::MIN_POSITIVE
-}
-
-/// All eigenvalues of T, ascending (implicit QR, no vectors).
-///
-/// Blocks of four or more rows get a double step: two bulges, shifted by the
-/// two eigenvalues of the trailing 2 × 2 block (the first is Wilkinson's),
-/// chased three rows apart in one loop. The two chases touch disjoint
-/// entries, so the result is exactly that of two successive single-shift
-/// steps, but the two chains of dependent square roots and divisions
-/// overlap. A trailing 2 × 2 block that splits off is solved in closed form.
-pub fn tridiagonal_eigenvalues(t: &Tridiagonal) -> Result<Vec<f64>, EigenFailure> {
-    let n = t.diag.len();
-    let (mut d, mut e) = (t.diag.clone(), t.off.clone());
-    let mut sweeps = 0;
-    // Rows hi… have converged.
-    let mut hi = n;
-    while hi > 1 {
-        let h = hi - 1;
-        if negligible(e[h - 1], d[h - 1], d[h]) {
-            e[h - 1] = 0.0;
-            hi = h;
-            continue;
-        }
-        let mut l = h - 1;
-        while l > 0 && !negligible(e[l - 1], d[l - 1], d[l]) {
-            l -= 1;
-        }
-        if l > 0 {
-            e[l - 1] = 0.0;
-        }
-        let (near, far) = trailing_pair(d[h - 1], d[h], e[h - 1]);
-        if h - l == 1 {
-            (d[h - 1], d[h], e[h - 1]) = (far, near, 0.0);
-            hi = h - 1;
-            continue;
-        }
-        sweeps += 1;
-        if sweeps > SWEEPS_PER_VALUE * n {
-            return Err(EigenFailure::NoConvergence);
-        }
-        if h - l >= 3 {
-            double_sweep(&mut d, &mut e, l, h, near, far);
-        } else {
-            let (mut x, mut z) = (d[l] - near, e[l]);
-            for k in l..h {
-                (x, z) = chase(&mut d, &mut e, k, l, h, x, z);
-            }
-        }
-    }
-    d.sort_by(f64::total_cmp);
-    Ok(d)
-}
-
-/// Eigenvalues of [a b; b c]: (the one nearer c, the other).
-fn trailing_pair(a: f64, c: f64, b: f64) -> (f64, f64) {
-    let delta = 0.5 * (a - c);
-    let root = pythag(delta, b);
-    let denom = if delta >= 0.0 {
-        delta + root
-    } else {
-        delta - root
-    };
-    let shift = if denom == 0.0 { 0.0 } else { b * (b / denom) };
-    (c - shift, a + shift)
-}
-
-/// Two implicit QR steps on the unreduced block l…h, shifts `mu1` and then
-/// `mu2`, the second bulge three rows behind the first.
-fn double_sweep(d: &mut [f64], e: &mut [f64], l: usize, h: usize, mu1: f64, mu2: f64) {
-    let mut first = (d[l] - mu1, e[l]);
-    for k in l..l + 3 {
-        first = chase(d, e, k, l, h, first.0, first.1);
-    }
-    // Rows l and l+1 are final for the first step: the second bulge starts.
-    let mut second = (d[l] - mu2, e[l]);
-    for k in l + 3..h {
-        first = chase(d, e, k, l, h, first.0, first.1);
-        second = chase(d, e, k - 3, l, h, second.0, second.1);
-    }
-    for k in h - 3..h {
-        second = chase(d, e, k, l, h, second.0, second.1);
-    }
-}
-
-/// One Givens rotation of an implicit QR step on rows/columns k, k+1 of the
-/// block l…h: it zeroes z against x (at k = l the first column of T − μI,
-/// later the bulge T[k+1, k−1]); returns the next (x, z).
-#[inline(always)]
-fn chase(d: &mut [f64], e: &mut [f64], k: usize, l: usize, h: usize, x: f64, z: f64) -> (f64, f64) {
-    let r = pythag(x, z);
-    let (c, s) = if r == 0.0 { (1.0, 0.0) } else { (x / r, z / r) };
-    if k > l {
-        e[k - 1] = r;
-    }
-    let (a, b, dd) = (d[k], e[k], d[k + 1]);
-    let (cc, ss, cs) = (c * c, s * s, c * s);
-    d[k] = cc * a + 2.0 * cs * b + ss * dd;
-    d[k + 1] = ss * a - 2.0 * cs * b + cc * dd;
-    e[k] = cs * (dd - a) + (cc - ss) * b;
-    if k + 1 < h {
-        let bulge = s * e[k + 1];
-        e[k + 1] *= c;
-        (e[k], bulge)
-    } else {
-        (0.0, 0.0)
-    }
-}
-
-/// All eigenvalues (ascending) of a symmetric matrix and the unit
-/// eigenvectors of the lowest `count`, row-major n × count (row i holds
-/// component i of every vector).
+/// The lowest eigenvalues (ascending) of a symmetric matrix with their unit
+/// eigenvectors, row-major n × count (row i holds component i of every
+/// vector), and the Sturm counts of its tridiagonal form for the rest of
+/// the spectrum.
 #[derive(Debug, Clone)]
 pub struct LowestEigen {
     pub values: Vec<f64>,
     pub vectors: Vec<f64>,
+    /// Largest |λ| of the whole spectrum.
+    pub max_abs: f64,
+    pub spectrum: SturmCounts,
 }
 
 /// Eigen-decomposition of the symmetric n × n matrix `a` (column-major,
-/// lower triangle read, storage consumed) with vectors for the lowest
-/// `count` eigenvalues.
+/// lower triangle read, storage consumed): the lowest `count` eigenvalues
+/// with vectors.
 pub fn lowest_eigenpairs(a: Vec<f64>, n: usize, count: usize) -> Result<LowestEigen, EigenFailure> {
     let count = count.min(n);
-    if n == 0 {
-        return Ok(LowestEigen {
-            values: Vec::new(),
-            vectors: Vec::new(),
-        });
-    }
     let h = HouseholderTridiagonal::new(a, n);
-    let values = tridiagonal_eigenvalues(&h.t)?;
-    let mut vectors = tridiagonal_eigenvectors(&h.t, &values[..count])?;
+    let spectrum = SturmCounts::new(&h.t)?;
+    // The lowest `count` and, as one more lane, the largest eigenvalue.
+    let mut indices: Vec<usize> = (0..count).collect();
+    if n > count {
+        indices.push(n - 1);
+    }
+    let mut values = spectrum.eigenvalues(&indices);
+    let max_abs = match (values.first(), values.last()) {
+        (Some(lo), Some(hi)) => lo.abs().max(hi.abs()),
+        _ => 0.0,
+    };
+    values.truncate(count);
+    let mut vectors = tridiagonal_eigenvectors(&h.t, &values)?;
     if count > 0 {
         h.apply_q(&mut vectors, count);
     }
-    Ok(LowestEigen { values, vectors })
+    Ok(LowestEigen {
+        values,
+        vectors,
+        max_abs,
+        spectrum,
+    })
 }
