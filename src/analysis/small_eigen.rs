@@ -23,9 +23,10 @@
 //!    together (2n² flops a vector).
 //!
 //! Accuracy: every step is backward stable, so the eigenvalues carry an
-//! absolute error of a small multiple of ε‖C‖, as the QR algorithm does. The vectors have residuals ‖Cx − λx‖ of order nε‖C‖ and are
+//! absolute error of a small multiple of ε‖C‖, as the QR algorithm does.
+//! The vectors have residuals ‖Cx − λx‖ of order nε‖C‖ and are
 //! orthonormal to a few ε inside a cluster; across clusters (gap ≥
-//! 10⁻³‖C‖) orthogonality is ε‖C‖/gap ≤ 10³ε. A multiple eigenvalue — the
+//! 10⁻²‖C‖) orthogonality is of order ε‖C‖/gap ≤ 10²ε. A multiple eigenvalue — the
 //! three rigid-body modes of a free assembly sit at ~ε‖C‖ — gets an
 //! orthonormal basis of its invariant subspace rather than one vector
 //! repeated. The gain over the QR algorithm with vectors (6n³ flops for the
