@@ -17,7 +17,11 @@
 //! algorithm, for the eigenvalues asked for only.
 //!
 //! The work is done on T/‖T‖∞, whose eigenvalues lie in [−1, 1]; 53 halvings
-//! of that interval reach 2⁻⁵²·(1 + margin) ≈ ε. Sixteen eigenvalues are
+//! of that interval reach 2⁻⁵²·(1 + margin) ≈ ε. A first count at a ladder
+//! of shifts 4⁻ᵏ brackets each eigenvalue within a factor 4 (a beam model's
+//! lowest ω² lie 4–16 decades below ‖T‖), which saves the first 10–25
+//! halvings; the largest eigenvalue, wanted only as a scale, stops at a
+//! relative width of 2⁻³⁰. Sixteen eigenvalues are
 //! bisected side by side, one lane each, so the sixteen recurrences are
 //! independent and vectorize; the chain of one multiply-add per row is the
 //! critical path. With ‖T‖∞ = 1 and |x| ≤ 1, max(|pᵢ|, |pᵢ₋₁|) grows at most
@@ -97,40 +101,83 @@ impl SturmCounts {
     /// The eigenvalues with the given 0-based indices in ascending order
     /// [units of T], each to an absolute error of a few ε‖T‖.
     pub fn eigenvalues(&self, indices: &[usize]) -> Vec<f64> {
+        self.bisect_all(indices, &vec![0.0; indices.len()])
+    }
+
+    /// The lowest `count` eigenvalues [units of T] as [`Self::eigenvalues`]
+    /// gives them, and the largest eigenvalue to a relative error of
+    /// [`ROUGH`] (enough for a scale of tolerances), bisected alongside.
+    pub fn lowest_and_largest(&self, count: usize) -> (Vec<f64>, f64) {
+        let n = self.size();
+        if n == 0 {
+            return (Vec::new(), 0.0);
+        }
+        let count = count.min(n);
+        let mut indices: Vec<usize> = (0..count).collect();
+        indices.push(n - 1);
+        let mut rel = vec![0.0; count];
+        rel.push(ROUGH);
+        let mut values = self.bisect_all(&indices, &rel);
+        let largest = values.pop().unwrap_or(0.0);
+        (values, largest)
+    }
+
+    /// Bisection for every index; lane j stops at a width of
+    /// max(2⁻⁵², rel[j]·|λ|) of T/‖T‖.
+    fn bisect_all(&self, indices: &[usize], rel: &[f64]) -> Vec<f64> {
         let n = self.size();
         assert!(indices.iter().all(|&i| i < n), "eigenvalue index beyond n");
         if self.norm == 0.0 {
             return vec![0.0; indices.len()];
         }
         let mut out = Vec::with_capacity(indices.len());
-        for batch in indices.chunks(LANES) {
-            let mut idx = [batch[0] as u64; LANES];
-            idx.iter_mut().zip(batch).for_each(|(l, &i)| *l = i as u64);
-            let mid = bisect(self, &idx);
+        for (batch, rel) in indices.chunks(LANES).zip(rel.chunks(LANES)) {
+            let mut lanes = Lanes {
+                index: [batch[0] as u64; LANES],
+                rel: [rel[0]; LANES],
+            };
+            lanes
+                .index
+                .iter_mut()
+                .zip(batch)
+                .for_each(|(l, &i)| *l = i as u64);
+            lanes.rel.iter_mut().zip(rel).for_each(|(l, &r)| *l = r);
+            let mid = bisect(self, &lanes);
             out.extend(mid[..batch.len()].iter().map(|m| m * self.norm));
         }
         out
     }
 }
 
+/// Relative accuracy of the largest eigenvalue from
+/// [`SturmCounts::lowest_and_largest`].
+pub const ROUGH: f64 = 9.313_225_746_154_785e-10; // 2⁻³⁰
+
+/// One batch of bisections: which eigenvalue each lane seeks, and its
+/// relative stopping width.
+struct Lanes {
+    index: [u64; LANES],
+    rel: [f64; LANES],
+}
+
 /// Bisection for one batch of eigenvalue indices (scaled units).
-fn bisect(s: &SturmCounts, idx: &[u64; LANES]) -> [f64; LANES] {
+fn bisect(s: &SturmCounts, lanes: &Lanes) -> [f64; LANES] {
     #[cfg(target_arch = "x86_64")]
     if s.size() <= MAX_PRODUCT_SIZE && std::arch::is_x86_feature_detected!("fma") {
         // The wider kernel first; both use fused multiply-adds.
         if std::arch::is_x86_feature_detected!("avx512f") {
             // SAFETY: the CPU has the features the function is compiled for.
-            return unsafe { bisect_avx512(s, idx) };
+            return unsafe { bisect_avx512(s, lanes) };
         }
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: as above.
-            return unsafe { bisect_avx2(s, idx) };
+            return unsafe { bisect_avx2(s, lanes) };
         }
     }
     if s.size() <= MAX_PRODUCT_SIZE {
-        bisect_lanes::<PLAIN>(s, idx)
+        bisect_lanes::<PLAIN>(s, lanes)
     } else {
-        bisect_lanes::<RATIO>(s, idx)
+        bisect_lanes::<RATIO>(s, lanes)
     }
 }
 
@@ -142,35 +189,62 @@ const RATIO: u8 = 2;
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,fma")]
-fn bisect_avx512(s: &SturmCounts, idx: &[u64; LANES]) -> [f64; LANES] {
-    bisect_lanes::<FUSED>(s, idx)
+fn bisect_avx512(s: &SturmCounts, lanes: &Lanes) -> [f64; LANES] {
+    bisect_lanes::<FUSED>(s, lanes)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-fn bisect_avx2(s: &SturmCounts, idx: &[u64; LANES]) -> [f64; LANES] {
-    bisect_lanes::<FUSED>(s, idx)
+fn bisect_avx2(s: &SturmCounts, lanes: &Lanes) -> [f64; LANES] {
+    bisect_lanes::<FUSED>(s, lanes)
 }
 
-/// ROUNDS halvings per lane: eigenvalue idx[j] stays in [lo[j], hi[j]).
+/// Bisection per lane: eigenvalue index[j] stays in [lo[j], hi[j]). A first
+/// count at the [`PROBES`] gives each lane its start bracket; halvings
+/// follow until every lane is narrower than its stopping width.
 #[inline(always)]
-fn bisect_lanes<const MODE: u8>(s: &SturmCounts, idx: &[u64; LANES]) -> [f64; LANES] {
+fn bisect_lanes<const MODE: u8>(s: &SturmCounts, lanes: &Lanes) -> [f64; LANES] {
+    let counts = |x: &[f64; LANES]| {
+        let product = match MODE {
+            PLAIN => product_counts::<false>(s, x),
+            FUSED => product_counts::<true>(s, x),
+            _ => None,
+        };
+        match product {
+            Some(c) => c,
+            None => ratio_counts(s, x),
+        }
+    };
+    let idx = &lanes.index;
     let bound = 1.0 + f64::powi(2.0, -40);
     let (mut lo, mut hi) = ([-bound; LANES], [bound; LANES]);
+    let probed = counts(&PROBES);
+    for j in 0..LANES {
+        for (&x, &c) in PROBES.iter().zip(&probed) {
+            if c <= idx[j] {
+                lo[j] = lo[j].max(x);
+            } else {
+                hi[j] = hi[j].min(x);
+            }
+        }
+        if lo[j] >= hi[j] {
+            // Counts not monotone across the probes (rounding): start wide.
+            (lo[j], hi[j]) = (-bound, bound);
+        }
+    }
     let mut mid = [0.0; LANES];
     for _ in 0..ROUNDS {
+        let wide = (0..LANES).any(|j| {
+            let scale = lo[j].abs().max(hi[j].abs());
+            hi[j] - lo[j] > ABS_WIDTH.max(lanes.rel[j] * scale)
+        });
+        if !wide {
+            break;
+        }
         for j in 0..LANES {
             mid[j] = 0.5 * (lo[j] + hi[j]);
         }
-        let product = match MODE {
-            PLAIN => product_counts::<false>(s, &mid),
-            FUSED => product_counts::<true>(s, &mid),
-            _ => None,
-        };
-        let c = match product {
-            Some(c) => c,
-            None => ratio_counts(s, &mid),
-        };
+        let c = counts(&mid);
         for j in 0..LANES {
             // c[j] eigenvalues lie below mid[j]: idx[j] among them or not.
             if c[j] > idx[j] {
@@ -185,6 +259,32 @@ fn bisect_lanes<const MODE: u8>(s: &SturmCounts, idx: &[u64; LANES]) -> [f64; LA
     }
     mid
 }
+
+/// Stopping width of T/‖T‖'s eigenvalues: what 53 halvings of [−1, 1] give.
+const ABS_WIDTH: f64 = f64::EPSILON;
+
+/// First shifts, ascending: −1, −4⁻¹³ and 4⁻¹³, 4⁻¹², …, 1. A beam model's
+/// lowest ω² lie decades below ‖T‖, so a geometric ladder brackets each
+/// within a factor 4 (the zero ones within ±4⁻¹³ ≈ 1.5e-8) and saves the
+/// halvings from [−1, 1] down to there.
+const PROBES: [f64; LANES] = {
+    let mut p = [0.0; LANES];
+    p[0] = -1.0;
+    let mut i = 0;
+    while i < LANES - 1 {
+        // p[1] = −4⁻¹³, p[2 + k] = 4^(k − 13).
+        let e = if i == 0 { 13 } else { 13 - (i - 1) as i32 };
+        let mut v = 1.0;
+        let mut k = 0;
+        while k < e {
+            v /= 4.0;
+            k += 1;
+        }
+        p[i + 1] = if i == 0 { -v } else { v };
+        i += 1;
+    }
+    p
+};
 
 /// Sign changes of the minors p₀ … pₙ at every lane's shift, or None if a
 /// lane may have come near underflow.
@@ -289,21 +389,25 @@ mod tests {
             off: vec![-1.0; n - 1],
         };
         let s = SturmCounts::new(&t).unwrap();
-        let mut idx = [0u64; LANES];
-        idx.iter_mut()
-            .enumerate()
-            .for_each(|(j, i)| *i = (2 * j) as u64);
+        let mut lanes = Lanes {
+            index: [0; LANES],
+            rel: [0.0; LANES],
+        };
+        for (j, i) in lanes.index.iter_mut().enumerate() {
+            *i = (2 * j) as u64;
+        }
+        let idx = lanes.index;
         let exact =
             |k: u64| 2.0 - 2.0 * ((k + 1) as f64 * std::f64::consts::PI / (n + 1) as f64).cos();
         let mut runs = vec![
-            ("plain", bisect_lanes::<PLAIN>(&s, &idx)),
-            ("ratio", bisect_lanes::<RATIO>(&s, &idx)),
+            ("plain", bisect_lanes::<PLAIN>(&s, &lanes)),
+            ("ratio", bisect_lanes::<RATIO>(&s, &lanes)),
         ];
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("fma") && std::arch::is_x86_feature_detected!("avx2")
         {
             // SAFETY: the CPU has the features.
-            runs.push(("avx2", unsafe { bisect_avx2(&s, &idx) }));
+            runs.push(("avx2", unsafe { bisect_avx2(&s, &lanes) }));
         }
         for (name, got) in runs {
             for (g, &k) in got.iter().zip(&idx) {
