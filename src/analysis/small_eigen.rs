@@ -247,10 +247,9 @@ pub fn lowest_eigenpairs(a: Vec<f64>, n: usize, count: usize) -> Result<LowestEi
     let spectrum = SturmCounts::new(&h.t)?;
     let (values, largest) = spectrum.lowest_and_largest(count);
     // The accurate value when the largest is among the wanted ones.
-    let top = if values.len() == n {
-        values[n - 1]
-    } else {
-        largest
+    let top = match values.last() {
+        Some(&v) if values.len() == n => v,
+        _ => largest,
     };
     let max_abs = values.first().map_or(0.0, |v: &f64| v.abs()).max(top.abs());
     let mut vectors = tridiagonal_eigenvectors(&h.t, &values)?;
