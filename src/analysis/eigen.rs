@@ -88,10 +88,11 @@ pub const IN_HOUSE_MAX: usize = 160;
 ///
 /// Measured on a matrix whose eigenvalues form one cluster (the worst case
 /// for inverse iteration), M = I; in-house with vectors for all / for 12
-/// eigenvalues against faer's QR algorithm with all vectors: n = 40
-/// 77 / 47 / 88 µs, n = 60 275 / 107 / 210 µs, n = 100 996 / 336 / 679 µs,
-/// n = 160 3164 / 1053 / 2211 µs. Re-orthogonalization costs O(n·w²) in a
-/// cluster of w vectors, so faer wins for many vectors and large n.
+/// eigenvalues against faer's QR algorithm with all vectors (without the
+/// reduction): n = 40 94 / 38 / 117 µs, n = 48 143 / 51 / 164 µs; for 12
+/// vectors n = 100 231 / 956 µs, n = 160 775 / 2846 µs (busy 2-core host,
+/// best of 7). Re-orthogonalization costs O(n·w²) in a cluster of w
+/// vectors, so faer wins for many vectors and large n.
 pub const IN_HOUSE_ALL_MAX: usize = 48;
 
 /// Solve K x = λ M x for symmetric K and symmetric positive definite M: the
