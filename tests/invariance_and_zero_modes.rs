@@ -4,8 +4,8 @@
 //!   freedom (a pin without torsion spring); a clamped beam has none.
 
 mod common;
-use ancf_modal::analysis::ModeKind;
-use ancf_modal::Model;
+use ancf_modal::analysis::{modal_at_reference, ModalSettings, ModeKind};
+use ancf_modal::{Model, System};
 use common::*;
 use serde_json::{json, Value};
 
@@ -169,6 +169,35 @@ fn zero_frequency_modes_are_counted_and_reported_as_rigid() {
         4,
         "6 coordinates − 2 constraint equations = 4 modes"
     );
+}
+
+#[test]
+fn zero_modes_beyond_the_requested_ones_are_still_counted() {
+    // The zero count is a property of the whole spectrum: asking for fewer
+    // modes than there are zero ones must not change it.
+    let pin = json!({"type": "pin", "a": {"beam": "blade", "s": L}, "b": {"beam": "b2", "s": 0.0}});
+    for (m, zeros, what) in [
+        (free_beam(8), 3, "free beam"),
+        (two_beams(pin), 4, "two beams pinned"),
+    ] {
+        let system = System::new(&m);
+        for asked in [1, 2, zeros] {
+            let settings = ModalSettings {
+                modes: Some(asked),
+                ..ModalSettings::default()
+            };
+            let r = modal_at_reference(&system, &settings).unwrap();
+            assert_eq!(r.modes.len(), asked, "{what}: {asked} modes reported");
+            assert!(
+                r.modes.iter().all(|x| x.kind == ModeKind::Rigid),
+                "{what}: the lowest {asked} modes are zero modes"
+            );
+            assert_eq!(
+                r.rigid_modes, zeros,
+                "{what}, {asked} modes asked for: zero modes of the whole spectrum"
+            );
+        }
+    }
 }
 
 #[test]
