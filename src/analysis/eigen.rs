@@ -179,7 +179,7 @@ fn solve_generalized_faer(
 /// M = L Lᵀ by the envelope (skyline) Cholesky algorithm, rows of L stored
 /// contiguously: row i is nonzero only from the first nonzero column of row
 /// i of M, so a banded mass matrix costs O(n b²), not O(n³).
-struct Cholesky {
+pub struct Cholesky {
     n: usize,
     /// Row-major n × n; row i holds L[i, first[i]..=i].
     l: Vec<f64>,
@@ -190,7 +190,7 @@ struct Cholesky {
 
 impl Cholesky {
     /// None unless every pivot is positive and finite (lower triangle of m read).
-    fn factor(m: &Mat<f64>) -> Option<Cholesky> {
+    pub fn factor(m: &Mat<f64>) -> Option<Cholesky> {
         let n = m.nrows();
         let mut first: Vec<usize> = (0..n).collect();
         for j in (0..n).rev() {
@@ -252,7 +252,7 @@ impl Cholesky {
     /// column-major storage is the lower triangle. That halves the second
     /// solve, and the rows that couple to everything (the constrained
     /// coordinates, last) cost almost nothing there.
-    fn reduce(&self, k: &Mat<f64>) -> Vec<f64> {
+    pub fn reduce(&self, k: &Mat<f64>) -> Vec<f64> {
         let n = self.n;
         let mut y = Vec::with_capacity(n * n);
         for r in 0..n {
