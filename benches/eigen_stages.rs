@@ -4,41 +4,28 @@
 //! Run: `cargo bench --bench eigen_stages`.
 
 use ancf_modal::analysis::eigen::Cholesky;
-use ancf_modal::analysis::reduce::NullSpace;
 use ancf_modal::analysis::small_eigen::{
     tridiagonal_eigenvectors, HouseholderTridiagonal, SturmCounts,
 };
-use ancf_modal::system::Linearization;
+use ancf_modal::analysis::ReducedProblem;
 use ancf_modal::{Model, System};
 use criterion::{criterion_group, criterion_main, Criterion};
-use faer::Mat;
 
 const MODES: usize = 12;
 
 fn bench(c: &mut Criterion) {
     let system = System::new(&Model::builtin());
-    let n = system.ndof();
-    let at = Linearization {
-        q: &system.q0,
-        lambda: None,
-        time: 0.0,
-        load_scale: 0.0,
-    };
-    let mut k = Mat::zeros(n, n);
-    system.tangent_stiffness(&at, &mut k);
-    let mut cq = Mat::zeros(system.constraint_count(), n);
-    system.constraint_jacobian(&system.q0, &mut cq);
-    let ns = NullSpace::new(&cq);
-    let (kr, mr) = (ns.project(&k), ns.project(system.mass().dense()));
-    let d = ns.dim();
+    let reduced = ReducedProblem::new(&system, &system.reference()).unwrap();
+    let (kr, mr) = (&reduced.stiffness, &reduced.mass);
+    let d = reduced.null_space.dim();
 
     let mut g = c.benchmark_group("eigen stages (built-in assembly, 40 x 40, 12 modes)");
     g.bench_function("1 Cholesky of M_r", |b| {
-        b.iter(|| Cholesky::factor(&mr).unwrap())
+        b.iter(|| Cholesky::factor(mr).unwrap())
     });
-    let l = Cholesky::factor(&mr).unwrap();
-    g.bench_function("2 C = L^-1 K_r L^-T", |b| b.iter(|| l.reduce(&kr)));
-    let cmat = l.reduce(&kr);
+    let l = Cholesky::factor(mr).unwrap();
+    g.bench_function("2 C = L^-1 K_r L^-T", |b| b.iter(|| l.reduce(kr)));
+    let cmat = l.reduce(kr);
     g.bench_function("3 Householder tridiagonalization", |b| {
         b.iter(|| HouseholderTridiagonal::new(cmat.clone(), d))
     });

@@ -5,10 +5,8 @@
 //! and M given, 12 modes) is timed too, to show its share of the modal call.
 
 use ancf_modal::analysis::eigen::solve_generalized;
-use ancf_modal::analysis::reduce::NullSpace;
-use ancf_modal::analysis::{modal_at_reference, ModalSettings};
+use ancf_modal::analysis::{modal_at_reference, ModalSettings, ReducedProblem};
 use ancf_modal::error::Source;
-use ancf_modal::system::Linearization;
 use ancf_modal::{Model, System};
 use criterion::{criterion_group, criterion_main, Criterion};
 
@@ -19,23 +17,6 @@ fn beam(elements: usize) -> Model {
         "material": {{"young": 127e9, "density": 8940}}}}]}}"#
     );
     Model::from_json(&json, Source::BuiltIn).unwrap()
-}
-
-/// K_r = NᵀKN and M_r = NᵀMN at the reference configuration.
-fn reduced_matrices(system: &System) -> (faer::Mat<f64>, faer::Mat<f64>) {
-    let n = system.ndof();
-    let at = Linearization {
-        q: &system.q0,
-        lambda: None,
-        time: 0.0,
-        load_scale: 0.0,
-    };
-    let mut k = faer::Mat::zeros(n, n);
-    system.tangent_stiffness(&at, &mut k);
-    let mut cq = faer::Mat::zeros(system.constraint_count(), n);
-    system.constraint_jacobian(&system.q0, &mut cq);
-    let ns = NullSpace::new(&cq);
-    (ns.project(&k), ns.project(system.mass().dense()))
 }
 
 fn bench(c: &mut Criterion) {
@@ -51,9 +32,10 @@ fn bench(c: &mut Criterion) {
     c.bench_function("modal: default model (from parsed model)", |b| {
         b.iter(|| modal_at_reference(&System::new(&model), &settings).unwrap())
     });
-    let (kr, mr) = reduced_matrices(&system);
+    let reduced = ReducedProblem::new(&system, &system.reference()).unwrap();
+    let (kr, mr) = (&reduced.stiffness, &reduced.mass);
     c.bench_function("modal: default model, eigen-solve only (12 of 40)", |b| {
-        b.iter(|| solve_generalized(&kr, &mr, 12).unwrap())
+        b.iter(|| solve_generalized(kr, mr, 12).unwrap())
     });
     let big = System::new(&beam(500));
     let mut group = c.benchmark_group("large");

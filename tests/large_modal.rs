@@ -26,13 +26,7 @@ fn check_shapes(system: &System, r: &ModalResult, what: &str) {
     let n = system.ndof();
     let m = system.mass_matrix();
     let mut k = Mat::zeros(n, n);
-    let at = ancf_modal::system::Linearization {
-        q: &system.q0,
-        lambda: None,
-        time: 0.0,
-        load_scale: 0.0,
-    };
-    system.tangent_stiffness(&at, &mut k);
+    system.tangent_stiffness(&system.reference(), &mut k);
     let mut cq = Mat::zeros(system.constraint_count(), n);
     system.constraint_jacobian(&system.q0, &mut cq);
     let ns = ancf_modal::analysis::reduce::NullSpace::new(&cq);

@@ -22,4 +22,5 @@ pub mod transient;
 
 pub use modal::{
     modal, modal_at_reference, EigenMethod, ModalResult, ModalSettings, Mode, ModeKind,
+    ReducedProblem,
 };

@@ -159,13 +159,38 @@ pub fn modal_at_reference(
     system: &System,
     settings: &ModalSettings,
 ) -> Result<ModalResult, AnalysisError> {
-    let at = Linearization {
-        q: &system.q0,
-        lambda: None,
-        time: 0.0,
-        load_scale: 0.0,
-    };
-    modal(system, &at, settings)
+    modal(system, &system.reference(), settings)
+}
+
+/// The problem linearized at a state and reduced to the free coordinates:
+/// N, an orthonormal basis of null(C_q); K_r = NᵀKN and M_r = NᵀMN (units
+/// of K and M per pair of reduced coordinates).
+#[derive(Debug, Clone)]
+pub struct ReducedProblem {
+    pub null_space: NullSpace,
+    pub stiffness: Mat<f64>,
+    pub mass: Mat<f64>,
+}
+
+impl ReducedProblem {
+    /// Tangent stiffness and constraint Jacobian at `at`, their null space,
+    /// the projections; fails if the constraints leave no free coordinate.
+    pub fn new(system: &System, at: &Linearization) -> Result<Self, AnalysisError> {
+        let n = system.ndof();
+        let mut k = Mat::zeros(n, n);
+        system.tangent_stiffness(at, &mut k);
+        let mut cq = Mat::zeros(system.constraint_count(), n);
+        system.constraint_jacobian(at.q, &mut cq);
+        let null_space = NullSpace::new(&cq);
+        if null_space.dim() == 0 {
+            return Err(AnalysisError::NoFreedom);
+        }
+        Ok(ReducedProblem {
+            stiffness: null_space.project(&k),
+            mass: null_space.project(system.mass().dense()),
+            null_space,
+        })
+    }
 }
 
 /// Modal analysis linearized at `at`.
@@ -175,17 +200,12 @@ pub fn modal(
     settings: &ModalSettings,
 ) -> Result<ModalResult, AnalysisError> {
     let n = system.ndof();
-    let mut k = Mat::zeros(n, n);
-    system.tangent_stiffness(at, &mut k);
     let mass = system.mass();
-    let mut cq = Mat::zeros(system.constraint_count(), n);
-    system.constraint_jacobian(at.q, &mut cq);
-    let ns = NullSpace::new(&cq);
-    if ns.dim() == 0 {
-        return Err(AnalysisError::NoFreedom);
-    }
-    let kr = ns.project(&k);
-    let mr = ns.project(mass.dense());
+    let ReducedProblem {
+        null_space: ns,
+        stiffness: kr,
+        mass: mr,
+    } = ReducedProblem::new(system, at)?;
     let eigen_error = |e: EigenFailure| match e {
         EigenFailure::SingularMass { direction } => {
             let full = ns.expand(&direction, n);

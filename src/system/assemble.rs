@@ -60,6 +60,17 @@ fn scatter_mat<const R: usize, const C: usize>(
 }
 
 impl System {
+    /// The unloaded reference state: q₀, zero multipliers, t = 0, applied
+    /// loads scaled by 0.
+    pub fn reference(&self) -> Linearization<'_> {
+        Linearization {
+            q: &self.q0,
+            lambda: None,
+            time: 0.0,
+            load_scale: 0.0,
+        }
+    }
+
     /// Constant mass matrix [SI: kg, kg m, kg m²] (a copy of the cached
     /// [`System::mass`]).
     pub fn mass_matrix(&self) -> Mat<f64> {
