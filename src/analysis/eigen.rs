@@ -36,7 +36,8 @@ pub struct GeneralizedEigen {
 pub enum Spectrum {
     /// Every eigenvalue, ascending.
     All(Vec<f64>),
-    /// Sturm counts of the tridiagonal form, and the largest |λ|.
+    /// Sturm counts of the tridiagonal form, and the largest |λ| (to a
+    /// relative 2⁻³⁰ unless it was among the wanted values).
     Counts { counts: SturmCounts, max_abs: f64 },
     /// Nothing beyond the returned values (a partial solver).
     Partial,

@@ -14,9 +14,9 @@
 //!    Cost 4n³/3 flops.
 //! 2. **The lowest `count` eigenvalues and the largest** of T by bisection
 //!    on Sturm counts ([`super::bisection`]), sixteen side by side, O(n) per
-//!    count and at most 54 counts each. The Sturm counts stay available afterwards,
-//!    so the number of eigenvalues in any interval (e.g. the zero
-//!    eigenvalues beyond those asked for) costs two counts.
+//!    count and at most 54 counts each. The Sturm counts stay available
+//!    afterwards, so the number of eigenvalues in any interval (e.g. the
+//!    zero eigenvalues beyond those asked for) costs two counts.
 //! 3. **Eigenvectors of the lowest `count` eigenvalues only**, by inverse
 //!    iteration on T ([`super::inverse_iteration`]), then back-transformed
 //!    x = Q y by the stored reflectors, all columns through each reflector
@@ -26,11 +26,11 @@
 //! absolute error of a small multiple of ε‖C‖, as the QR algorithm does.
 //! The vectors have residuals ‖Cx − λx‖ of order nε‖C‖ and are
 //! orthonormal to a few ε inside a cluster; across clusters (gap ≥
-//! 10⁻²‖C‖) orthogonality is of order ε‖C‖/gap ≤ 10²ε. A multiple eigenvalue — the
-//! three rigid-body modes of a free assembly sit at ~ε‖C‖ — gets an
-//! orthonormal basis of its invariant subspace rather than one vector
-//! repeated. The gain over the QR algorithm with vectors (6n³ flops for the
-//! rotations) is that only the wanted vectors are formed.
+//! 10⁻²‖C‖) orthogonality is of order ε‖C‖/gap ≤ 10²ε. A multiple
+//! eigenvalue — the three rigid-body modes of a free assembly sit at
+//! ~ε‖C‖ — gets an orthonormal basis of its invariant subspace rather than
+//! one vector repeated. The gain over the QR algorithm with vectors (6n³
+//! flops for the rotations) is that only the wanted pairs are computed.
 
 pub use super::bisection::SturmCounts;
 use super::eigen::EigenFailure;
