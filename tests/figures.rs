@@ -359,7 +359,7 @@ fn deformed_centre_line_is_the_ancf_interpolation_of_the_mode() {
         .of_kind(ModeKind::Bending)
         .map(|m| m.eigenvalue)
         .collect();
-    let skew = 100.0 * f64::EPSILON * lmax / (bending[1] - bending[0]);
+    let skew = 10.0 * f64::EPSILON * lmax / (bending[1] - bending[0]);
     let undeformed = &fig.undeformed.beams[0];
     for (p, p0) in drawn.iter().zip(undeformed) {
         assert!(
