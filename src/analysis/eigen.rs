@@ -193,12 +193,13 @@ impl Cholesky {
     /// None unless every pivot is positive and finite (lower triangle of m read).
     pub fn factor(m: &Mat<f64>) -> Option<Cholesky> {
         let n = m.nrows();
+        // first[i]: the leftmost nonzero of row i (a select, not a branch:
+        // the nonzero pattern is irregular and a branch mispredicts).
         let mut first: Vec<usize> = (0..n).collect();
         for j in (0..n).rev() {
-            for (i, &v) in m.col_as_slice(j).iter().enumerate().skip(j + 1) {
-                if v != 0.0 {
-                    first[i] = j;
-                }
+            let below = &m.col_as_slice(j)[j + 1..];
+            for (f, &v) in first[j + 1..].iter_mut().zip(below) {
+                *f = if v != 0.0 { j } else { *f };
             }
         }
         let mut l = vec![0.0; n * n];

@@ -75,10 +75,11 @@ impl NullSpace {
     pub fn project(&self, a: &Mat<f64>) -> Mat<f64> {
         let (f, k, n) = (self.free.len(), self.basis.ncols(), a.nrows());
         let mut out = Mat::zeros(f + k, f + k);
+        let runs = free_runs(&self.free);
         for (j, &gj) in self.free.iter().enumerate() {
-            let src = a.col_as_slice(gj);
-            for (dst, &gi) in out.col_as_slice_mut(j).iter_mut().zip(&self.free) {
-                *dst = src[gi];
+            let (src, dst) = (a.col_as_slice(gj), out.col_as_slice_mut(j));
+            for &(at, from, len) in &runs {
+                dst[at..at + len].copy_from_slice(&src[from..from + len]);
             }
         }
         if k == 0 {
@@ -97,8 +98,11 @@ impl NullSpace {
             }
         }
         for (c, col) in az.chunks_exact(n).enumerate() {
+            let dst = &mut out.col_as_slice_mut(f + c)[..f];
+            for &(at, from, len) in &runs {
+                dst[at..at + len].copy_from_slice(&col[from..from + len]);
+            }
             for (i, &gi) in self.free.iter().enumerate() {
-                out[(i, f + c)] = col[gi];
                 out[(f + c, i)] = col[gi];
             }
         }
@@ -150,6 +154,20 @@ impl NullSpace {
         }
         q
     }
+}
+
+/// Runs of consecutive coordinates in an ascending index list, as
+/// (position in the list, first coordinate, length): the free–free block of
+/// a projection is then a few contiguous copies per column.
+fn free_runs(free: &[usize]) -> Vec<(usize, usize, usize)> {
+    let mut runs: Vec<(usize, usize, usize)> = Vec::new();
+    for (i, &g) in free.iter().enumerate() {
+        match runs.last_mut() {
+            Some((at, from, len)) if *from + *len == g && *at + *len == i => *len += 1,
+            _ => runs.push((i, g, 1)),
+        }
+    }
+    runs
 }
 
 /// Orthonormal basis (d × (d − r)) of the vectors orthogonal to the r
