@@ -40,14 +40,22 @@ const MAX_INVERSE_STEPS: usize = 8;
 /// T − σⱼI = PⱼLⱼUⱼ for several shifts at once, by Gaussian elimination
 /// with partial pivoting (Uⱼ has two superdiagonals, Lⱼ is unit lower
 /// bidiagonal). Every array is row-major n × shifts, so the loops over the
-/// shifts are independent and vectorize; the pivot choice is a select.
+/// shifts are independent and vectorize; the pivot choice is a select on a
+/// bit mask, not a branch (it is data-dependent and would mispredict).
 struct MultiShiftLu {
     shifts: usize,
     inv_u0: Vec<f64>,
     u1: Vec<f64>,
     u2: Vec<f64>,
     mult: Vec<f64>,
-    swap: Vec<bool>,
+    /// All ones where rows i and i+1 were swapped, else zero.
+    swap: Vec<u64>,
+}
+
+/// `b` where `mask` is all ones, `a` where it is zero.
+#[inline(always)]
+fn select(mask: u64, a: f64, b: f64) -> f64 {
+    f64::from_bits((a.to_bits() & !mask) | (b.to_bits() & mask))
 }
 
 impl MultiShiftLu {
@@ -60,8 +68,10 @@ impl MultiShiftLu {
             u1: vec![0.0; n * w],
             u2: vec![0.0; n * w],
             mult: vec![0.0; n * w],
-            swap: vec![false; n * w],
+            swap: vec![0; n * w],
         };
+        // 1/U₀ is stored; a pivot below the floor counts as ±floor.
+        let big = 1.0 / floor;
         // The current row i of each factorization, at columns i and i+1.
         let mut a: Vec<f64> = shifts.iter().map(|s| t.diag[0] - s).collect();
         let mut b = vec![t.off.first().copied().unwrap_or(0.0); w];
@@ -74,33 +84,34 @@ impl MultiShiftLu {
                 &mut lu.u2[r.clone()],
             );
             let (mult, swap) = (&mut lu.mult[r.clone()], &mut lu.swap[r]);
+            let (a, b, shifts) = (&mut a[..w], &mut b[..w], &shifts[..w]);
             for j in 0..w {
                 let next = t.diag[i + 1] - shifts[j];
-                let sw = a[j].abs() < sub.abs();
-                let (piv, other) = if sw { (sub, a[j]) } else { (a[j], sub) };
-                let l = if piv == 0.0 { 0.0 } else { other / piv };
-                u0[j] = piv;
-                u1[j] = if sw { next } else { b[j] };
-                u2[j] = if sw { beyond } else { 0.0 };
-                (mult[j], swap[j]) = (l, sw);
-                let (na, nb) = if sw {
-                    (b[j] - l * next, -l * beyond)
+                let sw = u64::from(a[j].abs() < sub.abs()).wrapping_neg();
+                let piv = select(sw, a[j], sub);
+                let other = select(sw, sub, a[j]);
+                let inv = 1.0 / piv;
+                // A zero pivot has a zero column below it: no elimination.
+                let l = if piv == 0.0 { 0.0 } else { other * inv };
+                u0[j] = if piv.abs() >= floor {
+                    inv
                 } else {
-                    (next - l * b[j], beyond)
+                    big.copysign(piv)
                 };
-                (a[j], b[j]) = (na, nb);
+                u1[j] = select(sw, b[j], next);
+                u2[j] = select(sw, 0.0, beyond);
+                (mult[j], swap[j]) = (l, sw);
+                let na = select(sw, next - l * b[j], b[j] - l * next);
+                b[j] = select(sw, beyond, -l * beyond);
+                a[j] = na;
             }
         }
-        lu.inv_u0[(n - 1) * w..].copy_from_slice(&a);
-        for u in &mut lu.inv_u0 {
-            let floored = if u.abs() >= floor {
-                *u
-            } else if *u < 0.0 {
-                -floor
+        for (u, &piv) in lu.inv_u0[(n - 1) * w..].iter_mut().zip(&a) {
+            *u = if piv.abs() >= floor {
+                1.0 / piv
             } else {
-                floor
+                big.copysign(piv)
             };
-            *u = 1.0 / floored;
         }
         lu
     }
@@ -116,11 +127,8 @@ impl MultiShiftLu {
                 &self.swap[i * w..(i + 1) * w],
             );
             for j in 0..w {
-                let (p, q) = if swap[j] {
-                    (bottom[j], top[j])
-                } else {
-                    (top[j], bottom[j])
-                };
+                let p = select(swap[j], top[j], bottom[j]);
+                let q = select(swap[j], bottom[j], top[j]);
                 top[j] = p;
                 bottom[j] = q - mult[j] * p;
             }
@@ -209,40 +217,84 @@ pub fn tridiagonal_eigenvectors(t: &Tridiagonal, values: &[f64]) -> Result<Vec<f
 
 /// Orthonormalize the columns of the row-major n × w block `y` in order,
 /// each against the earlier columns of its cluster (classical Gram–Schmidt,
-/// twice), through the column-major scratch `cols`; returns in `norms` each
-/// column's norm after orthogonalization, before normalization.
+/// twice, on column copies in the scratch `cols`); returns in `norms` each
+/// column's norm after orthogonalization, before normalization. A column
+/// alone in its cluster is only normalized, in place.
 fn orthonormalize(y: &mut [f64], cols: &mut [f64], cluster: &[usize], norms: &mut [f64]) {
     let w = cluster.len();
     let n = y.len() / w;
+    norms.fill(0.0);
+    for row in y.chunks_exact(w) {
+        norms.iter_mut().zip(row).for_each(|(s, v)| *s += v * v);
+    }
+    norms.iter_mut().for_each(|s| *s = s.sqrt());
+    let mut start = 0;
+    while start < w {
+        let end = (start + 1..w)
+            .find(|&j| cluster[j] != cluster[start])
+            .unwrap_or(w);
+        if end - start > 1 {
+            orthonormalize_cluster(y, &mut cols[..n * (end - start)], start..end, norms);
+        }
+        start = end;
+    }
+    // Clustered columns are normalized already (their norms are ≠ 1 only in
+    // the report); scale the others.
+    let scale: Vec<f64> = (0..w)
+        .map(|j| {
+            let alone = cluster[j] == j && cluster.get(j + 1) != Some(&j);
+            if alone {
+                1.0 / norms[j]
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    for row in y.chunks_exact_mut(w) {
+        row.iter_mut().zip(&scale).for_each(|(v, s)| *v *= s);
+    }
+}
+
+/// CGS2 of the columns `range` of the row-major block `y` (one cluster),
+/// through column-major copies in `cols`; norms after orthogonalization go
+/// to `norms[range]`.
+fn orthonormalize_cluster(
+    y: &mut [f64],
+    cols: &mut [f64],
+    range: std::ops::Range<usize>,
+    norms: &mut [f64],
+) {
+    let n = cols.len() / range.len();
+    let w = y.len() / n;
+    let first = range.start;
     for (i, row) in y.chunks_exact(w).enumerate() {
-        for (j, &v) in row.iter().enumerate() {
-            cols[j * n + i] = v;
+        for (c, &v) in row[range.clone()].iter().enumerate() {
+            cols[c * n + i] = v;
         }
     }
-    let mut coef = vec![0.0; w];
-    for j in 0..w {
-        let (done, rest) = cols.split_at_mut(j * n);
+    let mut coef = vec![0.0; range.len()];
+    for c in 0..range.len() {
+        let (earlier, rest) = cols.split_at_mut(c * n);
         let x = &mut rest[..n];
-        let earlier = &done[cluster[j] * n..];
-        let coef = &mut coef[..j - cluster[j]];
+        let coef = &mut coef[..c];
         for _ in 0..2 {
             // All coefficients against the same x (independent dots), then
             // one pass of updates.
-            for (c, q) in coef.iter_mut().zip(earlier.chunks_exact(n)) {
-                *c = dot(q, x);
+            for (k, q) in coef.iter_mut().zip(earlier.chunks_exact(n)) {
+                *k = dot(q, x);
             }
-            for (&c, q) in coef.iter().zip(earlier.chunks_exact(n)) {
-                x.iter_mut().zip(q).for_each(|(a, b)| *a -= c * b);
+            for (&k, q) in coef.iter().zip(earlier.chunks_exact(n)) {
+                x.iter_mut().zip(q).for_each(|(a, b)| *a -= k * b);
             }
         }
         let norm = dot(x, x).sqrt();
-        norms[j] = norm;
+        norms[first + c] = norm;
         let inv = 1.0 / norm;
         x.iter_mut().for_each(|a| *a *= inv);
     }
     for (i, row) in y.chunks_exact_mut(w).enumerate() {
-        for (j, v) in row.iter_mut().enumerate() {
-            *v = cols[j * n + i];
+        for (c, v) in row[range.clone()].iter_mut().enumerate() {
+            *v = cols[c * n + i];
         }
     }
 }
@@ -251,14 +303,15 @@ fn orthonormalize(y: &mut [f64], cols: &mut [f64], cluster: &[usize], norms: &mu
 /// column, different for every column), row-major n × w.
 fn start_block(n: usize, w: usize) -> Vec<f64> {
     const SCALE: f64 = 1.0 / (1u64 << 53) as f64;
-    (0..n * w)
-        .map(|k| {
-            let (i, j) = ((k / w) as u64, (k % w) as u64);
-            let h = (i + 1)
-                .wrapping_mul(0x9e37_79b9_7f4a_7c15)
-                .wrapping_add((j + 1).wrapping_mul(0xbf58_476d_1ce4_e5b9));
+    let mut y = Vec::with_capacity(n * w);
+    for i in 1..=n as u64 {
+        let hi = i.wrapping_mul(0x9e37_79b9_7f4a_7c15);
+        y.extend((1..=w as u64).map(|j| {
+            let h = hi.wrapping_add(j.wrapping_mul(0xbf58_476d_1ce4_e5b9));
             let h = (h ^ (h >> 29)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            (h >> 11) as f64 * SCALE - 0.5
-        })
-        .collect()
+            // h >> 11 < 2⁵³ converts exactly, and as i64 in one instruction.
+            ((h >> 11) as i64) as f64 * SCALE - 0.5
+        }));
+    }
+    y
 }
