@@ -31,31 +31,31 @@ impl NullSpace {
     /// Null space of C_q (m × n).
     pub fn new(cq: &Mat<f64>) -> NullSpace {
         let (m, n) = (cq.nrows(), cq.ncols());
-        let mut touched = vec![false; n];
-        for i in 0..m {
-            for j in 0..n {
-                if cq[(i, j)] != 0.0 {
-                    touched[j] = true;
-                }
-            }
-        }
+        // Column j of C_q is contiguous (column-major): touched if any entry is nonzero.
+        let touched: Vec<bool> = (0..n)
+            .map(|j| cq.col_as_slice(j).iter().any(|&v| v != 0.0))
+            .collect();
         let involved: Vec<usize> = (0..n).filter(|&j| touched[j]).collect();
         let free: Vec<usize> = (0..n).filter(|&j| !touched[j]).collect();
         let d = involved.len();
-        // Normalized rows restricted to the involved coordinates.
-        let a = Mat::from_fn(m, d, |i, k| cq[(i, involved[k])]);
-        let norms: Vec<f64> = (0..m)
-            .map(|i| (0..d).map(|k| a[(i, k)].powi(2)).sum::<f64>().sqrt())
-            .collect();
-        let a = Mat::from_fn(m, d, |i, k| {
-            if norms[i] > 0.0 {
-                a[(i, k)] / norms[i]
-            } else {
-                0.0
+        // Rows restricted to the involved coordinates and normalized,
+        // row-major m × d.
+        let mut rows = vec![0.0; m * d];
+        for (k, &g) in involved.iter().enumerate() {
+            for (i, &v) in cq.col_as_slice(g).iter().enumerate() {
+                rows[i * d + k] = v;
             }
-        });
-        let redundant_rows = dependent_rows(&a);
-        let basis = null_basis(&a, &redundant_rows);
+        }
+        for row in rows.chunks_exact_mut(d.max(1)) {
+            // (A zero row stays zero and counts as dependent below.)
+            let norm = dot(row, row).sqrt();
+            if norm > 0.0 {
+                let inv = 1.0 / norm;
+                row.iter_mut().for_each(|v| *v *= inv);
+            }
+        }
+        let redundant_rows = dependent_rows(&rows, m, d);
+        let basis = null_basis(&rows, d, &redundant_rows);
         NullSpace {
             free,
             involved,
@@ -171,32 +171,33 @@ fn free_runs(free: &[usize]) -> Vec<(usize, usize, usize)> {
 }
 
 /// Orthonormal basis (d × (d − r)) of the vectors orthogonal to the r
-/// independent rows of `a` (m × d): Householder QR of those rows as columns,
-/// B = Q R, whose last d − r columns of Q are the basis.
-fn null_basis(a: &Mat<f64>, dependent: &[usize]) -> Mat<f64> {
-    let d = a.ncols();
-    let mut columns: Vec<Vec<f64>> = (0..a.nrows())
-        .filter(|i| !dependent.contains(i))
-        .map(|i| (0..d).map(|k| a[(i, k)]).collect())
-        .collect();
-    let r = columns.len();
-    // Reflector j acts on entries j…d−1: (vⱼ, βⱼ).
-    let mut reflectors: Vec<(Vec<f64>, f64)> = Vec::with_capacity(r);
+/// independent rows of the row-major m × d block `rows`: Householder QR of
+/// those rows as columns, B = Q R, whose last d − r columns of Q are the
+/// basis.
+fn null_basis(rows: &[f64], d: usize, dependent: &[usize]) -> Mat<f64> {
+    // The independent rows, each the column of B it becomes (d long).
+    let m = rows.len().checked_div(d).unwrap_or(0);
+    let mut b: Vec<f64> = Vec::with_capacity(rows.len());
+    for i in (0..m).filter(|i| !dependent.contains(i)) {
+        b.extend_from_slice(&rows[i * d..(i + 1) * d]);
+    }
+    let r = b.len().checked_div(d).unwrap_or(0);
+    // Reflector j acts on entries j…d−1 and stays in column j: (vⱼ, βⱼ).
+    let mut beta = vec![0.0; r];
     for j in 0..r {
-        let (done, rest) = columns.split_at_mut(j + 1);
-        let v = &mut done[j][j..];
-        let (_, beta) = reflector(v);
-        for other in rest {
-            householder_apply(v, beta, &mut other[j..]);
+        let (done, rest) = b.split_at_mut((j + 1) * d);
+        let v = &mut done[j * d + j..];
+        beta[j] = reflector(v).1;
+        for other in rest.chunks_exact_mut(d) {
+            householder_apply(v, beta[j], &mut other[j..]);
         }
-        reflectors.push((v.to_vec(), beta));
     }
     let mut basis = Mat::zeros(d, d - r);
     for c in 0..d - r {
         let q = basis.col_as_slice_mut(c);
         q[r + c] = 1.0;
-        for (j, (v, beta)) in reflectors.iter().enumerate().rev() {
-            householder_apply(v, *beta, &mut q[j..]);
+        for j in (0..r).rev() {
+            householder_apply(&b[j * d + j..(j + 1) * d], beta[j], &mut q[j..]);
         }
     }
     basis
@@ -208,25 +209,25 @@ fn householder_apply(v: &[f64], beta: f64, x: &mut [f64]) {
     x.iter_mut().zip(v).for_each(|(xi, vi)| *xi -= s * vi);
 }
 
-/// Rows of a (row-normalized) matrix that depend on earlier rows (modified
-/// Gram–Schmidt in row order).
-fn dependent_rows(a: &Mat<f64>) -> Vec<usize> {
-    let (m, d) = (a.nrows(), a.ncols());
-    let mut basis: Vec<Vec<f64>> = Vec::new();
+/// Rows of a row-normalized, row-major m × d block that depend on earlier
+/// rows (modified Gram–Schmidt in row order, twice).
+fn dependent_rows(rows: &[f64], m: usize, d: usize) -> Vec<usize> {
+    let mut basis: Vec<f64> = Vec::with_capacity(rows.len());
     let mut dependent = Vec::new();
+    let mut r = vec![0.0; d];
     for i in 0..m {
-        let mut r: Vec<f64> = (0..d).map(|k| a[(i, k)]).collect();
+        r.copy_from_slice(&rows[i * d..(i + 1) * d]);
         for _ in 0..2 {
-            for b in &basis {
-                let p: f64 = r.iter().zip(b).map(|(x, y)| x * y).sum();
+            for b in basis.chunks_exact(d) {
+                let p = dot(&r, b);
                 r.iter_mut().zip(b).for_each(|(x, y)| *x -= p * y);
             }
         }
-        let norm = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let norm = dot(&r, &r).sqrt();
         if norm <= RANK_TOLERANCE.sqrt() {
             dependent.push(i);
         } else {
-            basis.push(r.into_iter().map(|x| x / norm).collect());
+            basis.extend(r.iter().map(|x| x / norm));
         }
     }
     dependent
