@@ -281,9 +281,11 @@ impl CableElement {
     }
 
     /// Tangent stiffness `∂Q_s/∂e` split into its axial and bending parts,
-    /// each added into its buffer (pass the same buffer twice for the sum).
+    /// each added into its buffer. Both parts are symmetric: the node blocks
+    /// (i, j ≥ i) are summed over the quadrature points and mirrored once.
     pub fn tangent_parts_into(&self, e: &Vec8, axial: &mut Mat8, bending: &mut Mat8) {
         let CableSection { ea, ei, .. } = self.section;
+        let mut ka = [[Matrix2::zeros(); 4]; 4];
         for qp in &self.axial {
             let r1 = combine(e, &qp.d1);
             let l = r1.norm();
@@ -291,21 +293,40 @@ impl CableElement {
             let eps = l - 1.0;
             let ttt = t * t.transpose();
             let a = (ttt + (Matrix2::identity() - ttt) * (eps / l)) * (qp.w * ea);
-            add_kron(axial, &qp.d1, &qp.d1, &a);
+            for (i, row) in ka.iter_mut().enumerate() {
+                for (j, blk) in row.iter_mut().enumerate().skip(i) {
+                    *blk += a * (qp.d1[i] * qp.d1[j]);
+                }
+            }
         }
+        let mut kb = [[Matrix2::zeros(); 4]; 4];
         for qp in &self.bending {
             let b = BendingPoint::new(e, qp);
+            // Block (i, j): c [gᵢgⱼᵀ + κ (d1ᵢd1ⱼ H11 + d1ᵢd2ⱼ H12 + d2ᵢd1ⱼ H12ᵀ)]
+            // with gᵢ = p d1ᵢ + q d2ᵢ; the j-dependent part of the first two
+            // Hessian terms is uⱼ = cκ (d1ⱼ H11 + d2ⱼ H12), formed once per j.
             let c = qp.w * ei;
+            let g: [Vector2<f64>; 4] = std::array::from_fn(|i| b.p * qp.d1[i] + b.q * qp.d2[i]);
+            let (a11, a12) = (b.h11 * (c * b.kappa), b.h12 * (c * b.kappa));
+            let a21 = a12.transpose();
+            let u: [Matrix2<f64>; 4] = std::array::from_fn(|j| a11 * qp.d1[j] + a12 * qp.d2[j]);
             for i in 0..4 {
-                let gi = b.p * qp.d1[i] + b.q * qp.d2[i];
-                for j in 0..4 {
-                    let gj = b.p * qp.d1[j] + b.q * qp.d2[j];
-                    let h = b.h11 * (qp.d1[i] * qp.d1[j])
-                        + b.h12 * (qp.d1[i] * qp.d2[j])
-                        + b.h12.transpose() * (qp.d2[i] * qp.d1[j]);
-                    let blk = (gi * gj.transpose() + h * b.kappa) * c;
-                    let mut dst = bending.fixed_view_mut::<2, 2>(2 * i, 2 * j);
+                let cg = g[i] * c;
+                for j in i..4 {
+                    kb[i][j] +=
+                        cg * g[j].transpose() + u[j] * qp.d1[i] + a21 * (qp.d2[i] * qp.d1[j]);
+                }
+            }
+        }
+        for (out, k) in [(axial, &ka), (bending, &kb)] {
+            for (i, row) in k.iter().enumerate() {
+                for (j, blk) in row.iter().enumerate().skip(i) {
+                    let mut dst = out.fixed_view_mut::<2, 2>(2 * i, 2 * j);
                     dst += blk;
+                    if j > i {
+                        let mut mirror = out.fixed_view_mut::<2, 2>(2 * j, 2 * i);
+                        mirror += blk.transpose();
+                    }
                 }
             }
         }
@@ -404,17 +425,6 @@ impl BendingPoint {
             q,
             h11,
             h12,
-        }
-    }
-}
-
-/// out[2i.., 2j..] += a_i b_j · blk for the 4×4 node blocks.
-#[inline]
-fn add_kron(out: &mut Mat8, a: &Vector4<f64>, b: &Vector4<f64>, blk: &Matrix2<f64>) {
-    for i in 0..4 {
-        for j in 0..4 {
-            let mut dst = out.fixed_view_mut::<2, 2>(2 * i, 2 * j);
-            dst += blk * (a[i] * b[j]);
         }
     }
 }
