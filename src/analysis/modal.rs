@@ -252,10 +252,7 @@ pub fn modal(
         .count_within(tol)
         .unwrap_or_else(|| eig.values.iter().filter(|v| v.abs() <= tol).count());
     let shapes: Vec<Vec<f64>> = (0..count)
-        .map(|i| {
-            let xr: Vec<f64> = (0..dim).map(|r| eig.vectors[(r, i)]).collect();
-            ns.expand(&xr, n)
-        })
+        .map(|i| ns.expand(eig.vectors.col_as_slice(i), n))
         .collect();
     // Rayleigh quotients with the cancellation-free energy form, for the
     // modes above the solver's noise bound: the dense solver's ω² carries an

@@ -106,14 +106,17 @@ impl NullSpace {
                 out[(f + c, i)] = col[gi];
             }
         }
-        let zaz = |c1: usize, c2: usize| -> f64 {
-            let col = &az[c2 * n..(c2 + 1) * n];
-            self.involved
-                .iter()
-                .enumerate()
-                .map(|(r, &g)| self.basis[(r, c1)] * col[g])
-                .sum()
-        };
+        // (AZ) restricted to the involved rows, d × k column-major; then
+        // ZᵀAZ from contiguous dot products, symmetrized.
+        let d = self.involved.len();
+        let mut az_inv = vec![0.0; d * k];
+        for (dst, col) in az_inv.chunks_exact_mut(d).zip(az.chunks_exact(n)) {
+            for (t, &g) in dst.iter_mut().zip(&self.involved) {
+                *t = col[g];
+            }
+        }
+        let zaz =
+            |c1: usize, c2: usize| dot(self.basis.col_as_slice(c1), &az_inv[c2 * d..(c2 + 1) * d]);
         for c1 in 0..k {
             for c2 in 0..=c1 {
                 let v = 0.5 * (zaz(c1, c2) + zaz(c2, c1));
