@@ -1,5 +1,6 @@
 //! Analyses on an assembled [`crate::System`].
 
+mod back_transform;
 pub mod band;
 pub mod bisection;
 pub mod calibrate;

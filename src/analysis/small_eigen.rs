@@ -19,8 +19,8 @@
 //!    zero eigenvalues beyond those asked for) costs two counts.
 //! 3. **Eigenvectors of the lowest `count` eigenvalues only**, by inverse
 //!    iteration on T ([`super::inverse_iteration`]), then back-transformed
-//!    x = Q y by the stored reflectors, all columns through each reflector
-//!    together (2n² flops a vector).
+//!    x = Q y by the stored reflectors, four at a time in the compact WY
+//!    form ([`super::back_transform`]; 2n² flops a vector).
 //!
 //! Accuracy: every step is backward stable, so the eigenvalues carry an
 //! absolute error of a small multiple of ε‖C‖, as the QR algorithm does.
@@ -32,6 +32,7 @@
 //! one vector repeated. The gain over the QR algorithm with vectors (6n³
 //! flops for the rotations) is that only the wanted pairs are computed.
 
+use super::back_transform::{apply_q, Reflectors};
 pub use super::bisection::SturmCounts;
 use super::eigen::EigenFailure;
 pub use super::inverse_iteration::{tridiagonal_eigenvectors, CLUSTER_GAP};
@@ -104,26 +105,14 @@ impl HouseholderTridiagonal {
     }
 
     /// Y ← Q Y for a row-major n × w block: eigenvectors of T become
-    /// eigenvectors of C. All columns go through each reflector together.
+    /// eigenvectors of C ([`super::back_transform`]).
     pub fn apply_q(&self, y: &mut [f64], w: usize) {
-        let n = self.n;
-        let mut s = vec![0.0; w];
-        for k in (0..n.saturating_sub(1)).rev() {
-            let b = self.beta[k];
-            if b == 0.0 {
-                continue;
-            }
-            let v = &self.reflectors[k * n + k + 1..(k + 1) * n];
-            let rows = &mut y[(k + 1) * w..n * w];
-            s.fill(0.0);
-            for (row, &vi) in rows.chunks_exact(w).zip(v) {
-                s.iter_mut().zip(row).for_each(|(a, r)| *a += vi * r);
-            }
-            s.iter_mut().for_each(|a| *a *= b);
-            for (row, &vi) in rows.chunks_exact_mut(w).zip(v) {
-                row.iter_mut().zip(&s).for_each(|(r, a)| *r -= vi * a);
-            }
-        }
+        let reflectors = Reflectors {
+            n: self.n,
+            vectors: &self.reflectors,
+            beta: &self.beta,
+        };
+        apply_q(&reflectors, y, w);
     }
 }
 
