@@ -16,6 +16,8 @@
 //! Both are backward stable like the single reflectors: the result differs
 //! from theirs by rounding only (a few ε‖Y‖).
 
+use super::fused::{self, madd};
+
 /// Reflectors per block.
 const BLOCK: usize = 4;
 
@@ -66,7 +68,7 @@ pub(crate) fn apply_q(r: &Reflectors, y: &mut [f64], w: usize) {
     let m = r.n.saturating_sub(1);
     let ts: Vec<[[f64; BLOCK]; BLOCK]> = (0..m / BLOCK).map(|b| r.block_t(BLOCK * b)).collect();
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+    if fused::available() {
         // SAFETY: the CPU has the features the function is compiled for.
         unsafe { apply_q_fma(r, &ts, y, w) };
         return;
@@ -120,16 +122,6 @@ fn tile_through<const TW: usize, const FMA: bool>(
     }
     for (b, t) in ts.iter().enumerate().rev() {
         block::<TW, FMA>(r, BLOCK * b, t, y, w, c0);
-    }
-}
-
-/// a·b + c, fused or not.
-#[inline(always)]
-fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
-    if FMA {
-        a.mul_add(b, c)
-    } else {
-        a * b + c
     }
 }
 

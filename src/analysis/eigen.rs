@@ -260,7 +260,7 @@ impl Cholesky {
         for r in 0..n {
             y.extend_from_slice(k.col_as_slice(r));
         }
-        self.forward_rows(&mut y, n, |_| 0);
+        self.forward_rows(&mut y, n, false);
         // y row-major is Yᵀ column-major; transpose so rows of Yᵀ are contiguous.
         let mut c = vec![0.0; n * n];
         for (i, row) in y.chunks_exact(n).enumerate() {
@@ -268,36 +268,35 @@ impl Cholesky {
                 c[j * n + i] = v;
             }
         }
-        self.forward_rows(&mut c, n, |r| r);
+        self.forward_rows(&mut c, n, true);
         c
     }
 
-    /// B ← L⁻¹ B for a row-major n × w block, row r only from column
-    /// `from(r)` on (`from` non-decreasing). Sources are taken four rows at
-    /// a time, subtracted in order, so the rounding is that of one axpy per
-    /// source row with a quarter of the loads and stores of the target.
-    fn forward_rows(&self, b: &mut [f64], w: usize, from: impl Fn(usize) -> usize) {
+    /// B ← L⁻¹ B for a row-major n × w block, row r from column 0 on, or
+    /// from column r on (`lower`). Row r's columns go in tiles of up to
+    /// eight held in registers while every source row k (L's envelope) is
+    /// subtracted in order, so the rounding is that of one axpy per source
+    /// row, with one load and store of the target per tile.
+    fn forward_rows(&self, b: &mut [f64], w: usize, lower: bool) {
         for r in 0..self.n {
-            let c0 = from(r);
             let (done, rest) = b.split_at_mut(r * w);
-            let target = &mut rest[c0..w];
-            let len = target.len();
-            let src = |k: usize| &done[k * w + c0..k * w + c0 + len];
-            let row = self.row(r);
-            let mut k = self.first[r];
-            while k + 4 <= r {
-                let (l0, l1, l2, l3) = (row[k], row[k + 1], row[k + 2], row[k + 3]);
-                let (s0, s1, s2, s3) = (src(k), src(k + 1), src(k + 2), src(k + 3));
-                for j in 0..len {
-                    target[j] = (((target[j] - l0 * s0[j]) - l1 * s1[j]) - l2 * s2[j]) - l3 * s3[j];
-                }
-                k += 4;
+            let first = self.first[r];
+            let rows = Sources {
+                done,
+                w,
+                first,
+                coef: &self.row(r)[first..r],
+                inv: self.inv_diag[r],
+            };
+            let mut col = if lower { r } else { 0 };
+            while col < w {
+                let target = &mut rest[col..w];
+                col += match target.len() {
+                    8.. => rows.tile::<8>(target, col),
+                    4..=7 => rows.tile::<4>(target, col),
+                    _ => rows.tile::<1>(target, col),
+                };
             }
-            for (k, &l) in row.iter().enumerate().take(r).skip(k) {
-                target.iter_mut().zip(src(k)).for_each(|(t, s)| *t -= l * s);
-            }
-            let inv = self.inv_diag[r];
-            target.iter_mut().for_each(|t| *t *= inv);
         }
     }
 
@@ -316,6 +315,36 @@ impl Cholesky {
                 }
             }
         }
+    }
+}
+
+/// The rows already solved in [`Cholesky::forward_rows`] and the
+/// coefficients of row r on them: L[r, first..r] and 1/L[r, r].
+struct Sources<'a> {
+    done: &'a [f64],
+    w: usize,
+    first: usize,
+    coef: &'a [f64],
+    inv: f64,
+}
+
+impl Sources<'_> {
+    /// target[..TW] ← (target − Σₖ L[r,k] B[k, col..col+TW]) / L[r,r];
+    /// returns TW.
+    #[inline(always)]
+    fn tile<const TW: usize>(&self, target: &mut [f64], col: usize) -> usize {
+        let mut acc = [0.0; TW];
+        acc.copy_from_slice(&target[..TW]);
+        for (i, &l) in self.coef.iter().enumerate() {
+            let s = &self.done[(self.first + i) * self.w + col..][..TW];
+            for t in 0..TW {
+                acc[t] -= l * s[t];
+            }
+        }
+        for t in 0..TW {
+            target[t] = acc[t] * self.inv;
+        }
+        TW
     }
 }
 

@@ -7,6 +7,7 @@ pub mod calibrate;
 pub mod dispersion;
 pub mod eigen;
 pub mod frame;
+mod fused;
 pub mod impulse;
 pub mod inverse_iteration;
 pub mod lanczos;
