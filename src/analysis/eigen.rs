@@ -276,8 +276,25 @@ impl Cholesky {
     /// from column r on (`lower`). Row r's columns go in tiles of up to
     /// eight held in registers while every source row k (L's envelope) is
     /// subtracted in order, so the rounding is that of one axpy per source
-    /// row, with one load and store of the target per tile.
+    /// row, with one load and store of the target per tile. Multiply-adds
+    /// are fused where the CPU can ([`super::fused`]).
     fn forward_rows(&self, b: &mut [f64], w: usize, lower: bool) {
+        #[cfg(target_arch = "x86_64")]
+        if super::fused::available() {
+            // SAFETY: the CPU has the features the function is compiled for.
+            return unsafe { self.forward_rows_fma(b, w, lower) };
+        }
+        self.forward_rows_with::<false>(b, w, lower);
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    fn forward_rows_fma(&self, b: &mut [f64], w: usize, lower: bool) {
+        self.forward_rows_with::<true>(b, w, lower);
+    }
+
+    #[inline(always)]
+    fn forward_rows_with<const FMA: bool>(&self, b: &mut [f64], w: usize, lower: bool) {
         for r in 0..self.n {
             let (done, rest) = b.split_at_mut(r * w);
             let first = self.first[r];
@@ -292,9 +309,9 @@ impl Cholesky {
             while col < w {
                 let target = &mut rest[col..w];
                 col += match target.len() {
-                    8.. => rows.tile::<8>(target, col),
-                    4..=7 => rows.tile::<4>(target, col),
-                    _ => rows.tile::<1>(target, col),
+                    8.. => rows.tile::<8, FMA>(target, col),
+                    4..=7 => rows.tile::<4, FMA>(target, col),
+                    _ => rows.tile::<1, FMA>(target, col),
                 };
             }
         }
@@ -332,13 +349,13 @@ impl Sources<'_> {
     /// target[..TW] ← (target − Σₖ L[r,k] B[k, col..col+TW]) / L[r,r];
     /// returns TW.
     #[inline(always)]
-    fn tile<const TW: usize>(&self, target: &mut [f64], col: usize) -> usize {
+    fn tile<const TW: usize, const FMA: bool>(&self, target: &mut [f64], col: usize) -> usize {
         let mut acc = [0.0; TW];
         acc.copy_from_slice(&target[..TW]);
         for (i, &l) in self.coef.iter().enumerate() {
             let s = &self.done[(self.first + i) * self.w + col..][..TW];
             for t in 0..TW {
-                acc[t] -= l * s[t];
+                acc[t] = super::fused::madd::<FMA>(-l, s[t], acc[t]);
             }
         }
         for t in 0..TW {
