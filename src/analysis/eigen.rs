@@ -247,8 +247,7 @@ impl Cholesky {
     ///
     /// Both triangular solves run row by row on row-major blocks, Y = L⁻¹K
     /// as Y[r, :] = (K[r, :] − Σₖ L[r,k] Y[k, :]) / L[r,r] (K[r, :] = K[:, r]
-    /// by symmetry), then C = L⁻¹Yᵀ the same way: every operation is an
-    /// axpy of a row, and L's envelope limits k. In the second solve, row r
+    /// by symmetry), then C = L⁻¹Yᵀ the same way; L's envelope limits k. In the second solve, row r
     /// of C is formed from column r on only: C[r, r..] needs C[k, r..] of the
     /// earlier rows and nothing left of column r, and C[r, r..] read as
     /// column-major storage is the lower triangle. That halves the second

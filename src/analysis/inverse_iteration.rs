@@ -228,6 +228,8 @@ fn orthonormalize(y: &mut [f64], cols: &mut [f64], cluster: &[usize], norms: &mu
         norms.iter_mut().zip(row).for_each(|(s, v)| *s += v * v);
     }
     norms.iter_mut().for_each(|s| *s = s.sqrt());
+    // Lone columns are scaled below; clusters are orthonormalized here.
+    let mut scale = vec![1.0; w];
     let mut start = 0;
     while start < w {
         let end = (start + 1..w)
@@ -235,21 +237,11 @@ fn orthonormalize(y: &mut [f64], cols: &mut [f64], cluster: &[usize], norms: &mu
             .unwrap_or(w);
         if end - start > 1 {
             orthonormalize_cluster(y, &mut cols[..n * (end - start)], start..end, norms);
+        } else {
+            scale[start] = 1.0 / norms[start];
         }
         start = end;
     }
-    // Clustered columns are normalized already (their norms are ≠ 1 only in
-    // the report); scale the others.
-    let scale: Vec<f64> = (0..w)
-        .map(|j| {
-            let alone = cluster[j] == j && cluster.get(j + 1) != Some(&j);
-            if alone {
-                1.0 / norms[j]
-            } else {
-                1.0
-            }
-        })
-        .collect();
     for row in y.chunks_exact_mut(w) {
         row.iter_mut().zip(&scale).for_each(|(v, s)| *v *= s);
     }
