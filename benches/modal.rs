@@ -1,4 +1,6 @@
-//! Modal analysis speed: the built-in paper assembly and a 500-element beam.
+//! Modal analysis speed: the built-in paper assembly, the bare 8-element
+//! blade (the case Exudyn's dense eigen call is quoted for) and a
+//! 500-element beam.
 //! Run: `cargo bench --bench modal`.
 //!
 //! For the built-in assembly the generalized eigen-solve alone (reduced K
@@ -36,6 +38,19 @@ fn bench(c: &mut Criterion) {
     let (kr, mr) = (&reduced.stiffness, &reduced.mass);
     c.bench_function("modal: default model, eigen-solve only (12 of 40)", |b| {
         b.iter(|| solve_generalized(kr, mr, 12).unwrap())
+    });
+    // The bare 8-element blade, free-free: Exudyn's dense-call comparison case.
+    let bare = System::new(&beam(8));
+    c.bench_function(
+        "modal: bare 8-element beam (36 coordinates, 12 modes)",
+        |b| b.iter(|| modal_at_reference(&bare, &settings).unwrap()),
+    );
+    let all = ModalSettings {
+        modes: None,
+        ..settings
+    };
+    c.bench_function("modal: bare 8-element beam, all 36 modes", |b| {
+        b.iter(|| modal_at_reference(&bare, &all).unwrap())
     });
     let big = System::new(&beam(500));
     let mut group = c.benchmark_group("large");
