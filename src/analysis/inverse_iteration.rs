@@ -10,7 +10,8 @@
 //! vectorize, from fixed quasi-random start vectors. Eigenvalues closer than
 //! [`CLUSTER_GAP`]·‖T‖ to their neighbour form a cluster: after every solve
 //! each vector is orthogonalized against the earlier vectors of its cluster
-//! (classical Gram–Schmidt, twice) and normalized, and repeated shifts inside
+//! (classical Gram–Schmidt; a second pass where the first cancelled much of
+//! the vector, the DGKS criterion) and normalized, and repeated shifts inside
 //! a cluster are moved apart by 2ε‖T‖ so that each has its own
 //! factorization. Iteration stops as soon as every vector grew to
 //! ‖y‖ ≥ 1/(10nε), i.e. a residual ‖(T − σI)ŷ‖ ≤ 10nε‖T‖; with eigenvalues
@@ -33,6 +34,10 @@ use super::small_eigen::{dot, Tridiagonal};
 /// Eigenvalues closer than this fraction of ‖T‖∞ share a cluster (their
 /// inverse-iteration vectors are orthogonalized against each other).
 pub const CLUSTER_GAP: f64 = 1e-2;
+
+/// A Gram–Schmidt pass that leaves less than this fraction of a vector's
+/// norm is repeated (DGKS criterion).
+const REORTHOGONALIZE: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
 /// Inverse-iteration steps allowed before giving up.
 const MAX_INVERSE_STEPS: usize = 8;
@@ -247,9 +252,12 @@ fn orthonormalize(y: &mut [f64], cols: &mut [f64], cluster: &[usize], norms: &mu
     }
 }
 
-/// CGS2 of the columns `range` of the row-major block `y` (one cluster),
-/// through column-major copies in `cols`; norms after orthogonalization go
-/// to `norms[range]`.
+/// Classical Gram–Schmidt of the columns `range` of the row-major block `y`
+/// (one cluster), through column-major copies in `cols`, with a second pass
+/// for a column whose first pass cancelled more than 1 − 1/√2 of its norm
+/// (Daniel, Gragg, Kaufman & Stewart, Math. Comp. 30 (1976) 772–795: twice
+/// is enough, once is enough without that cancellation). `norms[range]`
+/// holds the column norms before and, on return, after orthogonalization.
 fn orthonormalize_cluster(
     y: &mut [f64],
     cols: &mut [f64],
@@ -269,7 +277,12 @@ fn orthonormalize_cluster(
         let (earlier, rest) = cols.split_at_mut(c * n);
         let x = &mut rest[..n];
         let coef = &mut coef[..c];
-        for _ in 0..2 {
+        // The norm before orthogonalization (from the caller's pass).
+        let mut before = norms[first + c];
+        let mut norm = before;
+        // (The cluster's first column has nothing to be orthogonal to.)
+        let passes = if c == 0 { 0 } else { 2 };
+        for _ in 0..passes {
             // All coefficients against the same x (independent dots), then
             // one pass of updates.
             for (k, q) in coef.iter_mut().zip(earlier.chunks_exact(n)) {
@@ -278,8 +291,13 @@ fn orthonormalize_cluster(
             for (&k, q) in coef.iter().zip(earlier.chunks_exact(n)) {
                 x.iter_mut().zip(q).for_each(|(a, b)| *a -= k * b);
             }
+            norm = dot(x, x).sqrt();
+            // DGKS: a second pass only if this one cancelled much of x.
+            if norm >= REORTHOGONALIZE * before {
+                break;
+            }
+            before = norm;
         }
-        let norm = dot(x, x).sqrt();
         norms[first + c] = norm;
         let inv = 1.0 / norm;
         x.iter_mut().for_each(|a| *a *= inv);
