@@ -33,7 +33,7 @@ pub(crate) struct Reflectors<'a> {
 }
 
 impl Reflectors<'_> {
-    /// vₖ from row `from` (> k) on.
+    /// Column k of the storage from row `from` on (vₖ itself for from > k).
     fn v(&self, k: usize, from: usize) -> &[f64] {
         &self.vectors[k * self.n + from..(k + 1) * self.n]
     }
@@ -91,33 +91,29 @@ fn apply_q_tiles<const FMA: bool>(
     y: &mut [f64],
     w: usize,
 ) {
-    let m = r.n.saturating_sub(1);
-    let whole = BLOCK * ts.len();
     let mut c0 = 0;
     while c0 < w {
         match (w - c0).min(TILE) {
-            4 => tile_through::<4, FMA>(r, ts, whole, m, y, w, c0),
-            3 => tile_through::<3, FMA>(r, ts, whole, m, y, w, c0),
-            2 => tile_through::<2, FMA>(r, ts, whole, m, y, w, c0),
-            _ => tile_through::<1, FMA>(r, ts, whole, m, y, w, c0),
+            4 => tile_through::<4, FMA>(r, ts, y, w, c0),
+            3 => tile_through::<3, FMA>(r, ts, y, w, c0),
+            2 => tile_through::<2, FMA>(r, ts, y, w, c0),
+            _ => tile_through::<1, FMA>(r, ts, y, w, c0),
         }
         c0 += TILE;
     }
 }
 
-/// Columns c0…c0+TW−1 of y through reflectors m−1 … whole one by one, then
-/// blocks whole/BLOCK − 1 … 0.
+/// Columns c0…c0+TW−1 of y through the reflectors beyond the last whole
+/// block (n−2 down) one by one, then through the blocks, last first.
 #[inline(always)]
 fn tile_through<const TW: usize, const FMA: bool>(
     r: &Reflectors,
     ts: &[[[f64; BLOCK]; BLOCK]],
-    whole: usize,
-    m: usize,
     y: &mut [f64],
     w: usize,
     c0: usize,
 ) {
-    for k in (whole..m).rev() {
+    for k in (BLOCK * ts.len()..r.n.saturating_sub(1)).rev() {
         single::<TW, FMA>(r, k, y, w, c0);
     }
     for (b, t) in ts.iter().enumerate().rev() {
@@ -167,8 +163,8 @@ fn block<const TW: usize, const FMA: bool>(
     c0: usize,
 ) {
     let n = r.n;
-    let col = |j: usize| &r.vectors[(k0 + j) * n..(k0 + j + 1) * n];
-    let v = [col(0), col(1), col(2), col(3)];
+    // Whole columns, indexed by row.
+    let v: [&[f64]; BLOCK] = std::array::from_fn(|j| r.v(k0 + j, 0));
     // S = Vᵀ Y; the first three rows (k0+1…k0+3) meet 1, 2, 3 reflectors.
     let mut s = [[0.0; TW]; BLOCK];
     for row in k0 + 1..(k0 + BLOCK).min(n) {
@@ -229,10 +225,14 @@ mod tests {
 
     /// Reflectors of a pseudo-random n × n matrix's columns, stored as the
     /// tridiagonalization stores them (one column with v₀ = 1 per step).
+    /// Column 1 is zero below row 2, so H₁ = I (β₁ = 0) when n ≥ 4.
     fn reflectors(n: usize) -> (Vec<f64>, Vec<f64>) {
         let mut a: Vec<f64> = (0..n * n)
             .map(|i| ((i * 7919 % 1009) as f64 / 1009.0) - 0.5)
             .collect();
+        if n >= 4 {
+            a[n + 3..2 * n].fill(0.0);
+        }
         let mut beta = vec![0.0; n.saturating_sub(1)];
         for k in 0..n.saturating_sub(1) {
             beta[k] = reflector(&mut a[k * n + k + 1..(k + 1) * n]).1;
@@ -264,6 +264,7 @@ mod tests {
     fn blocked_application_equals_the_single_reflectors() {
         for n in [1, 2, 3, 5, 8, 9, 40] {
             let (vectors, beta) = reflectors(n);
+            assert!(n < 4 || beta[1] == 0.0, "n = {n}: H₁ is the identity");
             let r = Reflectors {
                 n,
                 vectors: &vectors,
@@ -281,9 +282,7 @@ mod tests {
                 let mut kernels = vec![("plain", y0.clone())];
                 apply_q_tiles::<false>(&r, &ts, &mut kernels[0].1, w);
                 #[cfg(target_arch = "x86_64")]
-                if std::arch::is_x86_feature_detected!("avx2")
-                    && std::arch::is_x86_feature_detected!("fma")
-                {
+                if fused::available() {
                     let mut y = y0.clone();
                     // SAFETY: the CPU has the features.
                     unsafe { apply_q_fma(&r, &ts, &mut y, w) };
