@@ -24,10 +24,12 @@ const BLOCK: usize = 4;
 /// Columns of Y per tile.
 const TILE: usize = 4;
 
-/// The stored reflectors: column k of the column-major n × n `vectors`,
-/// rows k+1…n−1, holds vₖ (first entry 1); `beta[k]` = βₖ (0 = identity).
+/// The stored reflectors: column k of the column-major `vectors` (column
+/// stride `ld` ≥ n), rows k+1…n−1, holds vₖ (first entry 1); `beta[k]` = βₖ
+/// (0 = identity).
 pub(crate) struct Reflectors<'a> {
     pub n: usize,
+    pub ld: usize,
     pub vectors: &'a [f64],
     pub beta: &'a [f64],
 }
@@ -35,7 +37,7 @@ pub(crate) struct Reflectors<'a> {
 impl Reflectors<'_> {
     /// Column k of the storage from row `from` on (vₖ itself for from > k).
     fn v(&self, k: usize, from: usize) -> &[f64] {
-        &self.vectors[k * self.n + from..(k + 1) * self.n]
+        &self.vectors[k * self.ld + from..k * self.ld + self.n]
     }
 
     /// T of H_{k0} ⋯ H_{k0+3} = I − V T Vᵀ (forward, columnwise, dlarft):
@@ -221,7 +223,7 @@ fn block<const TW: usize, const FMA: bool>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::small_eigen::reflector;
+    use crate::analysis::householder::reflector;
 
     /// Reflectors of a pseudo-random n × n matrix's columns, stored as the
     /// tridiagonalization stores them (one column with v₀ = 1 per step).
@@ -267,6 +269,7 @@ mod tests {
             assert!(n < 4 || beta[1] == 0.0, "n = {n}: H₁ is the identity");
             let r = Reflectors {
                 n,
+                ld: n,
                 vectors: &vectors,
                 beta: &beta,
             };

@@ -8,7 +8,8 @@
 //! rotational row [rad] and a positional row [m] weigh alike; constraints
 //! whose rows add nothing (e.g. a second clamp of the same node) are named.
 
-use super::small_eigen::{dot, reflector};
+use super::householder::reflector;
+use super::small_eigen::dot;
 use faer::Mat;
 
 /// Relative singular value below which a constraint row is dependent.

@@ -5,13 +5,11 @@
 //! Computations*, §5.1, §8.3, §8.2; Wilkinson, *The Algebraic Eigenvalue
 //! Problem*, ch. 9):
 //!
-//! 1. **Householder tridiagonalization** C = Q T Qᵀ on contiguous
-//!    column-major storage, reading the lower triangle only. Step k reflects
-//!    the part of column k below the diagonal onto its first entry and applies
-//!    the reflector to the trailing block as one symmetric rank-2 update
-//!    (p = βA v, w = p − ½β(pᵀv) v, A ← A − v wᵀ − w vᵀ). The reflector
-//!    vectors stay in the columns they annihilated; Q is never formed.
-//!    Cost 4n³/3 flops.
+//! 1. **Householder tridiagonalization** C = Q T Qᵀ
+//!    ([`super::householder`]): one reflector per column, applied to the
+//!    trailing block as a symmetric rank-2 update; the reflector vectors stay
+//!    in the columns they annihilated and Q is never formed. The matrix goes
+//!    in as its lower triangle, column-major.
 //! 2. **The lowest `count` eigenvalues and the largest** of T by bisection
 //!    on Sturm counts ([`super::bisection`]), sixteen side by side, O(n) per
 //!    count and at most 54 counts each. The Sturm counts stay available
@@ -32,9 +30,9 @@
 //! one vector repeated. The gain over the QR algorithm with vectors (6n³
 //! flops for the rotations) is that only the wanted pairs are computed.
 
-use super::back_transform::{apply_q, Reflectors};
 pub use super::bisection::SturmCounts;
 use super::eigen::EigenFailure;
+pub use super::householder::HouseholderTridiagonal;
 pub use super::inverse_iteration::{tridiagonal_eigenvectors, CLUSTER_GAP};
 
 /// A symmetric tridiagonal matrix.
@@ -58,140 +56,6 @@ impl Tridiagonal {
             })
             .fold(0.0, f64::max)
     }
-}
-
-/// C = Q T Qᵀ with Q = H₀H₁⋯H_{n−2}, Hₖ = I − βₖ vₖ vₖᵀ acting on rows k+1…n−1.
-#[derive(Debug, Clone)]
-pub struct HouseholderTridiagonal {
-    n: usize,
-    /// Column k, rows k+1…n−1, holds vₖ (first entry 1); column-major n × n.
-    reflectors: Vec<f64>,
-    /// βₖ (0 where no reflection was needed).
-    beta: Vec<f64>,
-    /// The tridiagonal T.
-    pub t: Tridiagonal,
-}
-
-impl HouseholderTridiagonal {
-    /// Reduce the symmetric n × n matrix `a` (column-major; only its lower
-    /// triangle is read), reusing its storage for the reflectors.
-    pub fn new(mut a: Vec<f64>, n: usize) -> Self {
-        assert_eq!(a.len(), n * n, "column-major n × n storage");
-        let mut diag = vec![0.0; n];
-        let mut off = vec![0.0; n.saturating_sub(1)];
-        let mut beta = vec![0.0; n.saturating_sub(1)];
-        let mut work = vec![0.0; n];
-        for k in 0..n.saturating_sub(1) {
-            let (head, tail) = a.split_at_mut((k + 1) * n);
-            let column = &mut head[k * n..];
-            diag[k] = column[k];
-            let v = &mut column[k + 1..];
-            let (alpha, b) = reflector(v);
-            off[k] = alpha;
-            beta[k] = b;
-            if b != 0.0 {
-                rank2_update(tail, n, k + 1, v, b, &mut work[..n - k - 1]);
-            }
-        }
-        if n > 0 {
-            diag[n - 1] = a[n * n - 1];
-        }
-        HouseholderTridiagonal {
-            n,
-            reflectors: a,
-            beta,
-            t: Tridiagonal { diag, off },
-        }
-    }
-
-    /// Y ← Q Y for a row-major n × w block: eigenvectors of T become
-    /// eigenvectors of C ([`super::back_transform`]).
-    pub fn apply_q(&self, y: &mut [f64], w: usize) {
-        let reflectors = Reflectors {
-            n: self.n,
-            vectors: &self.reflectors,
-            beta: &self.beta,
-        };
-        apply_q(&reflectors, y, w);
-    }
-}
-
-/// Overwrites x with v (v₀ = 1) such that (I − β v vᵀ) x = α e₁; returns (α, β).
-pub(crate) fn reflector(x: &mut [f64]) -> (f64, f64) {
-    let x0 = x[0];
-    let mut rest = dot(&x[1..], &x[1..]);
-    let mut scale = 1.0;
-    if rest != 0.0 && !(1e-250..=1e250).contains(&rest) {
-        // Sum of squares out of range: rescale by the largest entry.
-        scale = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        rest = x[1..].iter().map(|v| (v / scale).powi(2)).sum();
-    }
-    if rest == 0.0 {
-        x[0] = 1.0;
-        return (x0, 0.0);
-    }
-    let y0 = x0 / scale;
-    let norm = scale * (y0 * y0 + rest).sqrt();
-    let alpha = if x0 > 0.0 { -norm } else { norm };
-    let u0 = x0 - alpha;
-    let inv = 1.0 / u0;
-    x[0] = 1.0;
-    x[1..].iter_mut().for_each(|v| *v *= inv);
-    (alpha, -u0 / alpha)
-}
-
-/// A ← H A H on the trailing block (rows and columns `start`…n−1 of the
-/// column-major storage whose columns from `start` on are `tail`), lower
-/// triangle only.
-fn rank2_update(tail: &mut [f64], n: usize, start: usize, v: &[f64], beta: f64, p: &mut [f64]) {
-    let m = n - start;
-    // p = β A v from the lower triangle: column j gives A[j.., j]·v[j..] to
-    // p[j] and A[j+1.., j] v[j] to p[j+1..].
-    p.fill(0.0);
-    for j in 0..m {
-        let col = &tail[j * n + start + j..(j + 1) * n];
-        let vj = v[j];
-        let (pj, below) = p[j..].split_at_mut(1);
-        pj[0] += col[0] * vj + dot_axpy(&col[1..], &v[j + 1..], vj, below);
-    }
-    p.iter_mut().for_each(|x| *x *= beta);
-    let half = 0.5 * beta * dot(p, v);
-    p.iter_mut().zip(v).for_each(|(x, vi)| *x -= half * vi);
-    for j in 0..m {
-        let col = &mut tail[j * n + start + j..(j + 1) * n];
-        let (vj, wj) = (v[j], p[j]);
-        let len = col.len();
-        let (vs, ws) = (&v[j..j + len], &p[j..j + len]);
-        for i in 0..len {
-            col[i] -= vs[i] * wj + ws[i] * vj;
-        }
-    }
-}
-
-/// Returns a·x while adding a·alpha to y (one pass over a).
-fn dot_axpy(a: &[f64], x: &[f64], alpha: f64, y: &mut [f64]) -> f64 {
-    let len = a.len();
-    let (x, y) = (&x[..len], &mut y[..len]);
-    let (mut s0, mut s1, mut s2, mut s3) = (0.0, 0.0, 0.0, 0.0);
-    let split = len - len % 4;
-    let mut i = 0;
-    while i < split {
-        s0 += a[i] * x[i];
-        s1 += a[i + 1] * x[i + 1];
-        s2 += a[i + 2] * x[i + 2];
-        s3 += a[i + 3] * x[i + 3];
-        y[i] += a[i] * alpha;
-        y[i + 1] += a[i + 1] * alpha;
-        y[i + 2] += a[i + 2] * alpha;
-        y[i + 3] += a[i + 3] * alpha;
-        i += 4;
-    }
-    let mut s = (s0 + s2) + (s1 + s3);
-    for i in split..len {
-        s += a[i] * x[i];
-        y[i] += a[i] * alpha;
-    }
-    s
 }
 
 /// a·b with four partial sums (no serial chain of additions).
