@@ -200,6 +200,27 @@ fn triple_zero_eigenvalue_gets_an_orthonormal_basis() {
     assert_standard_pairs(&a, &e.values, &e.vectors, w, tol);
 }
 
+/// The zero count of the whole spectrum is the same whether the returned
+/// values reach past the zero cluster (counted among them) or not (Sturm
+/// counts of the tridiagonal form): three for a triple zero eigenvalue.
+#[test]
+fn zero_count_does_not_depend_on_how_many_values_were_returned() {
+    let n = 30;
+    let mut spectrum = vec![0.0; 3];
+    spectrum.extend((3..n).map(|k| 10f64.powf(8.0 * (k - 3) as f64 / (n - 4) as f64)));
+    let k = with_spectrum(&spectrum, 5);
+    let m = Mat::<f64>::identity(n, n);
+    let tol = 64.0 * EPS * norm_inf(&k);
+    for wanted in [1, 2, 3, 4, 12] {
+        let e = solve_generalized(&k, &m, wanted).unwrap();
+        assert_eq!(
+            e.count_within(tol),
+            Some(3),
+            "{wanted} values returned: zero eigenvalues within 64ε‖K‖"
+        );
+    }
+}
+
 #[test]
 fn generalized_pairs_have_small_residuals_and_are_mass_orthonormal() {
     // K with a triple zero eigenvalue (a free body), M banded SPD.

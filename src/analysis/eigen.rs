@@ -31,6 +31,21 @@ pub struct GeneralizedEigen {
     pub spectrum: Spectrum,
 }
 
+impl GeneralizedEigen {
+    /// Number of eigenvalues of the whole spectrum with |λ| ≤ `tol`, when
+    /// known. The returned values are the lowest, so when the last of them
+    /// lies above `tol` every eigenvalue within it was returned and they are
+    /// counted directly; otherwise the spectrum is asked (two Sturm counts).
+    pub fn count_within(&self, tol: f64) -> Option<usize> {
+        match self.values.last() {
+            Some(&last) if last > tol => {
+                Some(self.values.iter().filter(|v| v.abs() <= tol).count())
+            }
+            _ => self.spectrum.count_within(tol),
+        }
+    }
+}
+
 /// What a solver knows of the eigenvalues beyond those it returned.
 #[derive(Debug, Clone)]
 pub enum Spectrum {

@@ -248,7 +248,6 @@ pub fn modal(
     let tol = settings.rigid_tolerance * f64::EPSILON * lmax;
     // Zero eigenvalues of the whole spectrum, also beyond the modes asked for.
     let mut rigid_modes = eig
-        .spectrum
         .count_within(tol)
         .unwrap_or_else(|| eig.values.iter().filter(|v| v.abs() <= tol).count());
     let shapes: Vec<Vec<f64>> = (0..count)
