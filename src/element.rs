@@ -353,30 +353,38 @@ impl CableElement {
     pub fn add_quadratic_forms(&self, e: &Vec8, des: &[Vec8], out: &mut [EnergySplit]) {
         assert_eq!(des.len(), out.len(), "one output per variation");
         let CableSection { ea, ei, .. } = self.section;
-        for qp in &self.axial {
-            let r1 = combine(e, &qp.d1);
-            let l = r1.norm();
-            let (t, n) = (r1 / l, perp_neg(r1) / l);
-            // The stretch term is axial; the tension term ε/l·|δr'⊥|² acts on
-            // transverse motion (a string's stiffness) and counts as bending.
-            let stretch = 0.5 * qp.w * ea;
-            let tension = stretch * (l - 1.0) / l;
-            for (de, o) in des.iter().zip(out.iter_mut()) {
+        // The state's quantities at every quadrature point, then each
+        // variation through all points with its sums in registers.
+        let axial: [(Vector2<f64>, Vector2<f64>, f64, f64); AXIAL_POINTS] =
+            std::array::from_fn(|k| {
+                let r1 = combine(e, &self.axial[k].d1);
+                let l = r1.norm();
+                // The stretch term is axial; the tension term ε/l·|δr'⊥|²
+                // acts on transverse motion (a string's stiffness) and
+                // counts as bending.
+                let stretch = 0.5 * self.axial[k].w * ea;
+                (r1 / l, perp_neg(r1) / l, stretch, stretch * (l - 1.0) / l)
+            });
+        let bending: [(BendingPoint, f64); BENDING_POINTS] = std::array::from_fn(|k| {
+            let qp = &self.bending[k];
+            (BendingPoint::new(e, qp), 0.5 * qp.w * ei)
+        });
+        for (de, o) in des.iter().zip(out.iter_mut()) {
+            let (mut ax, mut bd) = (0.0, 0.0);
+            for (qp, &(t, n, stretch, tension)) in self.axial.iter().zip(&axial) {
                 let d1 = combine(de, &qp.d1);
                 let (along, across) = (t.dot(&d1), n.dot(&d1));
-                o.axial += stretch * along * along;
-                o.bending += tension * across * across;
+                ax += stretch * along * along;
+                bd += tension * across * across;
             }
-        }
-        for qp in &self.bending {
-            let b = BendingPoint::new(e, qp);
-            let c = 0.5 * qp.w * ei;
-            for (de, o) in des.iter().zip(out.iter_mut()) {
+            for (qp, (b, c)) in self.bending.iter().zip(&bending) {
                 let (d1, d2) = (combine(de, &qp.d1), combine(de, &qp.d2));
                 let dk = b.p.dot(&d1) + b.q.dot(&d2);
                 let second = d1.dot(&(b.h11 * d1)) + 2.0 * d1.dot(&(b.h12 * d2));
-                o.bending += c * (dk * dk + b.kappa * second);
+                bd += c * (dk * dk + b.kappa * second);
             }
+            o.axial += ax;
+            o.bending += bd;
         }
     }
 

@@ -150,11 +150,12 @@ impl NullSpace {
         for (i, &g) in self.free.iter().enumerate() {
             q[g] = qr[i];
         }
+        // Σₖ Z[:, k] q_r[f + k] on the involved coordinates, column by column.
         let f = self.free.len();
-        for (r, &g) in self.involved.iter().enumerate() {
-            q[g] = (0..self.basis.ncols())
-                .map(|k| self.basis[(r, k)] * qr[f + k])
-                .sum();
+        for (k, &x) in qr[f..].iter().enumerate().take(self.basis.ncols()) {
+            for (&g, &z) in self.involved.iter().zip(self.basis.col_as_slice(k)) {
+                q[g] += z * x;
+            }
         }
         q
     }
