@@ -1,9 +1,14 @@
 //! The stages of the dense generalized eigen-solve on the built-in
 //! assembly's reduced matrices (40 coordinates, 12 modes), each timed alone,
 //! to show where the time of `modal` goes.
+//!
+//! Stages 1–3 are the envelope kernels (used above 64 coordinates or on
+//! CPUs without AVX2); stage 1–3 together, as `solve_generalized` runs them
+//! on this CPU (the windowed kernels on AVX2/AVX-512 up to 64
+//! coordinates), is timed as "0".
 //! Run: `cargo bench --bench eigen_stages`.
 
-use ancf_modal::analysis::eigen::Cholesky;
+use ancf_modal::analysis::eigen::{tridiagonal_form, Cholesky};
 use ancf_modal::analysis::small_eigen::{
     tridiagonal_eigenvectors, HouseholderTridiagonal, SturmCounts,
 };
@@ -20,6 +25,10 @@ fn bench(c: &mut Criterion) {
     let d = reduced.null_space.dim();
 
     let mut g = c.benchmark_group("eigen stages (built-in assembly, 40 x 40, 12 modes)");
+    g.bench_function(
+        "0 M = LL^T, C = L^-1 K_r L^-T and T, as solve_generalized",
+        |b| b.iter(|| tridiagonal_form(kr, mr).unwrap()),
+    );
     g.bench_function("1 Cholesky of M_r", |b| {
         b.iter(|| Cholesky::factor(mr).unwrap())
     });

@@ -16,7 +16,14 @@
 //! and the QR algorithm with all vectors are faster. Both paths are backward
 //! stable, so the eigenvalues carry absolute errors of order ε‖C‖.
 
-use super::small_eigen::{dot, lowest_eigenpairs, SturmCounts};
+#[cfg(target_arch = "x86_64")]
+use super::householder::from_padded;
+use super::householder::HouseholderTridiagonal;
+#[cfg(target_arch = "x86_64")]
+use super::simd::Isa;
+use super::small_eigen::{dot, eigenpairs_of, SturmCounts};
+#[cfg(target_arch = "x86_64")]
+use super::standard_form::{WindowedFactor, WINDOWED_MAX};
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
@@ -133,17 +140,17 @@ pub fn solve_generalized(
     let singular = || EigenFailure::SingularMass {
         direction: null_direction(m),
     };
-    let l = Cholesky::factor(m).ok_or_else(singular)?;
+    let (factor, h) = standard_form(k, m).ok_or_else(singular)?;
     // Reject a numerically singular factor too (tiny pivots from zero inertia).
-    if l.min_pivot_ratio() <= SINGULAR_PIVOT {
+    if factor.min_pivot_ratio() <= SINGULAR_PIVOT {
         return Err(singular());
     }
     // Should the inverse iteration not converge (not seen on any model so
     // far), the faer path gets its chance.
-    let Ok(mut eig) = lowest_eigenpairs(l.reduce(k), n, wanted) else {
+    let Ok(mut eig) = eigenpairs_of(h, wanted) else {
         return solve_generalized_faer(k, m, wanted);
     };
-    l.backward_rows(&mut eig.vectors, wanted);
+    factor.backward_rows(&mut eig.vectors, wanted);
     let y = &eig.vectors;
     Ok(GeneralizedEigen {
         values: eig.values,
@@ -153,6 +160,56 @@ pub fn solve_generalized(
             max_abs: eig.max_abs,
         },
     })
+}
+
+/// The Cholesky factor of M from one of the two reductions.
+enum Factor {
+    Envelope(Cholesky),
+    #[cfg(target_arch = "x86_64")]
+    Windowed(WindowedFactor),
+}
+
+impl Factor {
+    fn min_pivot_ratio(&self) -> f64 {
+        match self {
+            Factor::Envelope(l) => l.min_pivot_ratio(),
+            #[cfg(target_arch = "x86_64")]
+            Factor::Windowed(l) => l.min_pivot_ratio(),
+        }
+    }
+
+    fn backward_rows(&self, b: &mut [f64], w: usize) {
+        match self {
+            Factor::Envelope(l) => l.backward_rows(b, w),
+            #[cfg(target_arch = "x86_64")]
+            Factor::Windowed(l) => l.backward_rows(b, w),
+        }
+    }
+}
+
+/// C = L⁻¹KL⁻ᵀ (M = L Lᵀ) reduced to tridiagonal form, as
+/// [`solve_generalized`] does it for sizes up to [`IN_HOUSE_MAX`]; None if M
+/// is not positive definite. (For benchmarks of that stage.)
+pub fn tridiagonal_form(k: &Mat<f64>, m: &Mat<f64>) -> Option<HouseholderTridiagonal> {
+    standard_form(k, m).map(|(_, h)| h)
+}
+
+/// M = L Lᵀ and C = L⁻¹KL⁻ᵀ reduced to tridiagonal form: the windowed
+/// kernels ([`super::standard_form`]) up to their size on SIMD CPUs, the
+/// envelope kernels otherwise. None if M is not positive definite.
+fn standard_form(k: &Mat<f64>, m: &Mat<f64>) -> Option<(Factor, HouseholderTridiagonal)> {
+    let n = m.nrows();
+    #[cfg(target_arch = "x86_64")]
+    {
+        let isa = Isa::detect();
+        if n <= WINDOWED_MAX && isa != Isa::Portable {
+            let (l, c) = super::standard_form::standard_form(k, m, isa).ok()?;
+            return Some((Factor::Windowed(l), from_padded(c, isa)));
+        }
+    }
+    let l = Cholesky::factor(m)?;
+    let h = HouseholderTridiagonal::new(l.reduce(k), n);
+    Some((Factor::Envelope(l), h))
 }
 
 /// A Cholesky pivot Lᵢᵢ ≤ this × maxⱼ Lⱼⱼ marks M as singular.
@@ -332,7 +389,7 @@ impl Cholesky {
     }
 
     /// B ← L⁻ᵀ B for a row-major n × w block.
-    fn backward_rows(&self, b: &mut [f64], w: usize) {
+    pub(crate) fn backward_rows(&self, b: &mut [f64], w: usize) {
         for j in (0..self.n).rev() {
             let (head, rest) = b.split_at_mut(j * w);
             let xj = &mut rest[..w];

@@ -21,6 +21,8 @@ pub mod sensor;
 mod simd;
 pub mod small_eigen;
 pub mod spectrum;
+#[cfg(target_arch = "x86_64")]
+mod standard_form;
 pub mod statics;
 pub mod transient;
 

@@ -83,6 +83,8 @@ pub(crate) trait Lanes {
     unsafe fn nmadd(a: Self::V, b: Self::V, c: Self::V) -> Self::V;
     /// Sum of the lanes.
     unsafe fn sum(a: Self::V) -> f64;
+    /// Lanes p[0], p[stride], p[2·stride], … (stride ≥ 0, in f64).
+    unsafe fn gather(p: *const f64, stride: usize) -> Self::V;
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -139,6 +141,11 @@ mod x86 {
             let pair = _mm_add_pd(_mm256_castpd256_pd128(a), _mm256_extractf128_pd(a, 1));
             _mm_cvtsd_f64(_mm_add_sd(pair, _mm_unpackhi_pd(pair, pair)))
         }
+        #[inline(always)]
+        unsafe fn gather(p: *const f64, stride: usize) -> __m256d {
+            let s = stride as i64;
+            _mm256_i64gather_pd::<8>(p, _mm256_setr_epi64x(0, s, 2 * s, 3 * s))
+        }
     }
 
     impl Lanes for Avx512 {
@@ -179,6 +186,12 @@ mod x86 {
         #[inline(always)]
         unsafe fn sum(a: __m512d) -> f64 {
             _mm512_reduce_add_pd(a)
+        }
+        #[inline(always)]
+        unsafe fn gather(p: *const f64, stride: usize) -> __m512d {
+            let s = stride as i64;
+            let offsets = _mm512_setr_epi64(0, s, 2 * s, 3 * s, 4 * s, 5 * s, 6 * s, 7 * s);
+            _mm512_i64gather_pd::<8>(offsets, p)
         }
     }
 }

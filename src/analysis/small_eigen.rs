@@ -95,8 +95,16 @@ pub struct LowestEigen {
 /// lower triangle read, storage consumed): the lowest `count` eigenvalues
 /// with vectors.
 pub fn lowest_eigenpairs(a: Vec<f64>, n: usize, count: usize) -> Result<LowestEigen, EigenFailure> {
+    eigenpairs_of(HouseholderTridiagonal::new(a, n), count)
+}
+
+/// [`lowest_eigenpairs`] of a matrix already in tridiagonal form.
+pub(crate) fn eigenpairs_of(
+    h: HouseholderTridiagonal,
+    count: usize,
+) -> Result<LowestEigen, EigenFailure> {
+    let n = h.t.diag.len();
     let count = count.min(n);
-    let h = HouseholderTridiagonal::new(a, n);
     let spectrum = SturmCounts::new(&h.t)?;
     let (values, largest) = spectrum.lowest_and_largest(count);
     // The accurate value when the largest is among the wanted ones.
