@@ -8,13 +8,19 @@
 //! zero) comes with them as a [`Spectrum`].
 //!
 //! Up to [`IN_HOUSE_ALL_MAX`] coordinates, or [`IN_HOUSE_MAX`] when at most
-//! a quarter of the vectors are wanted, everything is done here: an envelope
-//! Cholesky (the reduced mass matrix of a beam model is nearly banded), C's
-//! lower triangle from row-wise substitutions, and [`super::small_eigen`]
-//! (Householder tridiagonalization, bisection for the wanted eigenvalues,
-//! inverse-iteration vectors). Above it faer's blocked factorizations
-//! and the QR algorithm with all vectors are faster. Both paths are backward
-//! stable, so the eigenvalues carry absolute errors of order ε‖C‖.
+//! a quarter of the vectors are wanted, everything is done in this crate:
+//! - up to 64 coordinates on CPUs with AVX2 or AVX-512, L and C from the
+//!   windowed kernels of `analysis/standard_form.rs`, C full and ready for
+//!   the windowed Householder kernel;
+//! - otherwise an envelope Cholesky (the reduced mass matrix of a beam
+//!   model is nearly banded) and C's lower triangle from row-wise
+//!   substitutions ([`Cholesky`]);
+//! - then [`super::small_eigen`] (Householder tridiagonalization, bisection
+//!   for the wanted eigenvalues, inverse-iteration vectors).
+//!
+//! Above it faer's blocked factorizations and the QR algorithm with all
+//! vectors are faster. All paths are backward stable, so the eigenvalues
+//! carry absolute errors of order ε‖C‖.
 
 #[cfg(target_arch = "x86_64")]
 use super::householder::from_padded;
