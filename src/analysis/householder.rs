@@ -31,7 +31,7 @@
 use super::back_transform::{apply_q, Reflectors};
 use super::simd::Isa;
 #[cfg(target_arch = "x86_64")]
-use super::simd::Lanes;
+use super::simd::{by_vectors, Lanes};
 use super::small_eigen::{dot, Tridiagonal};
 
 /// C = Q T Qᵀ with Q = H₀H₁⋯H_{n−2}, Hₖ = I − βₖ vₖ vₖᵀ acting on rows k+1…n−1.
@@ -197,18 +197,6 @@ const PAD: usize = 8;
 #[cfg(target_arch = "x86_64")]
 const BLOCK_VECTORS: usize = 8;
 
-/// `MASK[PAD − z..]` loads as a vector whose first z lanes are 0, the rest 1.
-#[cfg(target_arch = "x86_64")]
-const MASK: [f64; 2 * PAD] = {
-    let mut m = [1.0; 2 * PAD];
-    let mut i = 0;
-    while i < PAD {
-        m[i] = 0.0;
-        i += 1;
-    }
-    m
-};
-
 /// A square column-major matrix in columns padded with zero rows to a
 /// multiple of [`PAD`] and aligned to 64 bytes, followed by `extra` scratch
 /// columns: the storage of the windowed kernels.
@@ -363,23 +351,6 @@ unsafe fn reduce_avx2(
     reduce_windowed::<super::simd::Avx2>(w, a, p, t, beta)
 }
 
-/// Dispatch on the number of vectors in a row block (1…BLOCK_VECTORS).
-#[cfg(target_arch = "x86_64")]
-macro_rules! by_block {
-    ($f:ident, $S:ty, $nv:expr, $($arg:expr),*) => {
-        match $nv {
-            1 => $f::<$S, 1>($($arg),*),
-            2 => $f::<$S, 2>($($arg),*),
-            3 => $f::<$S, 3>($($arg),*),
-            4 => $f::<$S, 4>($($arg),*),
-            5 => $f::<$S, 5>($($arg),*),
-            6 => $f::<$S, 6>($($arg),*),
-            7 => $f::<$S, 7>($($arg),*),
-            _ => $f::<$S, 8>($($arg),*),
-        }
-    };
-}
-
 /// # Safety
 /// The CPU has `S`'s features; `a` is `w.ld × w.n` column-major with
 /// `w.ld` a multiple of [`PAD`] and ≥ n, rows n… zero; `p.len() ≥ w.ld`.
@@ -412,11 +383,11 @@ unsafe fn reduce_windowed<S: Lanes>(
         }
         let v = ap.add(k * ld) as *const f64;
         // Lanes of the first vector above row `first` are masked out.
-        let mask = S::load(MASK.as_ptr().add(PAD - (first - s0)));
+        let mask = S::leading_zeros(first - s0);
         let mut s = s0;
         while s < ld {
             let nv = ((ld - s) / width).min(BLOCK_VECTORS);
-            by_block!(times_v, S, nv, ap, ld, s, first..n, v, b, pp);
+            by_vectors!(times_v, S, nv, ap, ld, s, first..n, v, b, pp);
             s += nv * width;
         }
         // w = p − ½β(pᵀv) v, masked like v.
@@ -436,7 +407,7 @@ unsafe fn reduce_windowed<S: Lanes>(
         while s < ld {
             let nv = ((ld - s) / width).min(BLOCK_VECTORS);
             let m = if s == s0 { mask } else { S::splat(1.0) };
-            by_block!(rank2, S, nv, ap, ld, s, first..n, v, pp, m);
+            by_vectors!(rank2, S, nv, ap, ld, s, first..n, v, pp, m);
             s += nv * width;
         }
     }
@@ -459,7 +430,7 @@ unsafe fn window_reflector<S: Lanes>(
     head: usize,
 ) -> Option<(f64, f64)> {
     let width = S::WIDTH;
-    let below = S::load(MASK.as_ptr().add(PAD - (head + 1)));
+    let below = S::leading_zeros(head + 1);
     let mut squares = S::zero();
     for c in 0..vectors {
         let mut x = S::load(col.add(c * width));

@@ -85,7 +85,40 @@ pub(crate) trait Lanes {
     unsafe fn sum(a: Self::V) -> f64;
     /// Lanes p[0], p[stride], p[2·stride], … (stride ≥ 0, in f64).
     unsafe fn gather(p: *const f64, stride: usize) -> Self::V;
+    /// A vector whose first z lanes are 0 and the others 1 (z ≤ WIDTH): a
+    /// multiplier that masks the rows above a window's first valid row.
+    #[inline(always)]
+    unsafe fn leading_zeros(z: usize) -> Self::V {
+        debug_assert!(z <= Self::WIDTH);
+        Self::load(ZEROS_THEN_ONES.as_ptr().add(8 - z))
+    }
 }
+
+/// Eight zeros, then eight ones: loaded from 8 − z, the first z lanes are 0.
+#[cfg(target_arch = "x86_64")]
+const ZEROS_THEN_ONES: [f64; 16] = [
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0,
+];
+
+/// `$f::<$S, NV>(args…)` for NV = `$nv` in 1…8: a kernel over a row block
+/// of NV vectors, its accumulators in registers.
+#[cfg(target_arch = "x86_64")]
+macro_rules! by_vectors {
+    ($f:ident, $S:ty, $nv:expr, $($arg:expr),*) => {
+        match $nv {
+            1 => $f::<$S, 1>($($arg),*),
+            2 => $f::<$S, 2>($($arg),*),
+            3 => $f::<$S, 3>($($arg),*),
+            4 => $f::<$S, 4>($($arg),*),
+            5 => $f::<$S, 5>($($arg),*),
+            6 => $f::<$S, 6>($($arg),*),
+            7 => $f::<$S, 7>($($arg),*),
+            _ => $f::<$S, 8>($($arg),*),
+        }
+    };
+}
+#[cfg(target_arch = "x86_64")]
+pub(crate) use by_vectors;
 
 #[cfg(target_arch = "x86_64")]
 pub(crate) use x86::{Avx2, Avx512};

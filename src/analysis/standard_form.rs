@@ -29,17 +29,11 @@
 
 use super::householder::Padded;
 #[cfg(target_arch = "x86_64")]
-use super::simd::{Isa, Lanes};
+use super::simd::{by_vectors, Isa, Lanes};
 use faer::Mat;
 
 /// Largest size the windowed reduction is used for.
 pub(crate) const WINDOWED_MAX: usize = 64;
-
-/// `MASK[8 − z..]` loads as a vector whose first z lanes are 0, the rest 1.
-#[cfg(target_arch = "x86_64")]
-const MASK: [f64; 16] = [
-    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0,
-];
 
 /// L of M = L Lᵀ, in the lower triangle of padded storage.
 pub(crate) struct WindowedFactor {
@@ -183,7 +177,7 @@ unsafe fn reduce<S: Lanes>(
 unsafe fn masked<S: Lanes>(p: *const f64, s: usize, from: usize) -> S::V {
     let x = S::load(p.add(s));
     if from > s {
-        S::mul(x, S::load(MASK.as_ptr().add(8 - (from - s))))
+        S::mul(x, S::leading_zeros(from - s))
     } else {
         x
     }
@@ -249,16 +243,7 @@ unsafe fn right_solve<S: Lanes>(w: &Work, l: *const f64, a: *mut f64, start: Sta
     let mut s = 0;
     while s < w.ld {
         let nv = ((w.ld - s) / S::WIDTH).min(8);
-        match nv {
-            1 => right_solve_block::<S, 1>(w, l, a, start, s),
-            2 => right_solve_block::<S, 2>(w, l, a, start, s),
-            3 => right_solve_block::<S, 3>(w, l, a, start, s),
-            4 => right_solve_block::<S, 4>(w, l, a, start, s),
-            5 => right_solve_block::<S, 5>(w, l, a, start, s),
-            6 => right_solve_block::<S, 6>(w, l, a, start, s),
-            7 => right_solve_block::<S, 7>(w, l, a, start, s),
-            _ => right_solve_block::<S, 8>(w, l, a, start, s),
-        }
+        by_vectors!(right_solve_block, S, nv, w, l, a, start, s);
         s += nv * S::WIDTH;
     }
 }
