@@ -218,6 +218,45 @@ fn standard_form(k: &Mat<f64>, m: &Mat<f64>) -> Option<(Factor, HouseholderTridi
     Some((Factor::Envelope(l), h))
 }
 
+/// first[i]: the leftmost nonzero of row i of the symmetric `m` (its lower
+/// triangle read), the envelope a Cholesky factor keeps. A select, not a
+/// branch: the nonzero pattern is irregular and a branch mispredicts.
+pub(crate) fn row_envelope(m: &Mat<f64>) -> Vec<usize> {
+    let n = m.nrows();
+    let mut first: Vec<usize> = (0..n).collect();
+    for j in (0..n).rev() {
+        let below = &m.col_as_slice(j)[j + 1..];
+        for (f, &v) in first[j + 1..].iter_mut().zip(below) {
+            *f = if v != 0.0 { j } else { *f };
+        }
+    }
+    first
+}
+
+/// B ← L⁻ᵀ B for a row-major n × w block, with L[j, k] = `l(j, k)` nonzero
+/// only from column `first[j]` of row j on: row j is divided by Lⱼⱼ, then
+/// taken off the earlier rows it couples to.
+pub(crate) fn backward_rows(
+    first: &[usize],
+    l: impl Fn(usize, usize) -> f64,
+    b: &mut [f64],
+    w: usize,
+) {
+    for j in (0..first.len()).rev() {
+        let (head, rest) = b.split_at_mut(j * w);
+        let xj = &mut rest[..w];
+        let inv = 1.0 / l(j, j);
+        xj.iter_mut().for_each(|t| *t *= inv);
+        for k in first[j]..j {
+            let ljk = l(j, k);
+            if ljk != 0.0 {
+                let target = &mut head[k * w..(k + 1) * w];
+                target.iter_mut().zip(&*xj).for_each(|(t, s)| *t -= ljk * s);
+            }
+        }
+    }
+}
+
 /// A Cholesky pivot Lᵢᵢ ≤ this × maxⱼ Lⱼⱼ marks M as singular.
 const SINGULAR_PIVOT: f64 = 1e-7;
 
@@ -271,15 +310,7 @@ impl Cholesky {
     /// None unless every pivot is positive and finite (lower triangle of m read).
     pub fn factor(m: &Mat<f64>) -> Option<Cholesky> {
         let n = m.nrows();
-        // first[i]: the leftmost nonzero of row i (a select, not a branch:
-        // the nonzero pattern is irregular and a branch mispredicts).
-        let mut first: Vec<usize> = (0..n).collect();
-        for j in (0..n).rev() {
-            let below = &m.col_as_slice(j)[j + 1..];
-            for (f, &v) in first[j + 1..].iter_mut().zip(below) {
-                *f = if v != 0.0 { j } else { *f };
-            }
-        }
+        let first = row_envelope(m);
         let mut l = vec![0.0; n * n];
         let mut inv_diag = vec![0.0; n];
         for i in 0..n {
@@ -396,19 +427,7 @@ impl Cholesky {
 
     /// B ← L⁻ᵀ B for a row-major n × w block.
     pub(crate) fn backward_rows(&self, b: &mut [f64], w: usize) {
-        for j in (0..self.n).rev() {
-            let (head, rest) = b.split_at_mut(j * w);
-            let xj = &mut rest[..w];
-            let row = self.row(j);
-            let inv = self.inv_diag[j];
-            xj.iter_mut().for_each(|t| *t *= inv);
-            for (k, &ljk) in row.iter().enumerate().take(j).skip(self.first[j]) {
-                if ljk != 0.0 {
-                    let target = &mut head[k * w..(k + 1) * w];
-                    target.iter_mut().zip(&*xj).for_each(|(t, s)| *t -= ljk * s);
-                }
-            }
-        }
+        backward_rows(&self.first, |j, k| self.row(j)[k], b, w);
     }
 }
 

@@ -264,18 +264,6 @@ impl Padded {
     }
 }
 
-#[cfg(target_arch = "x86_64")]
-impl Clone for Padded {
-    /// A copy with its own 64-byte alignment.
-    fn clone(&self) -> Self {
-        let mut p = Padded::zeros(self.n, self.extra);
-        let len = self.ld * (self.n + self.extra);
-        p.matrix_mut()
-            .copy_from_slice(&self.storage[self.offset..self.offset + len]);
-        p
-    }
-}
-
 /// The windowed kernel on the lower triangle `lower` (mirrored first).
 #[cfg(target_arch = "x86_64")]
 fn windowed(lower: &[f64], n: usize, isa: Isa) -> HouseholderTridiagonal {

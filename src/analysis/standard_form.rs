@@ -27,6 +27,7 @@
 //! arithmetic. Every step is backward stable like its envelope
 //! counterpart; the two differ by rounding.
 
+use super::eigen::{backward_rows, row_envelope};
 use super::householder::Padded;
 #[cfg(target_arch = "x86_64")]
 use super::simd::{by_vectors, Isa, Lanes};
@@ -61,16 +62,7 @@ pub(crate) fn standard_form(
     );
     let mut l = Padded::from_columns(m, 0);
     let mut c = Padded::zeros(n, 1);
-    // first[j]: the leftmost nonzero of row j of M (its lower part is
-    // column j's upper part, by symmetry).
-    let first: Vec<usize> = (0..n)
-        .map(|j| {
-            m.col_as_slice(j)[..j]
-                .iter()
-                .position(|&v| v != 0.0)
-                .unwrap_or(j)
-        })
-        .collect();
+    let first = row_envelope(m);
     let mut w = Padded::from_columns(k, l.ld - n);
     let work = Work {
         n,
@@ -101,19 +93,7 @@ impl WindowedFactor {
 
     /// B ← L⁻ᵀ B for a row-major n × w block (back to M's coordinates).
     pub(crate) fn backward_rows(&self, b: &mut [f64], w: usize) {
-        for j in (0..self.l.n).rev() {
-            let (head, rest) = b.split_at_mut(j * w);
-            let xj = &mut rest[..w];
-            let inv = 1.0 / self.l.get(j, j);
-            xj.iter_mut().for_each(|t| *t *= inv);
-            for k in self.first[j]..j {
-                let ljk = self.l.get(j, k);
-                if ljk != 0.0 {
-                    let target = &mut head[k * w..(k + 1) * w];
-                    target.iter_mut().zip(&*xj).for_each(|(t, s)| *t -= ljk * s);
-                }
-            }
-        }
+        backward_rows(&self.first, |j, k| self.l.get(j, k), b, w);
     }
 }
 
