@@ -13,6 +13,7 @@ pub mod anchor;
 pub mod element;
 pub mod error;
 pub mod joint;
+pub mod linalg;
 pub mod load;
 pub mod model;
 pub mod output;

@@ -9,6 +9,7 @@ use super::System;
 use crate::anchor::Hess;
 use crate::element::{EnergySplit, Mat8, Vec8};
 use crate::joint::ConstraintJac;
+use crate::linalg::Scatter;
 use crate::pair::{PairGrad, PairHess};
 use faer::Mat;
 
@@ -50,11 +51,11 @@ fn element_vec(q: &[f64], dofs: &[usize; 8]) -> Vec8 {
 fn scatter_mat<const R: usize, const C: usize>(
     dofs: &[usize],
     local: &nalgebra::SMatrix<f64, R, C>,
-    out: &mut Mat<f64>,
+    out: &mut impl Scatter,
 ) {
     for (i, &gi) in dofs.iter().enumerate() {
         for (j, &gj) in dofs.iter().enumerate() {
-            out[(gi, gj)] += local[(i, j)];
+            out.add(gi, gj, local[(i, j)]);
         }
     }
 }
@@ -162,6 +163,12 @@ impl System {
     /// given), overwriting `out` (n × n).
     pub fn tangent_stiffness(&self, at: &Linearization, out: &mut Mat<f64>) {
         out.fill(0.0);
+        self.add_tangent_stiffness(at, out);
+    }
+
+    /// Adds the tangent stiffness of [`System::tangent_stiffness`] into any
+    /// assembly target (a dense matrix, a triplet list, a projection).
+    pub fn add_tangent_stiffness(&self, at: &Linearization, out: &mut impl Scatter) {
         let q = at.q;
         for b in &self.beams {
             for (k, e) in b.elements.iter().enumerate() {
@@ -197,13 +204,18 @@ impl System {
     /// Constraint Jacobian C_q (m × n), overwriting `out`.
     pub fn constraint_jacobian(&self, q: &[f64], out: &mut Mat<f64>) {
         out.fill(0.0);
+        self.add_constraint_jacobian(q, out);
+    }
+
+    /// Adds C_q (m × n) into any assembly target.
+    pub fn add_constraint_jacobian(&self, q: &[f64], out: &mut impl Scatter) {
         let mut j = ConstraintJac::zeros();
         for (c, &row) in self.constraints.iter().zip(&self.constraint_rows) {
             j.fill(0.0);
             c.jacobian(q, &mut j);
             for (k, d) in c.pair().dofs().enumerate() {
                 for r in 0..c.rows() {
-                    out[(row + r, d)] += j[(r, k)];
+                    out.add(row + r, d, j[(r, k)]);
                 }
             }
         }
@@ -255,7 +267,7 @@ impl System {
     }
 
     /// Adds ∂(C_qᵀλ)/∂q = Σ λᵢ ∂²Cᵢ/∂q² into `out`.
-    pub fn add_constraint_hessian(&self, q: &[f64], lambda: &[f64], out: &mut Mat<f64>) {
+    pub fn add_constraint_hessian(&self, q: &[f64], lambda: &[f64], out: &mut impl Scatter) {
         let mut h = PairHess::zeros();
         for (c, &row) in self.constraints.iter().zip(&self.constraint_rows) {
             h.fill(0.0);

@@ -9,56 +9,120 @@
 //! couples with its neighbours only), not over all n² entries.
 
 use super::System;
+use crate::linalg::Scatter;
 use faer::Mat;
+use std::sync::OnceLock;
 
-/// M, dense and as the nonzeros of its lower triangle.
+/// M as the nonzeros of its lower triangle; the dense matrix is formed only
+/// when a small-problem path asks for it.
 #[derive(Debug, Clone)]
 pub struct MassMatrix {
-    dense: Mat<f64>,
-    /// (i, j, w·M_ij) for i ≥ j and M_ij ≠ 0, w = 2 off the diagonal.
+    n: usize,
+    /// (i, j, w·M_ij) for i ≥ j and M_ij ≠ 0, w = 2 off the diagonal, sorted
+    /// by column then row.
     lower: Vec<(usize, usize, f64)>,
+    dense: OnceLock<Mat<f64>>,
 }
 
 impl MassMatrix {
     /// Assemble M from the consistent element masses and the lumped rigid
-    /// bodies and point masses.
+    /// bodies and point masses, in memory proportional to the nonzeros.
     pub(super) fn assemble(system: &System) -> MassMatrix {
         let n = system.ndof();
-        let mut m = Mat::zeros(n, n);
+        let mut entries: Vec<(usize, usize, f64)> = Vec::new();
         for b in &system.beams {
             for (k, e) in b.elements.iter().enumerate() {
                 let local = e.mass();
                 let dofs = b.element_dofs(k);
                 for (i, &gi) in dofs.iter().enumerate() {
                     for (j, &gj) in dofs.iter().enumerate() {
-                        m[(gi, gj)] += local[(i, j)];
+                        if gi >= gj && local[(i, j)] != 0.0 {
+                            entries.push((gi, gj, local[(i, j)]));
+                        }
                     }
                 }
             }
         }
         for r in &system.rigid_bodies {
-            m[(r.dof0, r.dof0)] += r.mass;
-            m[(r.dof0 + 1, r.dof0 + 1)] += r.mass;
-            m[(r.dof0 + 2, r.dof0 + 2)] += r.inertia;
+            entries.push((r.dof0, r.dof0, r.mass));
+            entries.push((r.dof0 + 1, r.dof0 + 1, r.mass));
+            entries.push((r.dof0 + 2, r.dof0 + 2, r.inertia));
         }
         for p in &system.point_masses {
-            m[(p.dof0, p.dof0)] += p.mass;
-            m[(p.dof0 + 1, p.dof0 + 1)] += p.mass;
+            entries.push((p.dof0, p.dof0, p.mass));
+            entries.push((p.dof0 + 1, p.dof0 + 1, p.mass));
         }
-        let mut lower = Vec::new();
-        for j in 0..n {
-            for (i, &v) in m.col_as_slice(j).iter().enumerate().skip(j) {
-                if v != 0.0 {
-                    lower.push((i, j, if i == j { v } else { 2.0 * v }));
-                }
+        // Sum repeated positions (in assembly order, as a dense sum would).
+        entries.sort_by_key(|&(i, j, _)| (j, i));
+        let mut lower: Vec<(usize, usize, f64)> = Vec::with_capacity(entries.len());
+        for (i, j, v) in entries {
+            match lower.last_mut() {
+                Some(last) if last.0 == i && last.1 == j => last.2 += v,
+                _ => lower.push((i, j, v)),
             }
         }
-        MassMatrix { dense: m, lower }
+        lower.retain(|e| e.2 != 0.0);
+        for e in &mut lower {
+            if e.0 != e.1 {
+                e.2 *= 2.0;
+            }
+        }
+        MassMatrix {
+            n,
+            lower,
+            dense: OnceLock::new(),
+        }
     }
 
-    /// The dense n × n matrix.
+    /// Number of coordinates.
+    pub fn size(&self) -> usize {
+        self.n
+    }
+
+    /// The diagonal entries M_ii.
+    pub fn diagonal(&self) -> Vec<f64> {
+        let mut d = vec![0.0; self.n];
+        for &(i, j, w) in &self.lower {
+            if i == j {
+                d[i] = w;
+            }
+        }
+        d
+    }
+
+    /// y = M x over the nonzeros.
+    pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
+        y.fill(0.0);
+        for &(i, j, w) in &self.lower {
+            if i == j {
+                y[i] += w * x[i];
+            } else {
+                let v = 0.5 * w;
+                y[i] += v * x[j];
+                y[j] += v * x[i];
+            }
+        }
+    }
+
+    /// Adds M into any assembly target (its nonzeros only).
+    pub fn add_into(&self, out: &mut impl Scatter) {
+        for &(i, j, w) in &self.lower {
+            if i == j {
+                out.add(i, i, w);
+            } else {
+                out.add(i, j, 0.5 * w);
+                out.add(j, i, 0.5 * w);
+            }
+        }
+    }
+
+    /// The dense n × n matrix (formed on the first call: small problems only).
     pub fn dense(&self) -> &Mat<f64> {
-        &self.dense
+        self.dense.get_or_init(|| {
+            let mut m = Mat::zeros(self.n, self.n);
+            self.add_into(&mut m);
+            m
+        })
     }
 
     /// φᵀ M φ over the nonzeros (four partial sums).

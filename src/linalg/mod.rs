@@ -1,0 +1,35 @@
+//! The linear-algebra layer: every matrix algorithm of the crate, on faer.
+//!
+//! Analyses state problems (a stiffness, a mass, a constraint Jacobian) and
+//! call in here; nothing in this module knows about beams or joints.
+//!
+//! - [`sparse`]: assembly targets ([`Scatter`]: a dense matrix or a triplet
+//!   list), compressed-column matrices and their products;
+//! - [`null_space`]: an orthonormal, sparse basis of null(C_q), built per
+//!   group of coupled constraint rows, with redundant rows named;
+//! - [`dense`]: the generalized symmetric-definite eigenproblem by faer's
+//!   Cholesky and self-adjoint eigensolver (the QR path);
+//! - [`krylov`]: the lowest modes of a large sparse pencil by shift-invert
+//!   Krylov–Schur (faer's `partial_self_adjoint_eigen`) on sparse
+//!   Cholesky/LU factors;
+//! - [`vector`]: the few vector helpers (dot, norms, axpy) everyone shares.
+
+// pub mod dense;
+// pub mod krylov;
+// pub mod null_space;
+pub mod sparse;
+pub mod vector;
+
+pub use sparse::{Scatter, Triplets};
+
+/// Why a generalized eigenproblem K x = λ M x could not be solved.
+#[derive(Debug, Clone, PartialEq)]
+pub enum EigenFailure {
+    /// M is not positive definite; the vector spans (approximately) its
+    /// null direction, in the coordinates of the problem.
+    SingularMass { direction: Vec<f64> },
+    /// The eigensolver did not converge.
+    NoConvergence,
+    /// A sparse factorization failed (out of memory or structurally singular).
+    Factorization,
+}

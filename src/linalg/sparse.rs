@@ -1,0 +1,162 @@
+//! Assembly targets and compressed sparse matrices.
+//!
+//! Elements, springs and joints compute small dense blocks; the system adds
+//! them entry by entry into a [`Scatter`] target: a dense faer matrix for
+//! small problems, a [`Triplets`] list for large ones (duplicates are summed
+//! when the list is compressed into a faer `SparseColMat`). Memory of a
+//! triplet list and of the compressed matrix is proportional to the
+//! nonzeros.
+
+use faer::sparse::{SparseColMat, Triplet};
+use faer::Mat;
+
+/// Something an assembly can add matrix entries into.
+pub trait Scatter {
+    /// A[i, j] += v.
+    fn add(&mut self, i: usize, j: usize, v: f64);
+}
+
+impl Scatter for Mat<f64> {
+    #[inline]
+    fn add(&mut self, i: usize, j: usize, v: f64) {
+        self[(i, j)] += v;
+    }
+}
+
+/// A list of (row, column, value) entries of an nrows × ncols matrix;
+/// repeated positions add up.
+#[derive(Debug, Clone, Default)]
+pub struct Triplets {
+    nrows: usize,
+    ncols: usize,
+    entries: Vec<Triplet<usize, usize, f64>>,
+}
+
+impl Scatter for Triplets {
+    #[inline]
+    fn add(&mut self, i: usize, j: usize, v: f64) {
+        if v != 0.0 {
+            self.entries.push(Triplet::new(i, j, v));
+        }
+    }
+}
+
+impl Triplets {
+    /// An empty nrows × ncols list.
+    pub fn new(nrows: usize, ncols: usize) -> Self {
+        Triplets {
+            nrows,
+            ncols,
+            entries: Vec::new(),
+        }
+    }
+
+    pub fn nrows(&self) -> usize {
+        self.nrows
+    }
+
+    pub fn ncols(&self) -> usize {
+        self.ncols
+    }
+
+    /// The entries as added (not summed).
+    pub fn entries(&self) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
+        self.entries.iter().map(|t| (t.row, t.col, t.val))
+    }
+
+    /// Number of stored entries (before summation).
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.entries.is_empty()
+    }
+
+    /// Compressed-column matrix with repeated entries summed.
+    pub fn to_sparse(&self) -> SparseColMat<usize, f64> {
+        // Indices are in range by construction of every caller; a failure is
+        // an out-of-memory condition.
+        SparseColMat::try_new_from_triplets(self.nrows, self.ncols, &self.entries)
+            .expect("triplet indices within the matrix")
+    }
+
+    /// The dense matrix (for small problems and tests).
+    pub fn to_dense(&self) -> Mat<f64> {
+        let mut m = Mat::zeros(self.nrows, self.ncols);
+        for t in &self.entries {
+            m[(t.row, t.col)] += t.val;
+        }
+        m
+    }
+
+    /// Transposed list.
+    pub fn transposed(&self) -> Triplets {
+        Triplets {
+            nrows: self.ncols,
+            ncols: self.nrows,
+            entries: self
+                .entries
+                .iter()
+                .map(|t| Triplet::new(t.col, t.row, t.val))
+                .collect(),
+        }
+    }
+}
+
+/// y = A x for a compressed-column A.
+pub fn mul_vec(a: &SparseColMat<usize, f64>, x: &[f64], y: &mut [f64]) {
+    y.fill(0.0);
+    let a = a.as_ref();
+    for (j, &xj) in x.iter().enumerate().take(a.ncols()) {
+        if xj == 0.0 {
+            continue;
+        }
+        for (i, v) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
+            y[i] += v * xj;
+        }
+    }
+}
+
+/// The diagonal of a square compressed-column matrix.
+pub fn diagonal(a: &SparseColMat<usize, f64>) -> Vec<f64> {
+    let a = a.as_ref();
+    (0..a.ncols())
+        .map(|j| {
+            a.row_idx_of_col(j)
+                .zip(a.val_of_col(j))
+                .filter(|(i, _)| *i == j)
+                .map(|(_, v)| *v)
+                .sum()
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn repeated_entries_add_up_and_products_match_the_dense_matrix() {
+        let mut t = Triplets::new(3, 3);
+        for (i, j, v) in [
+            (0, 0, 2.0),
+            (0, 0, 1.0),
+            (1, 2, -4.0),
+            (2, 1, 0.5),
+            (2, 2, 7.0),
+        ] {
+            t.add(i, j, v);
+        }
+        let (s, d) = (t.to_sparse(), t.to_dense());
+        assert_eq!(d[(0, 0)], 3.0, "repeated (0, 0) entries summed");
+        let x = [1.0, -2.0, 3.0];
+        let mut y = [0.0; 3];
+        mul_vec(&s, &x, &mut y);
+        for i in 0..3 {
+            let dense: f64 = (0..3).map(|j| d[(i, j)] * x[j]).sum();
+            assert_eq!(y[i], dense, "row {i} of A x, sparse against dense");
+        }
+        assert_eq!(diagonal(&s), vec![3.0, 0.0, 7.0], "diagonal of A");
+    }
+}
