@@ -34,6 +34,10 @@ pub trait Constraint: std::fmt::Debug + Send + Sync {
     /// frame and so turn with a rigid rotation of the whole system; `None`
     /// when every row is a rotation-invariant scalar.
     fn vector_rows(&self) -> Option<usize>;
+    /// Whether the joint holds its two bodies together rigidly (a weld):
+    /// they then move as one rigid cluster in the kinematic count of zero
+    /// modes.
+    fn rigid(&self) -> bool;
     /// C(q) into `out[..rows]`.
     fn residual(&self, q: &[f64], out: &mut [f64]);
     /// ∂C/∂q (local) into the first `rows` rows of `out`.
@@ -50,6 +54,9 @@ pub struct Pin {
 }
 
 impl Constraint for Pin {
+    fn rigid(&self) -> bool {
+        false
+    }
     fn label(&self) -> &str {
         &self.label
     }
@@ -91,6 +98,9 @@ pub struct Weld {
 }
 
 impl Constraint for Weld {
+    fn rigid(&self) -> bool {
+        true
+    }
     fn label(&self) -> &str {
         &self.label
     }
@@ -153,6 +163,9 @@ impl Slider {
 }
 
 impl Constraint for Slider {
+    fn rigid(&self) -> bool {
+        false
+    }
     fn label(&self) -> &str {
         &self.label
     }

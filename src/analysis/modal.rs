@@ -1,81 +1,77 @@
 //! Linearized modal analysis of the constrained system.
 //!
 //! At a state (q, λ): K = ∂(Q_int − Q_ext)/∂q + ∂(C_qᵀλ)/∂q, M constant.
-//! With N an orthonormal basis of null(C_q): K_r = NᵀKN, M_r = NᵀMN, and
-//! K_r x = ω² M_r x is solved by Cholesky reduction. f = √max(ω², 0)/2π [Hz].
+//! With N an orthonormal basis of null(C_q) ([`crate::linalg::null_space`]):
+//! K_r = NᵀKN, M_r = NᵀMN, assembled directly in the reduced coordinates
+//! (no full-size matrix is formed), and K_r x = ω² M_r x is solved.
+//! f = √max(ω², 0)/2π [Hz].
 //!
-//! For a large reduced problem (> [`LANCZOS_MIN_SIZE`] coordinates, at most a
-//! quarter of them wanted) only the requested modes are computed, by
-//! shift-invert Lanczos ([`super::lanczos`]); max|ω²| below is then the
-//! estimate maxᵢ (K_r)ᵢᵢ/(M_r)ᵢᵢ. On free beams of 128 and 500 elements the
-//! rigid count (3) is unchanged by that estimate, and frequencies agree with
-//! the dense path to 1e-14 (tests/large_modal.rs).
-//!
-//! Zero-frequency (rigid-body or mechanism) modes are those with
-//! |ω²| ≤ tol, tol = [`ModalSettings::rigid_tolerance`] · ε · max|ω²|, either
-//! as the solver returns it or after the Rayleigh refinement below.
-//! Measured on free beams of 8–500 elements, the solver's zero eigenvalues
-//! scatter at 0.02–0.12 · ε · max|ω²| while the first bending mode sits at
-//! ≥ 1e4 · ε · max|ω²| (500 elements; 6e10 at 8). On the paper's assembly
-//! with 2 uniform elements (a rigid body and a point mass on the blade) one
-//! zero eigenvalue came out at 43 (faer) to 69 (in-house) · ε · max|ω²|, so the
-//! solver's value alone is not a safe test; the refined quotient of a rigid
-//! motion is zero up to the square of the solver's error, which separates
-//! the two kinds by many orders of magnitude. Default factor: 64.
-//!
-//! Each elastic mode's ω² is then refined by its Rayleigh quotient
-//! 2U(φ)/φᵀMφ, with U evaluated from strain variations: the dense solver's ω²
-//! is only accurate to ~ε·max|ω²| absolutely, which a short element (e.g. an
-//! attachment node 0.19 mm from a mesh node) makes 2e-7 of the first
-//! bending ω². Each elastic mode is classified by where its strain energy
-//! ½φᵀKφ sits: beam axial, beam bending, or springs.
+//! 1. Zero-frequency (rigid-body or mechanism) modes are counted from the
+//!    kinematics ([`super::zero_modes`]), not from a threshold on the
+//!    spectrum, and deflated: the eigensolver sees only the elastic
+//!    spectrum, so nothing elastic is ever called rigid.
+//! 2. Elastic modes: up to [`DENSE_MAX`] reduced coordinates, the dense
+//!    path ([`crate::linalg::dense`]) on the M_r-orthogonal complement of
+//!    the zero modes; above it, K_r and M_r stay sparse and the lowest modes
+//!    come from shift-invert Lanczos ([`crate::linalg::krylov`]), with memory
+//!    proportional to the nonzeros.
+//! 3. Each elastic ω² is refined by its Rayleigh quotient 2U(φ)/φᵀMφ, U
+//!    from strain variations (cancellation-free): a solver's ω² carries an
+//!    absolute error ~ε·max|ω²|, which a fine mesh or a short element makes
+//!    larger than the lowest ω².
+//! 4. Each elastic mode reports `error_bound`, a bound on the relative
+//!    frequency error that the eigen-solve and round-off leave (not the
+//!    discretization error): with the M_r-normalized residual
+//!    ‖r‖ = ‖K_r x − ω² M_r x‖_{M_r⁻¹} and the gap δ to the nearest other
+//!    computed ω², |Δω²| ≤ min(‖r‖, ‖r‖²/δ) (Krylov–Bogoliubov and the
+//!    quadratic residual bound of a Rayleigh quotient), so
+//!    |Δf|/f ≤ ½ min(‖r‖, ‖r‖²/δ)/ω².
+//! 5. Each elastic mode is classified by where its strain energy ½φᵀKφ
+//!    sits: beam axial, beam bending, or springs.
 
-use super::eigen::{solve_generalized, EigenFailure};
-use super::lanczos::{lowest_modes, max_eigenvalue_estimate};
-use super::reduce::NullSpace;
+use super::zero_modes::zero_modes;
 use crate::error::AnalysisError;
+use crate::linalg::dense::solve_generalized;
+use crate::linalg::krylov::{lowest_modes, KrylovSettings};
+use crate::linalg::null_space::{symmetrize, NullSpace, Projected};
+use crate::linalg::sparse::mul_vec;
+use crate::linalg::vector::{argmax_abs, dot};
+use crate::linalg::{EigenFailure, Triplets};
 use crate::system::{EnergyBreakdown, Linearization, System};
-use faer::Mat;
+use faer::linalg::solvers::Solve;
+use faer::{Mat, Side};
 use serde::Serialize;
 
 /// Settings of a modal analysis.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ModalSettings {
-    /// Number of modes to report, rigid ones included (`None` = all).
+    /// Number of modes to report, rigid ones included (`None` = all, dense
+    /// path only).
     pub modes: Option<usize>,
-    /// Multiple of ε·max|ω²| below which ω² counts as zero.
-    pub rigid_tolerance: f64,
     /// Eigensolver choice.
     pub method: EigenMethod,
 }
 
-/// Which eigensolver a modal analysis uses.
+/// Which eigensolver a modal analysis uses for the elastic modes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum EigenMethod {
-    /// Lanczos when the reduced size exceeds [`LANCZOS_MIN_SIZE`] and at most
-    /// a quarter of the modes are wanted; dense otherwise. A Lanczos failure
-    /// falls back to the dense solver.
+    /// Dense up to [`DENSE_MAX`] reduced coordinates or when all modes are
+    /// wanted, sparse shift-invert otherwise.
     #[default]
     Auto,
-    /// Dense Cholesky reduction: all eigenvalues, vectors for the
-    /// requested modes ([`super::eigen::solve_generalized`]).
+    /// Dense Cholesky reduction and the QR algorithm ([`crate::linalg::dense`]).
     Dense,
-    /// Shift-invert Lanczos ([`super::lanczos`]) for the requested modes only.
-    Lanczos,
+    /// Sparse shift-invert Lanczos ([`crate::linalg::krylov`]).
+    Sparse,
 }
 
-/// Reduced size above which [`EigenMethod::Auto`] may choose Lanczos.
-pub const LANCZOS_MIN_SIZE: usize = 300;
+/// Reduced size above which [`EigenMethod::Auto`] chooses the sparse path.
+pub const DENSE_MAX: usize = 300;
 
-impl Default for ModalSettings {
-    fn default() -> Self {
-        ModalSettings {
-            modes: None,
-            rigid_tolerance: 64.0,
-            method: EigenMethod::Auto,
-        }
-    }
-}
+/// Relative frequency error bound above which the solve, not the mesh,
+/// limits a reported frequency (a Hermite mesh with 8 elements per half
+/// wave is ~1e-5 off, so a finer bound is below any useful mesh).
+pub const ACCURACY_WARNING: f64 = 1e-7;
 
 /// What a mode mostly does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -121,6 +117,9 @@ pub struct Mode {
     pub kind: ModeKind,
     /// Strain-energy split (all zero for rigid modes).
     pub energy: EnergyFractions,
+    /// Bound on the relative frequency error the eigen-solve and round-off
+    /// leave [–]; `None` for rigid modes.
+    pub error_bound: Option<f64>,
     /// Mass-normalized shape in the global coordinates (φᵀMφ = 1).
     #[serde(skip)]
     pub shape: Vec<f64>,
@@ -137,8 +136,10 @@ pub struct ModalResult {
     pub redundant_constraints: Vec<String>,
     /// Dimension of the reduced problem.
     pub reduced_dofs: usize,
-    /// Number of zero-frequency modes.
+    /// Number of zero-frequency modes (all of them, also beyond `modes`).
     pub rigid_modes: usize,
+    /// Which eigensolver ran.
+    pub solver: &'static str,
     pub modes: Vec<Mode>,
 }
 
@@ -152,6 +153,18 @@ impl ModalResult {
     pub fn first_bending(&self) -> Option<&Mode> {
         self.of_kind(ModeKind::Bending).next()
     }
+
+    /// Largest error bound among the lowest three elastic modes, when it
+    /// exceeds [`ACCURACY_WARNING`].
+    pub fn accuracy_warning(&self) -> Option<f64> {
+        let worst = self
+            .modes
+            .iter()
+            .filter_map(|m| m.error_bound)
+            .take(3)
+            .fold(0.0f64, f64::max);
+        (worst > ACCURACY_WARNING).then_some(worst)
+    }
 }
 
 /// Modal analysis at the system's reference configuration (unloaded, λ = 0).
@@ -162,35 +175,10 @@ pub fn modal_at_reference(
     modal(system, &system.reference(), settings)
 }
 
-/// The problem linearized at a state and reduced to the free coordinates:
-/// N, an orthonormal basis of null(C_q); K_r = NᵀKN and M_r = NᵀMN (units
-/// of K and M per pair of reduced coordinates).
-#[derive(Debug, Clone)]
-pub struct ReducedProblem {
-    pub null_space: NullSpace,
-    pub stiffness: Mat<f64>,
-    pub mass: Mat<f64>,
-}
-
-impl ReducedProblem {
-    /// Tangent stiffness and constraint Jacobian at `at`, their null space,
-    /// the projections; fails if the constraints leave no free coordinate.
-    pub fn new(system: &System, at: &Linearization) -> Result<Self, AnalysisError> {
-        let n = system.ndof();
-        let mut k = Mat::zeros(n, n);
-        system.tangent_stiffness(at, &mut k);
-        let mut cq = Mat::zeros(system.constraint_count(), n);
-        system.constraint_jacobian(at.q, &mut cq);
-        let null_space = NullSpace::new(&cq);
-        if null_space.dim() == 0 {
-            return Err(AnalysisError::NoFreedom);
-        }
-        Ok(ReducedProblem {
-            stiffness: null_space.project(&k),
-            mass: null_space.project(system.mass().dense()),
-            null_space,
-        })
-    }
+/// The reduced pencil in one of two storages.
+enum Pencil {
+    Dense { k: Mat<f64>, m: Mat<f64> },
+    Sparse { k: Triplets, m: Triplets },
 }
 
 /// Modal analysis linearized at `at`.
@@ -200,100 +188,114 @@ pub fn modal(
     settings: &ModalSettings,
 ) -> Result<ModalResult, AnalysisError> {
     let n = system.ndof();
-    let mass = system.mass();
-    let ReducedProblem {
-        null_space: ns,
-        stiffness: kr,
-        mass: mr,
-    } = ReducedProblem::new(system, at)?;
-    let eigen_error = |e: EigenFailure| match e {
-        EigenFailure::SingularMass { direction } => {
-            let full = ns.expand(&direction, n);
-            let i = (0..n)
-                .max_by(|&a, &b| full[a].abs().total_cmp(&full[b].abs()))
-                .unwrap_or(0);
-            AnalysisError::SingularMass {
-                dof: system.dof_label(i),
-                path: system.dof_model_path(i),
-            }
-        }
-        EigenFailure::NoConvergence => AnalysisError::EigenSolver { size: ns.dim() },
-    };
+    let mut cq = Triplets::new(system.constraint_count(), n);
+    system.add_constraint_jacobian(at.q, &mut cq);
+    let ns = NullSpace::new(cq.nrows(), n, cq.entries());
     let dim = ns.dim();
-    let count = settings.modes.map_or(dim, |c| c.min(dim));
-    let lanczos = match settings.method {
-        EigenMethod::Dense => false,
-        EigenMethod::Lanczos => count < dim,
-        EigenMethod::Auto => dim > LANCZOS_MIN_SIZE && 4 * count <= dim,
-    };
-    let partial = if lanczos {
-        match lowest_modes(&kr, &mr, count) {
-            Ok(e) => Some(e),
-            Err(e) if settings.method == EigenMethod::Lanczos => return Err(eigen_error(e)),
-            Err(_) => None,
-        }
-    } else {
-        None
-    };
-    // With a partial spectrum, max|ω²| is estimated by maxᵢ (K_r)ᵢᵢ/(M_r)ᵢᵢ
-    // (a Rayleigh quotient: ≤ max|ω²|, within a modest factor of it).
-    let (eig, lmax) = match partial {
-        Some(e) => (e, max_eigenvalue_estimate(&kr, &mr)),
-        None => {
-            let e = solve_generalized(&kr, &mr, count).map_err(eigen_error)?;
-            let lmax = e.spectrum.max_abs().unwrap_or(0.0);
-            (e, lmax)
-        }
-    };
-    let tol = settings.rigid_tolerance * f64::EPSILON * lmax;
-    // Zero eigenvalues of the whole spectrum, also beyond the modes asked for.
-    let mut rigid_modes = eig
-        .count_within(tol)
-        .unwrap_or_else(|| eig.values.iter().filter(|v| v.abs() <= tol).count());
-    let shapes: Vec<Vec<f64>> = (0..count)
-        .map(|i| ns.expand(eig.vectors.col_as_slice(i), n))
-        .collect();
-    // Rayleigh quotients with the cancellation-free energy form, for the
-    // modes above the solver's noise bound: the dense solver's ω² carries an
-    // absolute error ~ε·max|ω²|.
-    let elastic: Vec<usize> = (0..count).filter(|&i| eig.values[i].abs() > tol).collect();
-    let phis: Vec<&[f64]> = elastic.iter().map(|&i| shapes[i].as_slice()).collect();
-    let mut energies = vec![EnergyBreakdown::default(); elastic.len()];
-    system.stiffness_quadratic_forms(at, &phis, &mut energies);
-    let mut energy_of = elastic.iter().zip(&energies).peekable();
-    let mut modes = Vec::with_capacity(count);
-    for (i, shape) in shapes.into_iter().enumerate() {
-        let zero = EnergyFractions {
-            axial: 0.0,
-            bending: 0.0,
-            springs: 0.0,
-        };
-        let (kind, energy, value) = match energy_of.next_if(|(&j, _)| j == i) {
-            None => (ModeKind::Rigid, zero, eig.values[i]),
-            Some((_, energy)) => {
-                let refined = 2.0 * energy.total() / mass.quadratic_form(&shape);
-                if refined.abs() <= tol {
-                    // Above the solver's noise bound, but it strains nothing.
-                    rigid_modes += 1;
-                    (ModeKind::Rigid, zero, refined)
-                } else {
-                    let (kind, fractions) = classify(*energy);
-                    (kind, fractions, refined)
-                }
-            }
-        };
-        let frequency_hz = if kind == ModeKind::Rigid {
-            0.0
+    if dim == 0 {
+        return Err(AnalysisError::NoFreedom);
+    }
+    let singular = |direction: &[f64], reduced: bool| {
+        let full = if reduced {
+            ns.expand(direction)
         } else {
-            value.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
+            direction.to_vec()
         };
+        let i = argmax_abs(&full);
+        AnalysisError::SingularMass {
+            dof: system.dof_label(i),
+            path: system.dof_model_path(i),
+        }
+    };
+    let eigen_error = |e: EigenFailure, reduced: bool| match e {
+        EigenFailure::SingularMass { direction } => singular(&direction, reduced),
+        EigenFailure::NoConvergence | EigenFailure::Factorization => {
+            AnalysisError::EigenSolver { size: dim }
+        }
+    };
+    // A coordinate without mass makes every later step meaningless.
+    let mass_diag = system.mass().diagonal();
+    if let Some(i) = mass_diag.iter().position(|&v| !(v > 0.0 && v.is_finite())) {
+        let mut e = vec![0.0; n];
+        e[i] = 1.0;
+        return Err(singular(&e, false));
+    }
+    let zero = zero_modes(system, at, &cq).map_err(|e| eigen_error(e, false))?;
+    let k0 = zero.shapes.len();
+    let count = settings.modes.map_or(dim, |c| c.min(dim));
+    let elastic_wanted = count.saturating_sub(k0).min(dim - k0);
+    let sparse = match settings.method {
+        EigenMethod::Dense => false,
+        EigenMethod::Sparse => true,
+        EigenMethod::Auto => dim > DENSE_MAX && settings.modes.is_some(),
+    };
+    let pencil = if sparse {
+        let (mut k, mut m) = (Triplets::new(dim, dim), Triplets::new(dim, dim));
+        system.add_tangent_stiffness(at, &mut Projected::new(&ns, &mut k));
+        system.mass().add_into(&mut Projected::new(&ns, &mut m));
+        Pencil::Sparse { k, m }
+    } else {
+        let (mut k, mut m) = (Mat::zeros(dim, dim), Mat::zeros(dim, dim));
+        system.add_tangent_stiffness(at, &mut Projected::new(&ns, &mut k));
+        system.mass().add_into(&mut Projected::new(&ns, &mut m));
+        symmetrize(&mut k);
+        symmetrize(&mut m);
+        Pencil::Dense { k, m }
+    };
+    let z_reduced: Vec<Vec<f64>> = zero.shapes.iter().map(|s| ns.restrict(s)).collect();
+    let (values, vectors) = match &pencil {
+        Pencil::Dense { k, m } => {
+            dense_elastic(k, m, &z_reduced, elastic_wanted).map_err(|e| eigen_error(e, true))?
+        }
+        Pencil::Sparse { k, m } => {
+            let r = lowest_modes(k, m, &z_reduced, &KrylovSettings::new(elastic_wanted))
+                .map_err(|e| eigen_error(e, true))?;
+            (r.values, r.vectors)
+        }
+    };
+    let shapes: Vec<Vec<f64>> = (0..values.len())
+        .map(|i| ns.expand(vectors.col_as_slice(i)))
+        .collect();
+    // Rayleigh quotients from the cancellation-free energy form.
+    let phis: Vec<&[f64]> = shapes.iter().map(Vec::as_slice).collect();
+    let mut energies = vec![EnergyBreakdown::default(); phis.len()];
+    system.stiffness_quadratic_forms(at, &phis, &mut energies);
+    let mass = system.mass();
+    let refined: Vec<f64> = shapes
+        .iter()
+        .zip(&energies)
+        .map(|(s, e)| 2.0 * e.total() / mass.quadratic_form(s))
+        .collect();
+    let bounds = error_bounds(&pencil, &vectors, &refined);
+    let mut modes = Vec::with_capacity(count);
+    let zero_fractions = EnergyFractions {
+        axial: 0.0,
+        bending: 0.0,
+        springs: 0.0,
+    };
+    for shape in zero.shapes.iter().take(count) {
         modes.push(Mode {
-            index: i + 1,
-            frequency_hz,
-            eigenvalue: value,
+            index: modes.len() + 1,
+            frequency_hz: 0.0,
+            eigenvalue: 0.0,
+            kind: ModeKind::Rigid,
+            energy: zero_fractions,
+            error_bound: None,
+            shape: shape.clone(),
+        });
+    }
+    let mut elastic: Vec<usize> = (0..shapes.len()).collect();
+    elastic.sort_by(|&a, &b| refined[a].total_cmp(&refined[b]));
+    for i in elastic {
+        let (kind, energy) = classify(energies[i]);
+        modes.push(Mode {
+            index: modes.len() + 1,
+            frequency_hz: refined[i].max(0.0).sqrt() / (2.0 * std::f64::consts::PI),
+            eigenvalue: refined[i],
             kind,
             energy,
-            shape,
+            error_bound: Some(bounds[i]),
+            shape: shapes[i].clone(),
         });
     }
     let redundant_constraints = redundant_labels(system, &ns.redundant_rows);
@@ -301,10 +303,100 @@ pub fn modal(
         dofs: n,
         constraints: system.constraint_count(),
         redundant_constraints,
-        reduced_dofs: ns.dim(),
-        rigid_modes,
+        reduced_dofs: dim,
+        rigid_modes: k0,
+        solver: if sparse {
+            "sparse shift-invert Lanczos"
+        } else {
+            "dense"
+        },
         modes,
     })
+}
+
+/// The lowest `wanted` eigenpairs of (K_r, M_r) on the M_r-orthogonal
+/// complement of the zero modes Z: W spans that complement (the trailing
+/// columns of the Householder Q of M_r Z), the pencil (WᵀK_rW, WᵀM_rW) is
+/// solved densely, and x = W y.
+fn dense_elastic(
+    k: &Mat<f64>,
+    m: &Mat<f64>,
+    z: &[Vec<f64>],
+    wanted: usize,
+) -> Result<(Vec<f64>, Mat<f64>), EigenFailure> {
+    let dim = k.nrows();
+    if z.is_empty() {
+        let e = solve_generalized(k, m, wanted)?;
+        return Ok((e.values, e.vectors));
+    }
+    let zm = Mat::from_fn(dim, z.len(), |i, j| z[j][i]);
+    let y = m * &zm;
+    let q = y.qr().compute_Q();
+    let w = q.subcols(z.len(), dim - z.len()).to_owned();
+    let mut kw = w.transpose() * k * &w;
+    let mut mw = w.transpose() * m * &w;
+    symmetrize(&mut kw);
+    symmetrize(&mut mw);
+    let e = solve_generalized(&kw, &mw, wanted)?;
+    Ok((e.values, &w * &e.vectors))
+}
+
+/// ½ min(‖r‖, ‖r‖²/δ)/ω² per mode (module doc, item 4).
+fn error_bounds(pencil: &Pencil, vectors: &Mat<f64>, values: &[f64]) -> Vec<f64> {
+    let count = values.len();
+    let dim = vectors.nrows();
+    let mut residuals = Mat::zeros(dim, count);
+    let mut kx = vec![0.0; dim];
+    let mut mx = vec![0.0; dim];
+    let m_solver: Option<Box<dyn Fn(&mut Mat<f64>)>> = match pencil {
+        Pencil::Dense { k, m } => {
+            for (j, &lambda) in values.iter().enumerate() {
+                let x = vectors.col_as_slice(j);
+                for i in 0..dim {
+                    kx[i] = dot(k.col_as_slice(i), x);
+                    mx[i] = dot(m.col_as_slice(i), x);
+                }
+                for i in 0..dim {
+                    residuals[(i, j)] = kx[i] - lambda * mx[i];
+                }
+            }
+            m.llt(Side::Lower)
+                .ok()
+                .map(|l| Box::new(move |r: &mut Mat<f64>| l.solve_in_place(r.as_mut())) as _)
+        }
+        Pencil::Sparse { k, m } => {
+            let (kc, mc) = (k.to_sparse(), m.to_sparse());
+            for (j, &lambda) in values.iter().enumerate() {
+                let x = vectors.col_as_slice(j);
+                mul_vec(&kc, x, &mut kx);
+                mul_vec(&mc, x, &mut mx);
+                for i in 0..dim {
+                    residuals[(i, j)] = kx[i] - lambda * mx[i];
+                }
+            }
+            mc.sp_cholesky(Side::Lower)
+                .ok()
+                .map(|l| Box::new(move |r: &mut Mat<f64>| l.solve_in_place(r.as_mut())) as _)
+        }
+    };
+    let mut solved = residuals.clone();
+    let Some(solve) = m_solver else {
+        return vec![f64::INFINITY; count];
+    };
+    solve(&mut solved);
+    (0..count)
+        .map(|j| {
+            let r = dot(residuals.col_as_slice(j), solved.col_as_slice(j))
+                .max(0.0)
+                .sqrt();
+            let gap = (0..count)
+                .filter(|&i| i != j)
+                .map(|i| (values[i] - values[j]).abs())
+                .fold(f64::INFINITY, f64::min);
+            let dl = r.min(r * r / gap);
+            0.5 * dl / values[j].abs()
+        })
+        .collect()
 }
 
 fn classify(e: EnergyBreakdown) -> (ModeKind, EnergyFractions) {

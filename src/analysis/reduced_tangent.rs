@@ -13,13 +13,14 @@
 //! loss of stability, located by regula falsi (Illinois) on ω²₁ between the
 //! last stable load and this one.
 
-use super::eigen::{solve_generalized, EigenFailure};
-use super::reduce::NullSpace;
 use super::statics::{
     argmax_abs, dot, norm2, norm_inf, Damping, NewtonFailure, Ramp, Snapshot, Solver, State,
 };
 use crate::anchor::Anchor;
 use crate::error::AnalysisError;
+use crate::linalg::dense::solve_generalized;
+use crate::linalg::null_space::NullSpace;
+use crate::linalg::EigenFailure;
 use crate::system::{Linearization, System};
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
@@ -31,20 +32,24 @@ impl Solver<'_> {
         kr: &Mat<f64>,
         ns: &NullSpace,
     ) -> Result<ReducedModes, AnalysisError> {
-        let mr = ns.project(&self.mass);
+        let mr = ns.project_dense(&self.mass);
         let eig = solve_generalized(kr, &mr, kr.nrows()).map_err(|e| match e {
             EigenFailure::SingularMass { direction } => {
-                let full = ns.expand(&direction, self.system.ndof());
+                let full = ns.expand(&direction);
                 let i = argmax_abs(&full);
                 AnalysisError::SingularMass {
                     dof: self.system.dof_label(i),
                     path: self.system.dof_model_path(i),
                 }
             }
-            EigenFailure::NoConvergence => AnalysisError::EigenSolver { size: kr.nrows() },
+            EigenFailure::NoConvergence | EigenFailure::Factorization => {
+                AnalysisError::EigenSolver { size: kr.nrows() }
+            }
         })?;
-        let lmax = eig.spectrum.max_abs().unwrap_or(0.0);
-        let zero = super::ModalSettings::default().rigid_tolerance * f64::EPSILON * lmax;
+        // A Newton step's zero-stiffness test: |ω²| within the dense
+        // solver's round-off, 64 ε max|ω²|.
+        let lmax = eig.values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let zero = 64.0 * f64::EPSILON * lmax;
         Ok(ReducedModes {
             values: eig.values,
             vectors: eig.vectors,
@@ -100,11 +105,11 @@ impl Solver<'_> {
         );
         let mut cq = Mat::zeros(sys.constraint_count(), n);
         sys.constraint_jacobian(&state.q, &mut cq);
-        let ns = NullSpace::new(&cq);
+        let ns = NullSpace::from_dense(&cq);
         if ns.dim() == 0 {
             return Ok(None);
         }
-        let kr = ns.project(&k);
+        let kr = ns.project_dense(&k);
         if !exact && definite_factor(&kr).is_some() {
             return Ok(Some(LowestMode {
                 value: f64::INFINITY,
@@ -116,7 +121,7 @@ impl Solver<'_> {
         let xr: Vec<f64> = (0..ns.dim()).map(|r| modes.vectors[(r, 0)]).collect();
         Ok(Some(LowestMode {
             value: modes.values[0],
-            shape: ns.expand(&xr, n),
+            shape: ns.expand(&xr),
             zero: modes.zero,
         }))
     }
@@ -268,19 +273,19 @@ impl TangentSolver {
                 }
                 if check {
                     // The force this free motion would have to take: M_r φ s.
-                    let mr = self.ns.project(&solver.mass);
+                    let mr = self.ns.project_dense(&solver.mass);
                     let force: Vec<f64> = (0..d)
                         .map(|r| (0..d).map(|c| mr[(r, c)] * driven[c]).sum())
                         .collect();
                     if norm_inf(&force) > (1e-8 * f_ref).max(solver.noise) {
-                        let motion = self.ns.expand(&driven, n);
+                        let motion = self.ns.expand(&driven);
                         return Err(NewtonFailure::Fatal(solver.free_motion_error(&motion)));
                     }
                 }
                 x
             }
         };
-        for (d, e) in dq.iter_mut().zip(self.ns.expand(&dz, n)) {
+        for (d, e) in dq.iter_mut().zip(self.ns.expand(&dz)) {
             *d += e;
         }
         Ok(dq)

@@ -41,9 +41,10 @@
 //! The reduced-tangent machinery (factoring, corrections, zero modes,
 //! stability) lives in the sibling module `reduced_tangent`.
 
-use super::reduce::NullSpace;
 use super::reduced_tangent::{definite_factor, Factor, TangentSolver};
 use crate::error::AnalysisError;
+use crate::linalg::null_space::NullSpace;
+pub(crate) use crate::linalg::vector::{argmax_abs, dot, norm2, norm_inf};
 use crate::system::{Linearization, System};
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
@@ -336,7 +337,7 @@ impl<'a> Solver<'a> {
         sys.constraint_residual(q, &mut c);
         let mut cq = Mat::zeros(m, n);
         sys.constraint_jacobian(q, &mut cq);
-        let ns = NullSpace::new(&cq);
+        let ns = NullSpace::from_dense(&cq);
         let rows: Vec<usize> = (0..m).filter(|i| !ns.redundant_rows.contains(i)).collect();
         let mi = rows.len();
         let gram_m = Mat::from_fn(mi, mi, |a, b| {
@@ -540,7 +541,7 @@ impl<'a> Solver<'a> {
             },
             &mut k,
         );
-        let kr = snap.ns.project(&k);
+        let kr = snap.ns.project_dense(&k);
         let d = kr.nrows();
         let factor = if d == 0 {
             Factor::Empty
@@ -597,22 +598,4 @@ fn characteristic_length(system: &System) -> f64 {
     } else {
         1.0
     }
-}
-
-pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-pub(crate) fn norm2(a: &[f64]) -> f64 {
-    dot(a, a).sqrt()
-}
-
-pub(crate) fn norm_inf(a: &[f64]) -> f64 {
-    a.iter().fold(0.0, |m, x| m.max(x.abs()))
-}
-
-pub(crate) fn argmax_abs(v: &[f64]) -> usize {
-    (0..v.len())
-        .max_by(|&a, &b| v[a].abs().total_cmp(&v[b].abs()))
-        .unwrap_or(0)
 }

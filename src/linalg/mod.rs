@@ -14,9 +14,9 @@
 //!   Cholesky/LU factors;
 //! - [`vector`]: the few vector helpers (dot, norms, axpy) everyone shares.
 
-// pub mod dense;
-// pub mod krylov;
-// pub mod null_space;
+pub mod dense;
+pub mod krylov;
+pub mod null_space;
 pub mod sparse;
 pub mod vector;
 

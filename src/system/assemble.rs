@@ -25,6 +25,11 @@ pub struct EnergyBreakdown {
     /// Load stiffness and constraint-force (∂(C_qᵀλ)/∂q) terms; not strain
     /// energy, zero at an unloaded reference.
     pub other: f64,
+    /// Quadratic forms only: the size of the terms before they cancel
+    /// (beams: [`crate::element::EnergySplit::roundoff`]; springs, loads and
+    /// constraint forces: |v|ᵀ|H||v|) [SI: J]. A form below a small multiple
+    /// of ε times this is zero to round-off.
+    pub roundoff: f64,
 }
 
 impl EnergyBreakdown {
@@ -327,6 +332,7 @@ impl System {
                 for (e, s) in out.iter_mut().zip(&split) {
                     e.axial += s.axial;
                     e.bending += s.bending;
+                    e.roundoff += s.roundoff;
                 }
             }
         }
@@ -343,6 +349,7 @@ impl System {
             for (e, phi) in out.iter_mut().zip(phis) {
                 let v = local(phi, &mut fe.pair().dofs());
                 e.springs += 0.5 * v.dot(&(h * v));
+                e.roundoff += 0.5 * v.abs().dot(&(h.abs() * v.abs()));
             }
         }
         let mut hl = Hess::zeros();
@@ -352,6 +359,7 @@ impl System {
                 let v = local(phi, &mut l.anchor.dofs().iter().copied());
                 let v8 = v.fixed_rows::<8>(0);
                 e.other -= 0.5 * v8.dot(&(hl * v8));
+                e.roundoff += 0.5 * v8.abs().dot(&(hl.abs() * v8.abs()));
             }
         }
         if let Some(lambda) = at.lambda {
@@ -361,6 +369,7 @@ impl System {
                 for (e, phi) in out.iter_mut().zip(phis) {
                     let v = local(phi, &mut c.pair().dofs());
                     e.other += 0.5 * v.dot(&(h * v));
+                    e.roundoff += 0.5 * v.abs().dot(&(h.abs() * v.abs()));
                 }
             }
         }

@@ -14,9 +14,11 @@ mod assemble;
 mod build;
 mod energy;
 mod mass;
+mod rigid_motion;
 
 pub use assemble::{EnergyBreakdown, Linearization};
 pub use mass::MassMatrix;
+pub use rigid_motion::{RigidMotions, SparseColumn};
 
 use crate::anchor::Anchor;
 use crate::element::{CableElement, CableSection};

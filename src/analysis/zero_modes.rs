@@ -1,0 +1,167 @@
+//! Zero-frequency modes counted from the kinematics of the assembly.
+//!
+//! A zero mode moves without straining anything. Such a motion is rigid on
+//! every body, so it lies in the span V of the bodies' rigid motions
+//! ([`crate::System::rigid_motions`], weld clusters merged) that satisfy the
+//! linearized constraints, C_q V a = 0. Among those, the ones with zero
+//! stiffness are the null space of the small pencil (VᵀK_tV, VᵀMV), K_t
+//! the full tangent at the linearization state: at an unloaded reference
+//! only springs stiffen a rigid motion; under pre-stress gravity, preloads
+//! and the constraint forces do too, so a pendulum under gravity keeps its
+//! frequency.
+//!
+//! VᵀK_tV is formed from the cancellation-free energy form
+//! ([`crate::System::stiffness_quadratic_forms`], by polarization), in
+//! which a rigid motion of a beam strains nothing to round-off. The form
+//! also returns the size R of its terms before they cancel (the stretch
+//! stiffness times the whole slope variation squared, and so on:
+//! [`crate::system::EnergyBreakdown::roundoff`]); the tension factor
+//! |r'| − 1 of a stress-free state is ε-sized, so the form of a rigid
+//! motion comes out at a few ε·R. A stiffness μ = ω² of a candidate counts
+//! as zero when |μ| ≤ 64 ε R/m, m its mass: a pendulum of length L under
+//! gravity has μ/(ε R/m) ≈ ρ g L/(ε E), 5e7·L/m for steel, so even a
+//! 25 µm pendulum clears the threshold 1000-fold, while the free
+//! assemblies' rigid motions sit at ≤ 2 ε R/m.
+//!
+//! The rank of C_q V is decided on unit-norm columns and rows (the
+//! coefficient space of V mixes translations and rotations) by the same
+//! grouped Gram–Schmidt/QR as the constraint null space.
+
+use crate::linalg::dense::solve_generalized;
+use crate::linalg::null_space::NullSpace;
+use crate::linalg::vector::dot;
+use crate::linalg::{EigenFailure, Triplets};
+use crate::system::{EnergyBreakdown, Linearization, System};
+
+/// Zero modes of a linearization.
+#[derive(Debug, Clone, Default)]
+pub struct ZeroModes {
+    /// Mass-normalized shapes in the global coordinates (φᵀMφ = 1).
+    pub shapes: Vec<Vec<f64>>,
+    /// Rigid clusters of bodies (bodies joined by welds count as one).
+    pub clusters: usize,
+    /// Rigid motions that satisfy the constraints (the candidates).
+    pub candidates: usize,
+}
+
+/// Round-off factor of the zero test.
+const ZERO_FACTOR: f64 = 64.0;
+
+/// The zero modes of the system linearized at `at`; `cq` holds C_q there.
+pub fn zero_modes(
+    system: &System,
+    at: &Linearization,
+    cq: &Triplets,
+) -> Result<ZeroModes, EigenFailure> {
+    let n = system.ndof();
+    let motions = system.rigid_motions(at.q);
+    let c = motions.fields.len();
+    // B = C_q V (m × c), columns scaled to unit norm.
+    let mut by_coord: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
+    for (f, field) in motions.fields.iter().enumerate() {
+        for &(i, v) in field {
+            by_coord[i].push((f, v));
+        }
+    }
+    let mut b: Vec<(usize, usize, f64)> = Vec::new();
+    for (i, j, v) in cq.entries() {
+        for &(f, w) in &by_coord[j] {
+            b.push((i, f, v * w));
+        }
+    }
+    let mut col_norm = vec![0.0; c];
+    {
+        // Column norms of the summed matrix.
+        let mut summed = std::collections::HashMap::new();
+        for &(i, f, v) in &b {
+            *summed.entry((i, f)).or_insert(0.0) += v;
+        }
+        for ((_, f), v) in summed {
+            col_norm[f] += v * v;
+        }
+    }
+    let col_norm: Vec<f64> = col_norm
+        .iter()
+        .map(|&s: &f64| if s > 0.0 { s.sqrt() } else { 1.0 })
+        .collect();
+    let kernel = NullSpace::new(
+        cq.nrows(),
+        c,
+        b.iter().map(|&(i, f, v)| (i, f, v / col_norm[f])),
+    );
+    let r = kernel.dim();
+    // Candidate motions u_k = V a_k in the global coordinates.
+    let mut u: Vec<Vec<f64>> = Vec::with_capacity(r);
+    for k in 0..r {
+        let mut e = vec![0.0; r];
+        e[k] = 1.0;
+        let a = kernel.expand(&e);
+        let mut uk = vec![0.0; n];
+        for (f, &af) in a.iter().enumerate() {
+            if af != 0.0 {
+                for &(i, v) in &motions.fields[f] {
+                    uk[i] += af / col_norm[f] * v;
+                }
+            }
+        }
+        u.push(uk);
+    }
+    let out = |shapes| ZeroModes {
+        shapes,
+        clusters: motions.clusters,
+        candidates: r,
+    };
+    if r == 0 {
+        return Ok(out(Vec::new()));
+    }
+    // Mass and stiffness of the candidates.
+    let mass = system.mass();
+    let mu: Vec<Vec<f64>> = u
+        .iter()
+        .map(|x| {
+            let mut y = vec![0.0; n];
+            mass.mul_vec(x, &mut y);
+            y
+        })
+        .collect();
+    let mv = faer::Mat::from_fn(r, r, |i, j| 0.5 * (dot(&u[i], &mu[j]) + dot(&u[j], &mu[i])));
+    let mut shapes: Vec<Vec<f64>> = u.clone();
+    let mut pairs = Vec::new();
+    for i in 0..r {
+        for j in i + 1..r {
+            shapes.push(u[i].iter().zip(&u[j]).map(|(a, b)| a + b).collect());
+            pairs.push((i, j));
+        }
+    }
+    let refs: Vec<&[f64]> = shapes.iter().map(Vec::as_slice).collect();
+    let mut energies = vec![EnergyBreakdown::default(); refs.len()];
+    system.stiffness_quadratic_forms(at, &refs, &mut energies);
+    let form = |e: &EnergyBreakdown| 2.0 * e.total();
+    let mut kv = faer::Mat::zeros(r, r);
+    let mut noise = 0.0f64;
+    for i in 0..r {
+        kv[(i, i)] = form(&energies[i]);
+        noise = noise.max(2.0 * energies[i].roundoff / mv[(i, i)]);
+    }
+    for (p, &(i, j)) in pairs.iter().enumerate() {
+        let e = &energies[r + p];
+        let v = 0.5 * (form(e) - kv[(i, i)] - kv[(j, j)]);
+        kv[(i, j)] = v;
+        kv[(j, i)] = v;
+        noise = noise.max(2.0 * e.roundoff / (mv[(i, i)] + mv[(j, j)]));
+    }
+    let eig = solve_generalized(&kv, &mv, r)?;
+    let zero = ZERO_FACTOR * f64::EPSILON * noise;
+    let mut result = Vec::new();
+    for (k, &value) in eig.values.iter().enumerate() {
+        if value.abs() <= zero {
+            let mut shape = vec![0.0; n];
+            for (i, ui) in u.iter().enumerate() {
+                let a = eig.vectors[(i, k)];
+                shape.iter_mut().zip(ui).for_each(|(s, x)| *s += a * x);
+            }
+            result.push(shape);
+        }
+    }
+    Ok(out(result))
+}

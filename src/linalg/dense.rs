@@ -1,0 +1,167 @@
+//! The dense symmetric-definite generalized eigenproblem K x = λ M x, for
+//! problems small enough to hold as dense matrices [SI: λ = ω² in rad²/s²
+//! for a stiffness K and a mass M].
+//!
+//! Jacobi scaling first: D = diag(M)^-½, so the scaled mass D M D has a unit
+//! diagonal whatever the units of the coordinates (positions in m, slopes,
+//! angles in rad) and the size of the model (µm or km). Then faer's
+//! Cholesky D M D = L Lᵀ, C = L⁻¹ (D K D) L⁻ᵀ, faer's self-adjoint
+//! eigensolver on C with the QR algorithm (faer switches to divide and
+//! conquer from n = 128, which lost the zero cluster of a free beam in an
+//! earlier release), and x = D L⁻ᵀ y, mass-normalized (xᵀ M x = 1).
+//!
+//! M counts as singular when a diagonal entry is not positive or a pivot of
+//! the scaled factor falls below [`SINGULAR_PIVOT`]: a test on a unit-diagonal
+//! matrix, so independent of units, size and mass scale.
+
+use super::EigenFailure;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::evd::{self, ComputeEigenvectors, SelfAdjointEvdParams};
+use faer::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
+use faer::{Mat, Par, Side};
+
+/// A squared Cholesky pivot of the Jacobi-scaled mass below this marks M as
+/// singular (a unit-diagonal matrix: its smallest eigenvalue is at most
+/// this).
+pub const SINGULAR_PIVOT: f64 = 1e-12;
+
+/// The lowest eigenvalues (ascending) and their mass-normalized
+/// eigenvectors (columns, one per value).
+#[derive(Debug, Clone)]
+pub struct GeneralizedEigen {
+    pub values: Vec<f64>,
+    pub vectors: Mat<f64>,
+}
+
+fn par(n: usize) -> Par {
+    if n >= 256 {
+        Par::rayon(0)
+    } else {
+        Par::Seq
+    }
+}
+
+/// Solve K x = λ M x for symmetric K and symmetric positive definite M: the
+/// lowest `wanted` eigenvalues with M-normalized vectors.
+pub fn solve_generalized(
+    k: &Mat<f64>,
+    m: &Mat<f64>,
+    wanted: usize,
+) -> Result<GeneralizedEigen, EigenFailure> {
+    let n = k.nrows();
+    let wanted = wanted.min(n);
+    let mut d = vec![0.0; n];
+    for (i, di) in d.iter_mut().enumerate() {
+        let mii = m[(i, i)];
+        if !(mii > 0.0 && mii.is_finite()) {
+            let mut direction = vec![0.0; n];
+            direction[i] = 1.0;
+            return Err(EigenFailure::SingularMass { direction });
+        }
+        *di = 1.0 / mii.sqrt();
+    }
+    let p = par(n);
+    let scaled_m = Mat::from_fn(n, n, |i, j| d[i] * m[(i, j)] * d[j]);
+    let singular = || EigenFailure::SingularMass {
+        direction: lowest_direction(&scaled_m, &d),
+    };
+    let llt = scaled_m.llt(Side::Lower).map_err(|_| singular())?;
+    let l = llt.L();
+    if (0..n).any(|i| l[(i, i)] * l[(i, i)] <= SINGULAR_PIVOT) {
+        return Err(singular());
+    }
+    // W = L⁻¹ D K D, then C = L⁻¹ Wᵀ = L⁻¹ (DKD) L⁻ᵀ, symmetrized.
+    let mut w = Mat::from_fn(n, n, |i, j| d[i] * k[(i, j)] * d[j]);
+    solve_lower_triangular_in_place(l, w.as_mut(), p);
+    let mut c = w.transpose().to_owned();
+    solve_lower_triangular_in_place(l, c.as_mut(), p);
+    let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
+    let (values, vectors) = symmetric_eigen_qr(&c, p)?;
+    let mut vectors = vectors.subcols(0, wanted).to_owned();
+    solve_upper_triangular_in_place(l.transpose(), vectors.as_mut(), p);
+    for j in 0..wanted {
+        for (i, &di) in d.iter().enumerate() {
+            vectors[(i, j)] *= di;
+        }
+    }
+    Ok(GeneralizedEigen {
+        values: values[..wanted].to_vec(),
+        vectors,
+    })
+}
+
+/// Eigenvalues (ascending) and eigenvectors of a symmetric matrix by
+/// faer's tridiagonal QR algorithm (divide and conquer disabled).
+pub fn symmetric_eigen_qr(c: &Mat<f64>, par: Par) -> Result<(Vec<f64>, Mat<f64>), EigenFailure> {
+    let n = c.nrows();
+    let mut params: SelfAdjointEvdParams = faer::auto!(f64);
+    params.recursion_threshold = usize::MAX;
+    let mut s = faer::diag::Diag::<f64>::zeros(n);
+    let mut u = Mat::<f64>::zeros(n, n);
+    let req = evd::self_adjoint_evd_scratch::<f64>(n, ComputeEigenvectors::Yes, par, params.into());
+    let mut buf = MemBuffer::new(req);
+    evd::self_adjoint_evd(
+        c.as_ref(),
+        s.as_mut(),
+        Some(u.as_mut()),
+        par,
+        MemStack::new(&mut buf),
+        params.into(),
+    )
+    .map_err(|_| EigenFailure::NoConvergence)?;
+    Ok(((0..n).map(|i| s[i]).collect(), u))
+}
+
+/// D v for the eigenvector v of the smallest eigenvalue of the scaled mass.
+fn lowest_direction(scaled_m: &Mat<f64>, d: &[f64]) -> Vec<f64> {
+    match symmetric_eigen_qr(scaled_m, Par::Seq) {
+        Ok((_, u)) => d.iter().enumerate().map(|(i, di)| di * u[(i, 0)]).collect(),
+        Err(_) => vec![0.0; d.len()],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A chain of springs k between masses m: ω² = 2k/m (1 − cos(jπ/(n+1))),
+    /// with fixed ends; scaled by `size` in mass to check scale freedom.
+    #[test]
+    fn fixed_chain_frequencies_at_any_mass_scale() {
+        let n = 12;
+        for mass in [1e-18, 1.0, 1e12] {
+            let stiffness = 3.0;
+            let k = Mat::from_fn(n, n, |i, j| match i.abs_diff(j) {
+                0 => 2.0 * stiffness,
+                1 => -stiffness,
+                _ => 0.0,
+            });
+            let m = Mat::from_fn(n, n, |i, j| if i == j { mass } else { 0.0 });
+            let e = solve_generalized(&k, &m, 4).expect("positive definite");
+            for (j, &v) in e.values.iter().enumerate() {
+                let exact = 2.0 * stiffness / mass
+                    * (1.0 - (std::f64::consts::PI * (j + 1) as f64 / (n + 1) as f64).cos());
+                assert!(
+                    (v - exact).abs() <= 1e-13 * exact,
+                    "mass {mass:e}: ω²_{j} = {v:e}, chain formula {exact:e}"
+                );
+                let norm: f64 = (0..n).map(|i| e.vectors[(i, j)].powi(2) * mass).sum();
+                assert!((norm - 1.0).abs() < 1e-13, "xᵀMx = {norm}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_massless_coordinate_is_named() {
+        let k = Mat::<f64>::identity(3, 3);
+        let m = Mat::from_fn(3, 3, |i, j| if i == j && i != 1 { 1.0 } else { 0.0 });
+        match solve_generalized(&k, &m, 3) {
+            Err(EigenFailure::SingularMass { direction }) => {
+                assert_eq!(direction, vec![0.0, 1.0, 0.0], "coordinate 1 has no mass")
+            }
+            other => panic!("expected a singular mass, got {other:?}"),
+        }
+    }
+}
