@@ -7,7 +7,7 @@ use plotters::style::text_anchor::{HPos, VPos};
 
 use super::frame::Rect;
 use super::geom::{self, Bounds};
-use super::line::{Legend, MarkerShape, SeriesStyle};
+use super::series::{Legend, MarkerShape, SeriesStyle};
 use super::style::{self, TextSizes, BACKGROUND, INK};
 use super::PlotError;
 

@@ -64,6 +64,7 @@ mod line;
 mod modeshape;
 mod pngtext;
 mod presets;
+mod series;
 mod style;
 mod ticks;
 
@@ -74,9 +75,10 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 pub use frame::PanelLayout;
-pub use line::{Guide, Legend, LineFigure, MarkerShape, Panel, PointMarker, Series, SeriesStyle};
+pub use line::{LineFigure, Panel};
 pub use modeshape::{Geometry, ModeShape, ModeShapeFigure};
 pub use presets::{calibration_figure, convergence_figure, Calibration, Convergence};
+pub use series::{Guide, Legend, MarkerShape, PointMarker, Series, SeriesStyle};
 pub use style::{
     format_sig, palette, Scale, BACKGROUND, GUIDE, INK, PALETTE, REFERENCE, UNDEFORMED,
 };
