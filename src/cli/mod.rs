@@ -1,6 +1,7 @@
 //! Subcommands. Each file parses its flags, validates them, calls the
 //! library and prints; nothing numerical lives here.
 
+mod args;
 mod calibrate;
 mod convergence;
 mod identify;
@@ -29,7 +30,7 @@ pub enum Command {
     /// The paper's time-domain test: half-sine pulse, sensor, spectrum, first bending peak.
     Impulse(impulse::ImpulseArgs),
     /// Natural frequencies and mode shapes of the linearized assembly.
-    Modal(modal::ModalArgs),
+    Modal(args::ModalArgs),
     /// Fit model parameters (equivalent geometry) to measured frequencies.
     Calibrate(calibrate::CalibrateArgs),
     /// Mesh convergence of the first bending frequencies (log-log errors, O(h⁴)).
