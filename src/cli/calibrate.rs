@@ -1,8 +1,8 @@
 //! `ancf-modal calibrate`: fit model parameters to measured frequencies
 //! (the paper's "equivalent geometry").
 
+use super::common::{load_model, write_output};
 use super::impulse::ExperimentArgs;
-use super::{load_model, write_output};
 use ancf_modal::analysis::calibrate::{
     calibrate, calibrate_with, sweep, CalibrationRequest, CalibrationResult, CalibrationSettings,
     EigenFrequencies, ImpulseFrequency, ModeSelection, ParameterSet, ParameterSpec,

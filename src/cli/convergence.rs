@@ -2,7 +2,7 @@
 //! frequencies, against Euler–Bernoulli for a single free beam, else
 //! against the finest mesh of the study.
 
-use super::load_model;
+use super::common::load_model;
 use ancf_modal::error::{ModelError, Source};
 use ancf_modal::output::figures::{
     convergence_figure, euler_bernoulli_free_free, mesh_convergence_with, with_elements,

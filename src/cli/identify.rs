@@ -1,8 +1,8 @@
 //! `ancf-modal identify`: the main job. Modal analysis, the impulse
 //! experiment with its spectrum, and the paper's Table 3 side by side.
 
+use super::common::{load_model, source_label, write_output};
 use super::impulse::{experiment, ExperimentArgs};
-use super::{load_model, source_label, write_output};
 use ancf_modal::analysis::impulse::ImpulseResult;
 use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings};
 use ancf_modal::output::calibrate_report::calibrate_json;

@@ -1,7 +1,7 @@
 //! `ancf-modal modal`: frequencies and mode shapes.
 
 use super::args::ModalArgs;
-use super::{load_model, source_label, write_output};
+use super::common::{load_model, source_label, write_output};
 use ancf_modal::analysis::{modal_at_reference, ModalSettings};
 use ancf_modal::output::modal_report::{modal_csv, modal_json, modal_table};
 use ancf_modal::System;

@@ -6,7 +6,7 @@
 //! which share the statics settings.
 
 use super::args::{finite, ModalArgs, Sweep};
-use super::{load_model, source_label, write_output};
+use super::common::{load_model, source_label, write_output};
 use ancf_modal::analysis::prestress::{linspace, load_sweep, prestressed_modal};
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf_modal::analysis::ModalSettings;
