@@ -1,9 +1,10 @@
 //! Figures of modal and impulse-response results, rendered to SVG or PNG.
 //!
-//! The module depends on nothing else in the crate: callers fill plain data
-//! structs, in SI units, and [`render`] turns a [`Figure`] into the bytes of
-//! an SVG or PNG file; [`write_atomic`] puts them on disk. Rendering needs no
-//! system library and no installed font: text uses DejaVu Sans, embedded.
+//! The module depends on nothing else in the crate but the atomic write of
+//! [`super::files`]: callers fill plain data structs, in SI units, and
+//! [`render`] turns a [`Figure`] into the bytes of an SVG or PNG file;
+//! [`write_atomic`] puts them on disk. Rendering needs no system library and
+//! no installed font: text uses DejaVu Sans, embedded.
 //!
 //! # Figures
 //!
@@ -68,11 +69,12 @@ mod series;
 mod style;
 mod ticks;
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
+
+use super::files::{self, WriteError};
 
 pub use frame::PanelLayout;
 pub use line::{LineFigure, Panel};
@@ -108,6 +110,12 @@ pub enum PlotError {
     InvalidSize { width: u32, height: u32 },
     #[error("the embedded font could not be loaded")]
     Font,
+}
+
+impl From<WriteError> for PlotError {
+    fn from(WriteError { path, io }: WriteError) -> Self {
+        PlotError::Io { path, io }
+    }
 }
 
 impl<E: std::error::Error + Send + Sync> From<DrawingAreaErrorKind<E>> for PlotError {
@@ -271,50 +279,9 @@ fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, PlotError>
     Ok(out)
 }
 
-/// Writes `bytes` to `path` atomically: into a temporary file in the same
-/// directory, flushed, then renamed over `path`. On failure the temporary
-/// file is removed and `path` is untouched.
+/// Writes `bytes` to `path` atomically ([`files::write_atomic`]: a
+/// temporary file in the same directory, renamed over `path`); a failure is
+/// [`PlotError::Io`] and leaves `path` untouched.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), PlotError> {
-    let io_err = |io: std::io::Error| PlotError::Io {
-        path: path.to_path_buf(),
-        io,
-    };
-    let name = path.file_name().ok_or_else(|| {
-        io_err(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "not a file name",
-        ))
-    })?;
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    if !dir.is_dir() {
-        return Err(io_err(std::io::Error::new(
-            std::io::ErrorKind::NotFound,
-            format!("directory {} does not exist", dir.display()),
-        )));
-    }
-    static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-    let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let tmp = dir.join(format!(
-        ".{}.{}-{}.tmp",
-        name.to_string_lossy(),
-        std::process::id(),
-        n
-    ));
-    let result = (|| {
-        let mut file = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)?;
-        file.write_all(bytes)?;
-        file.sync_all()?;
-        drop(file);
-        std::fs::rename(&tmp, path)
-    })();
-    result.map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        io_err(e)
-    })
+    Ok(files::write_atomic(path, bytes)?)
 }
