@@ -7,11 +7,12 @@ use plotters::style::text_anchor::{HPos, VPos};
 use super::annotate::{
     draw_label, draw_legend, draw_marker, draw_title, legend_rect, text_size, LegendEntry,
 };
+use super::error::PlotError;
 use super::frame::{self, stack, AxisFrame, AxisMap, Coord, FrameSizes, PanelLayout, Placer, Rect};
 use super::geom::{self, Bounds, Extent, Pt};
 use super::series::{Guide, Legend, MarkerShape, PointMarker, Series, SeriesStyle};
+use super::size::PlotSize;
 use super::style::{self, palette, Scale, TextSizes, GUIDE, INK, REFERENCE};
-use super::{PlotError, PlotSize};
 
 /// A figure of curves over a shared x axis. Data are SI; `x_scale` says how
 /// x is shown (and gives the unit in the label).

@@ -58,6 +58,7 @@
 //! `sans-serif` family, drawn by the viewer.
 
 mod annotate;
+mod error;
 mod font;
 mod frame;
 mod geom;
@@ -66,63 +67,28 @@ mod modeshape;
 mod pngtext;
 mod presets;
 mod series;
+mod size;
 mod style;
 mod ticks;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::files::{self, WriteError};
+use super::files;
 
+pub use error::PlotError;
 pub use frame::PanelLayout;
 pub use line::{LineFigure, Panel};
 pub use modeshape::{Geometry, ModeShape, ModeShapeFigure};
 pub use presets::{calibration_figure, convergence_figure, Calibration, Convergence};
 pub use series::{Guide, Legend, MarkerShape, PointMarker, Series, SeriesStyle};
+pub use size::PlotSize;
 pub use style::{
     format_sig, palette, Scale, BACKGROUND, GUIDE, INK, PALETTE, REFERENCE, UNDEFORMED,
 };
 pub use ticks::superscript;
-
-/// Why a figure could not be made or written.
-#[derive(Debug, thiserror::Error)]
-pub enum PlotError {
-    #[error("{path}: unknown plot format (use a .svg or .png file name)", path = path.display())]
-    UnknownExtension { path: PathBuf },
-    #[error("{path}: cannot write the plot: {io}", path = path.display())]
-    Io { path: PathBuf, io: std::io::Error },
-    /// The drawing library failed; its message.
-    #[error("drawing failed: {0}")]
-    Backend(String),
-    #[error("PNG encoding failed: {0}")]
-    PngEncode(String),
-    #[error("nothing to plot: {what}")]
-    EmptyData { what: String },
-    #[error("series `{series}` has {x_len} x values but {y_len} y values")]
-    LengthMismatch {
-        series: String,
-        x_len: usize,
-        y_len: usize,
-    },
-    #[error("plot size {width}×{height} is outside 100…16384 pixels")]
-    InvalidSize { width: u32, height: u32 },
-    #[error("the embedded font could not be loaded")]
-    Font,
-}
-
-impl From<WriteError> for PlotError {
-    fn from(WriteError { path, io }: WriteError) -> Self {
-        PlotError::Io { path, io }
-    }
-}
-
-impl<E: std::error::Error + Send + Sync> From<DrawingAreaErrorKind<E>> for PlotError {
-    fn from(e: DrawingAreaErrorKind<E>) -> Self {
-        PlotError::Backend(e.to_string())
-    }
-}
 
 /// Output file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -144,36 +110,6 @@ impl Format {
             _ => Err(PlotError::UnknownExtension {
                 path: path.to_path_buf(),
             }),
-        }
-    }
-}
-
-/// Figure size in pixels (SVG user units).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct PlotSize {
-    pub width: u32,
-    pub height: u32,
-}
-
-impl Default for PlotSize {
-    fn default() -> Self {
-        PlotSize {
-            width: 1200,
-            height: 800,
-        }
-    }
-}
-
-impl PlotSize {
-    fn check(self) -> Result<(), PlotError> {
-        let ok = |v: u32| (100..=16384).contains(&v);
-        if ok(self.width) && ok(self.height) {
-            Ok(())
-        } else {
-            Err(PlotError::InvalidSize {
-                width: self.width,
-                height: self.height,
-            })
         }
     }
 }
