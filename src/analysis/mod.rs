@@ -4,6 +4,7 @@ mod back_transform;
 pub mod band;
 pub mod bisection;
 pub mod calibrate;
+pub mod convergence;
 pub mod dispersion;
 pub mod eigen;
 pub mod frame;

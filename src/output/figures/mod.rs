@@ -4,10 +4,11 @@
 //! * [`modal`] — mode shapes of a modal analysis: the undeformed assembly
 //!   in grey and each mode's deformed shape q₀ + a·φ in colour, beams drawn
 //!   as their curved ANCF centre lines r(ξ) = S(ξ)·e.
-//! * [`convergence`] — a mesh-convergence study: the first bending
-//!   frequencies against the number of elements, their relative errors
-//!   against an analytic (Euler–Bernoulli) or finest-mesh reference, and
-//!   the log-log error figure with the O(h⁴) slope of Hermite cubics.
+//! * [`convergence`] — a mesh-convergence study
+//!   ([`crate::analysis::convergence`]: the first bending frequencies
+//!   against the number of elements, their relative errors against an
+//!   analytic (Euler–Bernoulli) or finest-mesh reference) as the log-log
+//!   error figure with the O(h⁴) slope of Hermite cubics.
 //! * [`impulse`] — the impulse experiment: sensor signal over the force
 //!   pulse against time, and the amplitude spectrum with identified peaks,
 //!   eigenfrequency guides and the measured reference frequency.
@@ -18,10 +19,7 @@ pub mod convergence;
 pub mod impulse;
 pub mod modal;
 
-pub use convergence::{
-    convergence_figure, euler_bernoulli_free_free, mesh_convergence, mesh_convergence_with,
-    with_elements, ConvergenceData, Reference, ReferenceKind, DEFAULT_ELEMENTS,
-};
+pub use convergence::convergence_figure;
 pub use impulse::{response_figure, response_path, spectrum_figure, write_impulse_figures};
 pub use modal::{
     assembly_geometry, mode_amplitude, mode_shape_figure, mode_shape_figure_with, ModeShapeSettings,
