@@ -3,6 +3,11 @@
 //! Model errors carry the file, the JSON path and the problem, so that the
 //! command line can print one line a user can act on. Analysis errors carry
 //! the quantities that explain them (times, residuals, coordinates).
+//!
+//! The errors of one analysis that wrap others live with that analysis
+//! ([`crate::analysis::impulse::ImpulseError`],
+//! [`crate::analysis::calibrate::CalibrationError`]), so that this module
+//! depends on nothing else in the crate.
 
 use std::fmt;
 use std::path::PathBuf;
@@ -182,157 +187,4 @@ pub enum TransientError {
     },
     #[error("the iteration matrix is singular at t = {time:.9e} s (in the direction of {dof})")]
     Singular { time: f64, dof: String },
-}
-
-/// Why the impulse experiment failed.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum ImpulseError {
-    #[error(transparent)]
-    Transient(#[from] TransientError),
-    #[error(transparent)]
-    Analysis(#[from] AnalysisError),
-    #[error("spectrum: {0}")]
-    Spectrum(#[from] crate::analysis::spectrum::SpectrumError),
-    #[error("integrator correction: {0}")]
-    Dispersion(#[from] crate::analysis::dispersion::DispersionError),
-    #[error("the model has no sensor to record (add one under `sensors`)")]
-    NoSensor,
-    #[error("the model has no sensor `{id}`")]
-    UnknownSensor { id: String },
-    #[error("the model has no time-varying load to excite it (add a `half_sine` or `step` load)")]
-    NoExcitation,
-    #[error("--amplitude/--duration change half-sine loads, and the model has none")]
-    NoPulseToOverride,
-    #[error("the pulse amplitude must be finite and non-zero, got {value} N")]
-    InvalidAmplitude { value: f64 },
-    #[error("sample rate {rate} Hz must be positive and at most 1/step = {} Hz", 1.0 / .step)]
-    SampleRateTooHigh { rate: f64, step: f64 },
-    #[error(
-        "the pulse lasts {duration} s, shorter than two steps of {step} s: it cannot be resolved"
-    )]
-    PulseTooShort { duration: f64, step: f64 },
-}
-
-/// "mode at 6819.3 Hz: ∂f/∂ln(blade.height) = 6819.3 Hz, …; relative
-/// singular values 1.41, 1.3e-16".
-fn identifiability_details(
-    parameters: &[String],
-    frequencies_hz: &[f64],
-    sensitivities_hz: &[Vec<f64>],
-    singular_values: &[f64],
-) -> String {
-    let rows: Vec<String> = frequencies_hz
-        .iter()
-        .zip(sensitivities_hz)
-        .map(|(f, row)| {
-            let cols: Vec<String> = parameters
-                .iter()
-                .zip(row)
-                .map(|(p, d)| format!("∂f/∂ln({p}) = {d:.4e} Hz"))
-                .collect();
-            format!("mode at {f:.3} Hz: {}", cols.join(", "))
-        })
-        .collect();
-    let sv: Vec<String> = singular_values.iter().map(|s| format!("{s:.3e}")).collect();
-    let why = if parameters.len() > frequencies_hz.len() {
-        "more parameters than targets"
-    } else {
-        "the relative sensitivities are (nearly) linearly dependent"
-    };
-    format!(
-        "{why}; {}; singular values of ∂ln f/∂ln p: {}",
-        rows.join("; "),
-        sv.join(", ")
-    )
-}
-
-/// Why a calibration (`ancf-modal calibrate`) failed.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum CalibrationError {
-    #[error("no parameter to fit (give at least one --param)")]
-    NoParameters,
-    #[error("no target frequency (give --target HZ, or a `reference` in the model)")]
-    NoTargets,
-    #[error("target frequency must be positive and finite, got {value:?} Hz")]
-    TargetNotPositive { value: f64 },
-    #[error("unknown parameter `{name}`; this model has: {}", available.join(", "))]
-    UnknownParameter {
-        name: String,
-        available: Vec<String>,
-    },
-    #[error("parameter `{name}` is ambiguous; name one of: {}", candidates.join(", "))]
-    AmbiguousParameter {
-        name: String,
-        candidates: Vec<String>,
-    },
-    #[error("parameter `{name}` is given twice (as `{canonical}`)")]
-    DuplicateParameter { name: String, canonical: String },
-    #[error("`{name}` cannot be fitted with --keep-mass: the density follows the section there")]
-    DensityWithKeepMass { name: String },
-    #[error(
-        "`{name}` is {initial:?} in the model; a fitted parameter needs a positive starting value"
-    )]
-    NoInitialValue { name: String, initial: f64 },
-    #[error("bounds of `{name}` must satisfy 0 < lower < upper < ∞, got [{lower:?}, {upper:?}]")]
-    InvalidBounds {
-        name: String,
-        lower: f64,
-        upper: f64,
-    },
-    #[error("{modes} mode numbers for {targets} targets (give one --mode per target)")]
-    ModeCount { modes: usize, targets: usize },
-    #[error("the model has no {kind} mode number {number} ({available} {kind} modes computed)")]
-    ModeNotFound {
-        kind: crate::analysis::ModeKind,
-        number: usize,
-        available: usize,
-    },
-    #[error("`{parameter}` does not affect the chosen mode ({frequency_hz:.3} Hz): ∂ln f/∂ln p = {relative_sensitivity:.2e}")]
-    NoEffect {
-        parameter: String,
-        frequency_hz: f64,
-        relative_sensitivity: f64,
-    },
-    #[error("target {target_hz} Hz is out of reach for `{parameter}` in [{lower:e}, {upper:e}]: the mode goes from {lower_hz:.3} Hz to {upper_hz:.3} Hz there (widen the bounds with --param NAME=LO:HI)")]
-    Unreachable {
-        parameter: String,
-        target_hz: f64,
-        lower: f64,
-        upper: f64,
-        lower_hz: f64,
-        upper_hz: f64,
-    },
-    #[error("the targets {targets_hz:?} Hz cannot be met within the bounds: the closest fit gives {achieved_hz:?} Hz at {}", parameters.iter().map(|(n, v)| format!("{n} = {v:e}")).collect::<Vec<_>>().join(", "))]
-    NotReached {
-        parameters: Vec<(String, f64)>,
-        targets_hz: Vec<f64>,
-        achieved_hz: Vec<f64>,
-    },
-    #[error("the parameters {} are not identifiable from {} target frequenc{}: {}", parameters.join(", "), frequencies_hz.len(), if frequencies_hz.len() == 1 { "y" } else { "ies" }, identifiability_details(parameters, frequencies_hz, sensitivities_hz, singular_values))]
-    NotIdentifiable {
-        parameters: Vec<String>,
-        frequencies_hz: Vec<f64>,
-        sensitivities_hz: Vec<Vec<f64>>,
-        singular_values: Vec<f64>,
-    },
-    #[error("no convergence after {evaluations} evaluations (residual {residual_hz:.3e} Hz)")]
-    NotConverged {
-        evaluations: usize,
-        residual_hz: f64,
-    },
-    #[error(
-        "the `{method}` method has no sensitivities; it fits one parameter to one target only"
-    )]
-    NeedsSensitivities { method: &'static str },
-    #[error("analysis failed at {at}: {source}")]
-    Analysis { at: String, source: AnalysisError },
-    #[error("the impulse experiment failed at {at}: {source}")]
-    Impulse { at: String, source: ImpulseError },
-    #[error("the impulse experiment shows no first bending peak at {at}")]
-    NoImpulsePeak { at: String },
-    #[error("the impulse method identifies the first bending mode only (asked for {kind} mode(s) {numbers:?}); use --method eigen")]
-    ImpulseMode {
-        kind: crate::analysis::ModeKind,
-        numbers: Vec<usize>,
-    },
 }

@@ -10,11 +10,11 @@
 mod common;
 
 use ancf_modal::analysis::calibrate::{
-    calibrate, calibrate_with, CalibrationRequest, CalibrationSettings, EigenFrequencies,
-    FrequencyModel, ModeSelection, ParameterSet, ParameterSpec, SingleFrequency,
+    calibrate, calibrate_with, CalibrationError, CalibrationRequest, CalibrationSettings,
+    EigenFrequencies, FrequencyModel, ModeSelection, ParameterSet, ParameterSpec, SingleFrequency,
 };
 use ancf_modal::analysis::{ModalSettings, ModeKind};
-use ancf_modal::error::{CalibrationError, Source};
+use ancf_modal::error::Source;
 use ancf_modal::Model;
 use assert_cmd::Command;
 use common::{free_beam, freqs, modal_all, model, H, W};

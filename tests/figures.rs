@@ -10,6 +10,10 @@
 
 mod common;
 
+use ancf_modal::analysis::convergence::{
+    euler_bernoulli_free_free, mesh_convergence, mesh_convergence_with, with_elements,
+    ConvergenceData, Reference, ReferenceKind,
+};
 use ancf_modal::analysis::{ModalResult, ModeKind};
 use ancf_modal::output::figures::*;
 use ancf_modal::output::plot::{render, Figure, Format, LineFigure, ModeShapeFigure, PlotSize};

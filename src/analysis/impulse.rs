@@ -15,15 +15,44 @@
 //! polynomials (value and rate at both ends), so sampling adds no error of
 //! its own at the step sizes used.
 
-use super::dispersion::GenAlpha;
+use super::dispersion::{DispersionError, GenAlpha};
 use super::modal::{modal_at_reference, ModalResult, ModalSettings, ModeKind};
 use super::sensor::SensorProbe;
-use super::spectrum::{self, Frf, Peak, PeakSettings, Spectrum, SpectrumSettings};
+use super::spectrum::{self, Frf, Peak, PeakSettings, Spectrum, SpectrumError, SpectrumSettings};
 use super::transient::{Integrator, RunStats, State, TransientSettings};
-use crate::error::ImpulseError;
+use crate::error::{AnalysisError, TransientError};
 use crate::model::{Model, SensorQuantity, TimeFunction};
 use crate::system::System;
 use std::f64::consts::PI;
+
+/// Why the impulse experiment failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ImpulseError {
+    #[error(transparent)]
+    Transient(#[from] TransientError),
+    #[error(transparent)]
+    Analysis(#[from] AnalysisError),
+    #[error("spectrum: {0}")]
+    Spectrum(#[from] SpectrumError),
+    #[error("integrator correction: {0}")]
+    Dispersion(#[from] DispersionError),
+    #[error("the model has no sensor to record (add one under `sensors`)")]
+    NoSensor,
+    #[error("the model has no sensor `{id}`")]
+    UnknownSensor { id: String },
+    #[error("the model has no time-varying load to excite it (add a `half_sine` or `step` load)")]
+    NoExcitation,
+    #[error("--amplitude/--duration change half-sine loads, and the model has none")]
+    NoPulseToOverride,
+    #[error("the pulse amplitude must be finite and non-zero, got {value} N")]
+    InvalidAmplitude { value: f64 },
+    #[error("sample rate {rate} Hz must be positive and at most 1/step = {} Hz", 1.0 / .step)]
+    SampleRateTooHigh { rate: f64, step: f64 },
+    #[error(
+        "the pulse lasts {duration} s, shorter than two steps of {step} s: it cannot be resolved"
+    )]
+    PulseTooShort { duration: f64, step: f64 },
+}
 
 /// Settings of the impulse experiment.
 #[derive(Debug, Clone, PartialEq)]

@@ -2,6 +2,7 @@
 //! leaves the matrix algorithms to [`crate::linalg`].
 
 pub mod calibrate;
+pub mod convergence;
 pub mod dispersion;
 pub mod frame;
 pub mod impulse;

@@ -1,14 +1,14 @@
 //! `ancf-modal calibrate`: fit model parameters to measured frequencies
 //! (the paper's "equivalent geometry").
 
+use super::common::{load_model, write_output};
 use super::impulse::ExperimentArgs;
-use super::{load_model, write_output};
 use ancf_modal::analysis::calibrate::{
-    calibrate, calibrate_with, sweep, CalibrationRequest, CalibrationResult, CalibrationSettings,
-    EigenFrequencies, ImpulseFrequency, ModeSelection, ParameterSet, ParameterSpec,
+    calibrate, calibrate_with, sweep, CalibrationError, CalibrationRequest, CalibrationResult,
+    CalibrationSettings, EigenFrequencies, ImpulseFrequency, ModeSelection, ParameterSet,
+    ParameterSpec,
 };
 use ancf_modal::analysis::ModeKind;
-use ancf_modal::error::CalibrationError;
 use ancf_modal::model::Model;
 use ancf_modal::output::calibrate_report::{calibrate_json, calibrate_table, calibration_plot};
 use ancf_modal::output::plot::{

@@ -2,12 +2,13 @@
 //! frequencies, against Euler–Bernoulli for a single free beam, else
 //! against the finest mesh of the study.
 
-use super::load_model;
-use ancf_modal::error::{ModelError, Source};
-use ancf_modal::output::figures::{
-    convergence_figure, euler_bernoulli_free_free, mesh_convergence_with, with_elements,
-    write_figure, ConvergenceData, Reference, ReferenceKind,
+use super::common::load_model;
+use ancf_modal::analysis::convergence::{
+    euler_bernoulli_free_free, mesh_convergence_with, with_elements, ConvergenceData, Reference,
+    ReferenceKind,
 };
+use ancf_modal::error::{ModelError, Source};
+use ancf_modal::output::figures::{convergence_figure, write_figure};
 use ancf_modal::output::plot::{Format, PlotSize};
 use anyhow::Result;
 use clap::Args;

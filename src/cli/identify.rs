@@ -1,14 +1,14 @@
 //! `ancf-modal identify`: the main job. Modal analysis, the impulse
 //! experiment with its spectrum, and the paper's Table 3 side by side.
 
+use super::common::{load_model, source_label, write_output};
 use super::impulse::{experiment, ExperimentArgs};
-use super::{load_model, source_label, write_output};
+use ancf_modal::analysis::convergence::{mesh_convergence_with, with_elements, Reference};
 use ancf_modal::analysis::impulse::ImpulseResult;
 use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings};
 use ancf_modal::output::calibrate_report::calibrate_json;
 use ancf_modal::output::figures::{
-    convergence_figure, mesh_convergence_with, response_figure, spectrum_figure, with_elements,
-    write_figure, write_mode_shapes, Reference,
+    convergence_figure, response_figure, spectrum_figure, write_figure, write_mode_shapes,
 };
 use ancf_modal::output::impulse_report::{impulse_json, signal_csv, spectrum_csv};
 use ancf_modal::output::modal_report::{modal_csv, modal_json};

@@ -1,6 +1,6 @@
 //! `ancf-modal impulse`: the paper's time-domain frequency test.
 
-use super::{load_model, source_label, write_output};
+use super::common::{load_model, source_label, write_output};
 use ancf_modal::analysis::impulse::{run_impulse, ImpulseResult, ImpulseSettings};
 use ancf_modal::analysis::spectrum::Window;
 use ancf_modal::model::Model;

@@ -1,17 +1,17 @@
 //! Subcommands. Each file parses its flags, validates them, calls the
 //! library and prints; nothing numerical lives here.
 
+mod args;
 mod calibrate;
+mod common;
 mod convergence;
 mod identify;
 mod impulse;
 mod modal;
 mod statics;
 
-use ancf_modal::model::Model;
 use anyhow::Result;
 use clap::{Parser, Subcommand};
-use std::path::Path;
 
 /// Modal and frequency-response analysis of planar rigid-flexible
 /// assemblies with ANCF beams.
@@ -29,7 +29,7 @@ pub enum Command {
     /// The paper's time-domain test: half-sine pulse, sensor, spectrum, first bending peak.
     Impulse(impulse::ImpulseArgs),
     /// Natural frequencies and mode shapes of the linearized assembly.
-    Modal(modal::ModalArgs),
+    Modal(args::ModalArgs),
     /// Fit model parameters (equivalent geometry) to measured frequencies.
     Calibrate(calibrate::CalibrateArgs),
     /// Mesh convergence of the first bending frequencies (log-log errors, O(h⁴)).
@@ -47,26 +47,4 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Convergence(a) => convergence::run(a),
         Command::Static(a) => statics::run(a),
     }
-}
-
-/// The model file, or the built-in default when none is given.
-pub fn load_model(path: Option<&Path>) -> Result<Model> {
-    Ok(match path {
-        Some(p) => Model::from_file(p)?,
-        None => Model::builtin(),
-    })
-}
-
-/// The model's name in messages: its path, or `<built-in model>`.
-pub fn source_label(path: Option<&Path>) -> String {
-    match path {
-        Some(p) => ancf_modal::error::Source::File(p.to_path_buf()).to_string(),
-        None => ancf_modal::error::Source::BuiltIn.to_string(),
-    }
-}
-
-/// Write text to a file atomically.
-pub fn write_output(path: &Path, text: &str) -> Result<()> {
-    ancf_modal::output::files::write_atomic(path, text.as_bytes())?;
-    Ok(())
 }

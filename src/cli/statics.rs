@@ -5,8 +5,8 @@
 //! Also the pre-stressed variants of `modal` (`--prestress`, `--sweep-load`),
 //! which share the statics settings.
 
-use super::modal::{ModalArgs, Sweep};
-use super::{load_model, source_label, write_output};
+use super::args::{finite, ModalArgs, Sweep};
+use super::common::{load_model, source_label, write_output};
 use ancf_modal::analysis::prestress::{linspace, load_sweep, prestressed_modal};
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf_modal::analysis::ModalSettings;
@@ -37,16 +37,6 @@ pub struct StaticArgs {
     /// Also draw the reference and equilibrium shapes to this file (.svg or .png).
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
-}
-
-/// A finite number.
-pub fn finite(s: &str) -> Result<f64, String> {
-    let v: f64 = s.parse().map_err(|_| format!("`{s}` is not a number"))?;
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(format!("`{s}` is not a finite number"))
-    }
 }
 
 pub fn run(args: StaticArgs) -> Result<()> {

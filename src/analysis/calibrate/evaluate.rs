@@ -11,11 +11,11 @@
 //! parameters (no geometry is moved), so shapes of different evaluations
 //! are comparable.
 
+use super::error::CalibrationError;
 use super::params::ParameterSet;
 use super::sensitivity::eigenvalue_sensitivities;
 use crate::analysis::impulse::{run_impulse, ImpulseSettings};
 use crate::analysis::{modal_at_reference, ModalResult, ModalSettings, ModeKind};
-use crate::error::CalibrationError;
 use crate::model::Model;
 use crate::system::System;
 use faer::Mat;

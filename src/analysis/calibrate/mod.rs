@@ -22,18 +22,19 @@
 //! ([`EigenFrequencies`]), or any other (e.g. a time-domain experiment).
 
 pub mod brent;
+mod error;
 pub mod evaluate;
 pub mod lm;
 pub mod params;
 pub mod sensitivity;
 
+pub use error::CalibrationError;
 pub use evaluate::{
     EigenFrequencies, Evaluation, FrequencyModel, ImpulseFrequency, ModeSelection, SingleFrequency,
 };
 pub use params::{ParamTarget, Parameter, ParameterSet, ParameterSpec};
 
 use crate::analysis::{ModalSettings, ModeKind};
-use crate::error::CalibrationError;
 use crate::model::Model;
 use serde::Serialize;
 

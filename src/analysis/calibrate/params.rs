@@ -20,7 +20,7 @@
 //! changing a beam's height or width rescales its density so that ρ·h·w, and
 //! so the beam's mass, stays at its initial value.
 
-use crate::error::CalibrationError;
+use super::error::CalibrationError;
 use crate::model::Model;
 
 /// What a parameter changes.

@@ -18,7 +18,7 @@
 //! [`write_impulse_figures`] writes both, the spectrum to the given path
 //! and the response beside it ([`response_path`]).
 
-use super::write_figure;
+use super::write::write_figure;
 use crate::analysis::impulse::ImpulseResult;
 use crate::analysis::ModeKind;
 use crate::model::{Model, SensorQuantity};

@@ -5,11 +5,11 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
+use super::error::PlotError;
 use super::frame::Rect;
 use super::geom::{self, Bounds};
-use super::line::{Legend, MarkerShape, SeriesStyle};
+use super::series::{Legend, MarkerShape, SeriesStyle};
 use super::style::{self, TextSizes, BACKGROUND, INK};
-use super::PlotError;
 
 /// Draws the figure title centred in a band at the top; returns the band's
 /// height (small when there is no title).

@@ -9,7 +9,7 @@ use ab_glyph::FontRef;
 use plotters::style::{register_font, FontStyle};
 use std::sync::OnceLock;
 
-use super::PlotError;
+use super::error::PlotError;
 
 /// The family name every text element uses. SVG output names it too, so an
 /// SVG viewer substitutes its own sans-serif face.

@@ -11,9 +11,9 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
+use super::error::PlotError;
 use super::style::{self, TextSizes, INK};
 use super::ticks::{self, AxisTicks};
-use super::PlotError;
 
 /// The coordinate system of every chart: display units (or their log10) on
 /// both axes, ticks given explicitly.

@@ -1,9 +1,10 @@
 //! Figures of modal and impulse-response results, rendered to SVG or PNG.
 //!
-//! The module depends on nothing else in the crate: callers fill plain data
-//! structs, in SI units, and [`render`] turns a [`Figure`] into the bytes of
-//! an SVG or PNG file; [`write_atomic`] puts them on disk. Rendering needs no
-//! system library and no installed font: text uses DejaVu Sans, embedded.
+//! The module depends on nothing else in the crate but the atomic write of
+//! [`super::files`]: callers fill plain data structs, in SI units, and
+//! [`render`] turns a [`Figure`] into the bytes of an SVG or PNG file;
+//! [`write_atomic`] puts them on disk. Rendering needs no system library and
+//! no installed font: text uses DejaVu Sans, embedded.
 //!
 //! # Figures
 //!
@@ -57,6 +58,7 @@
 //! `sans-serif` family, drawn by the viewer.
 
 mod annotate;
+mod error;
 mod font;
 mod frame;
 mod geom;
@@ -64,55 +66,29 @@ mod line;
 mod modeshape;
 mod pngtext;
 mod presets;
+mod series;
+mod size;
 mod style;
 mod ticks;
 
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use super::files;
+
+pub use error::PlotError;
 pub use frame::PanelLayout;
-pub use line::{Guide, Legend, LineFigure, MarkerShape, Panel, PointMarker, Series, SeriesStyle};
+pub use line::{LineFigure, Panel};
 pub use modeshape::{Geometry, ModeShape, ModeShapeFigure};
 pub use presets::{calibration_figure, convergence_figure, Calibration, Convergence};
+pub use series::{Guide, Legend, MarkerShape, PointMarker, Series, SeriesStyle};
+pub use size::PlotSize;
 pub use style::{
     format_sig, palette, Scale, BACKGROUND, GUIDE, INK, PALETTE, REFERENCE, UNDEFORMED,
 };
 pub use ticks::superscript;
-
-/// Why a figure could not be made or written.
-#[derive(Debug, thiserror::Error)]
-pub enum PlotError {
-    #[error("{path}: unknown plot format (use a .svg or .png file name)", path = path.display())]
-    UnknownExtension { path: PathBuf },
-    #[error("{path}: cannot write the plot: {io}", path = path.display())]
-    Io { path: PathBuf, io: std::io::Error },
-    /// The drawing library failed; its message.
-    #[error("drawing failed: {0}")]
-    Backend(String),
-    #[error("PNG encoding failed: {0}")]
-    PngEncode(String),
-    #[error("nothing to plot: {what}")]
-    EmptyData { what: String },
-    #[error("series `{series}` has {x_len} x values but {y_len} y values")]
-    LengthMismatch {
-        series: String,
-        x_len: usize,
-        y_len: usize,
-    },
-    #[error("plot size {width}×{height} is outside 100…16384 pixels")]
-    InvalidSize { width: u32, height: u32 },
-    #[error("the embedded font could not be loaded")]
-    Font,
-}
-
-impl<E: std::error::Error + Send + Sync> From<DrawingAreaErrorKind<E>> for PlotError {
-    fn from(e: DrawingAreaErrorKind<E>) -> Self {
-        PlotError::Backend(e.to_string())
-    }
-}
 
 /// Output file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -134,36 +110,6 @@ impl Format {
             _ => Err(PlotError::UnknownExtension {
                 path: path.to_path_buf(),
             }),
-        }
-    }
-}
-
-/// Figure size in pixels (SVG user units).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct PlotSize {
-    pub width: u32,
-    pub height: u32,
-}
-
-impl Default for PlotSize {
-    fn default() -> Self {
-        PlotSize {
-            width: 1200,
-            height: 800,
-        }
-    }
-}
-
-impl PlotSize {
-    fn check(self) -> Result<(), PlotError> {
-        let ok = |v: u32| (100..=16384).contains(&v);
-        if ok(self.width) && ok(self.height) {
-            Ok(())
-        } else {
-            Err(PlotError::InvalidSize {
-                width: self.width,
-                height: self.height,
-            })
         }
     }
 }
@@ -269,50 +215,9 @@ fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, PlotError>
     Ok(out)
 }
 
-/// Writes `bytes` to `path` atomically: into a temporary file in the same
-/// directory, flushed, then renamed over `path`. On failure the temporary
-/// file is removed and `path` is untouched.
+/// Writes `bytes` to `path` atomically ([`files::write_atomic`]: a
+/// temporary file in the same directory, renamed over `path`); a failure is
+/// [`PlotError::Io`] and leaves `path` untouched.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), PlotError> {
-    let io_err = |io: std::io::Error| PlotError::Io {
-        path: path.to_path_buf(),
-        io,
-    };
-    let name = path.file_name().ok_or_else(|| {
-        io_err(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "not a file name",
-        ))
-    })?;
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    if !dir.is_dir() {
-        return Err(io_err(std::io::Error::new(
-            std::io::ErrorKind::NotFound,
-            format!("directory {} does not exist", dir.display()),
-        )));
-    }
-    static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-    let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let tmp = dir.join(format!(
-        ".{}.{}-{}.tmp",
-        name.to_string_lossy(),
-        std::process::id(),
-        n
-    ));
-    let result = (|| {
-        let mut file = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)?;
-        file.write_all(bytes)?;
-        file.sync_all()?;
-        drop(file);
-        std::fs::rename(&tmp, path)
-    })();
-    result.map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        io_err(e)
-    })
+    Ok(files::write_atomic(path, bytes)?)
 }

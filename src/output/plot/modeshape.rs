@@ -6,11 +6,12 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::annotate::draw_title;
+use super::error::PlotError;
 use super::frame::{self, AxisFrame, AxisMap, Coord, FrameSizes, PanelLayout};
 use super::geom::{Extent, Pt};
+use super::size::PlotSize;
 use super::style::{self, palette, Scale, TextSizes, BACKGROUND, INK, UNDEFORMED};
 use super::ticks::nice_step;
-use super::{PlotError, PlotSize};
 
 /// Planar geometry in metres.
 #[derive(Debug, Clone, Default, PartialEq)]

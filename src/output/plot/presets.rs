@@ -1,6 +1,7 @@
 //! Ready-made line figures: a calibration curve and a convergence study.
 
-use super::line::{Guide, LineFigure, MarkerShape, Panel, PointMarker, Series, SeriesStyle};
+use super::line::{LineFigure, Panel};
+use super::series::{Guide, MarkerShape, PointMarker, Series, SeriesStyle};
 use super::style::{format_sig, Scale};
 use super::ticks::superscript;
 

@@ -4,7 +4,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::{Color, IntoFont, RGBAColor, RGBColor, TextStyle};
 
 use super::font::FAMILY;
-use super::PlotSize;
+use super::size::PlotSize;
 
 /// The Okabe–Ito colour-blind-safe palette, in the order series get them.
 /// Reddish purple is kept out of it: it marks reference lines.

@@ -1,0 +1,28 @@
+//! Helpers every subcommand uses: loading the model, naming it in
+//! messages, writing output files.
+
+use ancf_modal::model::Model;
+use anyhow::Result;
+use std::path::Path;
+
+/// The model file, or the built-in default when none is given.
+pub fn load_model(path: Option<&Path>) -> Result<Model> {
+    Ok(match path {
+        Some(p) => Model::from_file(p)?,
+        None => Model::builtin(),
+    })
+}
+
+/// The model's name in messages: its path, or `<built-in model>`.
+pub fn source_label(path: Option<&Path>) -> String {
+    match path {
+        Some(p) => ancf_modal::error::Source::File(p.to_path_buf()).to_string(),
+        None => ancf_modal::error::Source::BuiltIn.to_string(),
+    }
+}
+
+/// Write text to a file atomically.
+pub fn write_output(path: &Path, text: &str) -> Result<()> {
+    ancf_modal::output::files::write_atomic(path, text.as_bytes())?;
+    Ok(())
+}
