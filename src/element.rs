@@ -170,6 +170,28 @@ fn combine(e: &Vec8, c: &Vector4<f64>) -> Vector2<f64> {
     node(e, 0) * c[0] + node(e, 1) * c[1] + node(e, 2) * c[2] + node(e, 3) * c[3]
 }
 
+/// The slope r' at an axial quadrature point, its length l and the axial
+/// strain l − 1, snapped to zero when it is below the round-off of forming
+/// r' from the nodal values (4 ε Σᵢ |d1ᵢ| |nodeᵢ|, relative to l).
+///
+/// A stress-free straight element gives l = 1 ± a few ε; that ε-sized strain
+/// is a tension of ε·EA, which on a cable of h/L = 1e-5 is 3e-5 of its
+/// bending stiffness EI/L² and showed up as a 2e-5 error of f₁ (and as a
+/// stiffness of the rigid rotation of a 2,000-element beam).
+#[inline]
+fn axial_strain(e: &Vec8, d1: &Vector4<f64>) -> (Vector2<f64>, f64, f64) {
+    let r1 = combine(e, d1);
+    let l = r1.norm();
+    let size: f64 = (0..4).map(|i| d1[i].abs() * node(e, i).norm()).sum();
+    let eps = l - 1.0;
+    let eps = if eps.abs() <= 4.0 * f64::EPSILON * size {
+        0.0
+    } else {
+        eps
+    };
+    (r1, l, eps)
+}
+
 /// `J a` with J = [[0, 1], [−1, 0]], so that `bᵀ J a = b × a`… written out:
 /// returns [a_y, −a_x]; r' × r'' = r'ᵀ [r''_y, −r''_x].
 #[inline]
@@ -252,7 +274,7 @@ impl CableElement {
     pub fn strain_energy(&self, e: &Vec8) -> EnergySplit {
         let mut out = EnergySplit::default();
         for qp in &self.axial {
-            let eps = combine(e, &qp.d1).norm() - 1.0;
+            let (_, _, eps) = axial_strain(e, &qp.d1);
             out.axial += 0.5 * qp.w * self.section.ea * eps * eps;
         }
         for qp in &self.bending {
@@ -267,9 +289,8 @@ impl CableElement {
     pub fn elastic_force_into(&self, e: &Vec8, out: &mut Vec8) {
         let CableSection { ea, ei, .. } = self.section;
         for qp in &self.axial {
-            let r1 = combine(e, &qp.d1);
-            let l = r1.norm();
-            let f = r1 * (qp.w * ea * (l - 1.0) / l);
+            let (r1, l, eps) = axial_strain(e, &qp.d1);
+            let f = r1 * (qp.w * ea * eps / l);
             for i in 0..4 {
                 out[2 * i] += qp.d1[i] * f.x;
                 out[2 * i + 1] += qp.d1[i] * f.y;
@@ -293,10 +314,8 @@ impl CableElement {
         let CableSection { ea, ei, .. } = self.section;
         let mut ka = [[Matrix2::zeros(); 4]; 4];
         for qp in &self.axial {
-            let r1 = combine(e, &qp.d1);
-            let l = r1.norm();
+            let (r1, l, eps) = axial_strain(e, &qp.d1);
             let t = r1 / l;
-            let eps = l - 1.0;
             let ttt = t * t.transpose();
             let a = (ttt + (Matrix2::identity() - ttt) * (eps / l)) * (qp.w * ea);
             for (i, row) in ka.iter_mut().enumerate() {
@@ -363,13 +382,12 @@ impl CableElement {
         // variation through all points with its sums in registers.
         let axial: [(Vector2<f64>, Vector2<f64>, f64, f64); AXIAL_POINTS] =
             std::array::from_fn(|k| {
-                let r1 = combine(e, &self.axial[k].d1);
-                let l = r1.norm();
+                let (r1, l, eps) = axial_strain(e, &self.axial[k].d1);
                 // The stretch term is axial; the tension term ε/l·|δr'⊥|²
                 // acts on transverse motion (a string's stiffness) and
                 // counts as bending.
                 let stretch = 0.5 * self.axial[k].w * ea;
-                (r1 / l, perp_neg(r1) / l, stretch, stretch * (l - 1.0) / l)
+                (r1 / l, perp_neg(r1) / l, stretch, stretch * eps / l)
             });
         let bending: [(BendingPoint, f64); BENDING_POINTS] = std::array::from_fn(|k| {
             let qp = &self.bending[k];

@@ -25,7 +25,8 @@
 //!    ‖r‖ = ‖K_r x − ω² M_r x‖_{M_r⁻¹} and the gap δ to the nearest other
 //!    computed ω², |Δω²| ≤ min(‖r‖, ‖r‖²/δ) (Krylov–Bogoliubov and the
 //!    quadratic residual bound of a Rayleigh quotient), so
-//!    |Δf|/f ≤ ½ min(‖r‖, ‖r‖²/δ)/ω².
+//!    |Δf|/f ≤ ½ min(‖r‖, ‖r‖²/δ)/ω² + √dim·ε (the round-off of the
+//!    refined quotient's sums).
 //! 5. Each elastic mode is classified by where its strain energy ½φᵀKφ
 //!    sits: beam axial, beam bending, or springs.
 
@@ -213,13 +214,6 @@ pub fn modal(
             AnalysisError::EigenSolver { size: dim }
         }
     };
-    // A coordinate without mass makes every later step meaningless.
-    let mass_diag = system.mass().diagonal();
-    if let Some(i) = mass_diag.iter().position(|&v| !(v > 0.0 && v.is_finite())) {
-        let mut e = vec![0.0; n];
-        e[i] = 1.0;
-        return Err(singular(&e, false));
-    }
     let zero = zero_modes(system, at, &cq).map_err(|e| eigen_error(e, false))?;
     let k0 = zero.shapes.len();
     let count = settings.modes.map_or(dim, |c| c.min(dim));
@@ -315,9 +309,12 @@ pub fn modal(
 }
 
 /// The lowest `wanted` eigenpairs of (K_r, M_r) on the M_r-orthogonal
-/// complement of the zero modes Z: W spans that complement (the trailing
-/// columns of the Householder Q of M_r Z), the pencil (WᵀK_rW, WᵀM_rW) is
-/// solved densely, and x = W y.
+/// complement of the zero modes Z. In Jacobi-scaled coordinates
+/// (D = diag(M_r)^-½, so slopes, angles and positions of a 25 µm or a 25 m
+/// model weigh alike) W spans the complement (the trailing columns of the
+/// Householder Q of D M_r Z), the pencil (WᵀDK_rDW, WᵀDM_rDW) is solved
+/// densely, and x = D W y. A singular mass is reported in the reduced
+/// coordinates.
 fn dense_elastic(
     k: &Mat<f64>,
     m: &Mat<f64>,
@@ -329,16 +326,47 @@ fn dense_elastic(
         let e = solve_generalized(k, m, wanted)?;
         return Ok((e.values, e.vectors));
     }
-    let zm = Mat::from_fn(dim, z.len(), |i, j| z[j][i]);
-    let y = m * &zm;
+    let mut d = vec![0.0; dim];
+    for (i, di) in d.iter_mut().enumerate() {
+        let mii = m[(i, i)];
+        if !(mii > 0.0 && mii.is_finite()) {
+            let mut direction = vec![0.0; dim];
+            direction[i] = 1.0;
+            return Err(EigenFailure::SingularMass { direction });
+        }
+        *di = 1.0 / mii.sqrt();
+    }
+    let ks = Mat::from_fn(dim, dim, |i, j| d[i] * k[(i, j)] * d[j]);
+    let ms = Mat::from_fn(dim, dim, |i, j| d[i] * m[(i, j)] * d[j]);
+    // D M Z = (D M D)(D⁻¹ Z).
+    let zs = Mat::from_fn(dim, z.len(), |i, j| z[j][i] / d[i]);
+    let y = &ms * &zs;
     let q = y.qr().compute_Q();
     let w = q.subcols(z.len(), dim - z.len()).to_owned();
-    let mut kw = w.transpose() * k * &w;
-    let mut mw = w.transpose() * m * &w;
+    let mut kw = w.transpose() * &ks * &w;
+    let mut mw = w.transpose() * &ms * &w;
     symmetrize(&mut kw);
     symmetrize(&mut mw);
-    let e = solve_generalized(&kw, &mw, wanted)?;
-    Ok((e.values, &w * &e.vectors))
+    let to_reduced = |v: &Mat<f64>| {
+        let mut x = &w * v;
+        for j in 0..x.ncols() {
+            for (i, &di) in d.iter().enumerate() {
+                x[(i, j)] *= di;
+            }
+        }
+        x
+    };
+    match solve_generalized(&kw, &mw, wanted) {
+        Ok(e) => Ok((e.values, to_reduced(&e.vectors))),
+        Err(EigenFailure::SingularMass { direction }) => {
+            let v = Mat::from_fn(direction.len(), 1, |i, _| direction[i]);
+            let x = to_reduced(&v);
+            Err(EigenFailure::SingularMass {
+                direction: x.col_as_slice(0).to_vec(),
+            })
+        }
+        Err(e) => Err(e),
+    }
 }
 
 /// ½ min(‖r‖, ‖r‖²/δ)/ω² per mode (module doc, item 4).
@@ -394,7 +422,9 @@ fn error_bounds(pencil: &Pencil, vectors: &Mat<f64>, values: &[f64]) -> Vec<f64>
                 .map(|i| (values[i] - values[j]).abs())
                 .fold(f64::INFINITY, f64::min);
             let dl = r.min(r * r / gap);
-            0.5 * dl / values[j].abs()
+            // Plus the round-off of the refined quotient itself, whose
+            // sums run over all coordinates (√dim ε, typical accumulation).
+            0.5 * dl / values[j].abs() + (dim as f64).sqrt() * f64::EPSILON
         })
         .collect()
 }

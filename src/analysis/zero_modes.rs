@@ -150,7 +150,17 @@ pub fn zero_modes(
         kv[(j, i)] = v;
         noise = noise.max(2.0 * e.roundoff / (mv[(i, i)] + mv[(j, j)]));
     }
-    let eig = solve_generalized(&kv, &mv, r)?;
+    let eig = solve_generalized(&kv, &mv, r).map_err(|e| match e {
+        // A massless free motion: report it in the global coordinates.
+        EigenFailure::SingularMass { direction } => {
+            let mut full = vec![0.0; n];
+            for (a, ui) in direction.iter().zip(&u) {
+                full.iter_mut().zip(ui).for_each(|(s, x)| *s += a * x);
+            }
+            EigenFailure::SingularMass { direction: full }
+        }
+        other => other,
+    })?;
     let zero = ZERO_FACTOR * f64::EPSILON * noise;
     let mut result = Vec::new();
     for (k, &value) in eig.values.iter().enumerate() {

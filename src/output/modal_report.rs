@@ -26,24 +26,37 @@ pub fn modal_table(model_name: &str, r: &ModalResult) -> String {
     );
     let _ = writeln!(
         s,
-        "{:>5}  {:>14}  {:<8}  {:>7}  {:>7}  {:>7}",
-        "mode", "frequency [Hz]", "kind", "bend %", "axial %", "sprg %"
+        "{:>5}  {:>14}  {:<8}  {:>7}  {:>7}  {:>7}  {:>11}",
+        "mode", "frequency [Hz]", "kind", "bend %", "axial %", "sprg %", "error bound"
     );
     for m in &r.modes {
         if m.kind == ModeKind::Rigid {
             let _ = writeln!(s, "{:>5}  {:>14}  {:<8}", m.index, "0", m.kind);
         } else {
+            let bound = m
+                .error_bound
+                .map_or(String::from("-"), |b| format!("{b:.1e}"));
             let _ = writeln!(
                 s,
-                "{:>5}  {:>14.3}  {:<8}  {:>7.2}  {:>7.2}  {:>7.2}",
+                "{:>5}  {:>14.3}  {:<8}  {:>7.2}  {:>7.2}  {:>7.2}  {:>11}",
                 m.index,
                 m.frequency_hz,
                 m.kind,
                 100.0 * m.energy.bending,
                 100.0 * m.energy.axial,
-                100.0 * m.energy.springs
+                100.0 * m.energy.springs,
+                bound
             );
         }
+    }
+    if let Some(worst) = r.accuracy_warning() {
+        let _ = writeln!(
+            s,
+            "warning: the eigen-solve certifies the lowest frequencies only to {worst:.1e} (relative), \
+             more than the {:.0e} a useful mesh reaches; the round-off of a very fine mesh limits them \
+             (fewer elements give a tighter bound)",
+            crate::analysis::modal::ACCURACY_WARNING
+        );
     }
     s
 }
@@ -58,24 +71,27 @@ pub fn modal_json(model_name: &str, r: &ModalResult) -> serde_json::Value {
         "redundant_constraints": r.redundant_constraints,
         "rigid_modes": r.rigid_modes,
         "first_bending_hz": r.first_bending().map(|m| m.frequency_hz),
+        "solver": r.solver,
+        "accuracy_warning": r.accuracy_warning(),
         "modes": r.modes,
     })
 }
 
 /// CSV: one row per mode.
 pub fn modal_csv(r: &ModalResult) -> String {
-    let mut s = String::from("mode,frequency_hz,eigenvalue_rad2_s2,kind,bending_fraction,axial_fraction,spring_fraction\n");
+    let mut s = String::from("mode,frequency_hz,eigenvalue_rad2_s2,kind,bending_fraction,axial_fraction,spring_fraction,error_bound\n");
     for m in &r.modes {
         let _ = writeln!(
             s,
-            "{},{:.10e},{:.10e},{},{:.6},{:.6},{:.6}",
+            "{},{:.10e},{:.10e},{},{:.6},{:.6},{:.6},{}",
             m.index,
             m.frequency_hz,
             m.eigenvalue,
             m.kind,
             m.energy.bending,
             m.energy.axial,
-            m.energy.springs
+            m.energy.springs,
+            m.error_bound.map_or(String::new(), |b| format!("{b:.3e}"))
         );
     }
     s
