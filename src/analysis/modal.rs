@@ -369,6 +369,9 @@ fn dense_elastic(
     }
 }
 
+/// Applies M_r⁻¹ to the columns of a matrix in place.
+type MassSolve = Box<dyn Fn(&mut Mat<f64>)>;
+
 /// ½ min(‖r‖, ‖r‖²/δ)/ω² per mode (module doc, item 4).
 fn error_bounds(pencil: &Pencil, vectors: &Mat<f64>, values: &[f64]) -> Vec<f64> {
     let count = values.len();
@@ -376,7 +379,7 @@ fn error_bounds(pencil: &Pencil, vectors: &Mat<f64>, values: &[f64]) -> Vec<f64>
     let mut residuals = Mat::zeros(dim, count);
     let mut kx = vec![0.0; dim];
     let mut mx = vec![0.0; dim];
-    let m_solver: Option<Box<dyn Fn(&mut Mat<f64>)>> = match pencil {
+    let m_solver: Option<MassSolve> = match pencil {
         Pencil::Dense { k, m } => {
             for (j, &lambda) in values.iter().enumerate() {
                 let x = vectors.col_as_slice(j);

@@ -82,7 +82,7 @@ struct Shifted {
 enum Factor {
     None,
     Llt(Llt<usize, f64>),
-    Lu(Lu<usize, f64>),
+    Lu(Box<Lu<usize, f64>>),
 }
 
 impl Shifted {
@@ -133,10 +133,10 @@ impl Shifted {
             Err(_) => {
                 let s =
                     SymbolicLu::try_new(a.symbolic()).map_err(|_| EigenFailure::Factorization)?;
-                Factor::Lu(
+                Factor::Lu(Box::new(
                     Lu::try_new_with_symbolic(s, a.as_ref())
                         .map_err(|_| EigenFailure::Factorization)?,
-                )
+                ))
             }
         };
         Ok(())
@@ -278,7 +278,7 @@ fn lanczos(
     let mut v = start.to_vec();
     op.deflate(&mut v);
     let norm = op.m_dot(&v, &v).sqrt();
-    if !(norm > 0.0) {
+    if norm.is_nan() || norm <= 0.0 {
         return Err(EigenFailure::NoConvergence);
     }
     v.iter_mut().for_each(|x| *x /= norm);
