@@ -974,7 +974,7 @@ fn csv_has_the_header_and_one_row_per_mode() {
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), modes.len(), "one CSV row per reported mode");
     for (i, (row, mode)) in rows.iter().zip(modes).enumerate() {
-        assert_eq!(row.len(), 7, "row {i} has 7 columns");
+        assert_eq!(row.len(), 8, "row {i} has 8 columns");
         assert_eq!(row[0], (i + 1).to_string(), "row {i}: `mode` counts from 1");
         let f: f64 = row[1].parse().expect("frequency_hz is a number");
         let expected = mode["frequency_hz"].as_f64().expect("JSON frequency");
