@@ -8,6 +8,8 @@
 //! ([`system`]) → analysis ([`analysis`]) → outputs ([`output`]).
 //! All quantities are SI unless a name says otherwise (`_deg`, `_hz`).
 
+#![forbid(unsafe_code)]
+
 pub mod analysis;
 pub mod anchor;
 pub mod element;
