@@ -152,11 +152,11 @@ pub struct CableElement {
 pub struct EnergySplit {
     pub axial: f64,
     pub bending: f64,
-    /// Quadratic forms only: the terms summed in magnitude with the state's
-    /// stress factors taken as one (stretch stiffness times the whole slope
-    /// variation squared, bending terms in absolute value) [SI: J]. The
-    /// form's round-off is a small multiple of ε times this: the tension
-    /// factor |r'| − 1 of a stress-free state is itself ε-sized.
+    /// Quadratic forms only: an estimate of the form's round-off [SI: J].
+    /// The strain variations cancel nodal terms of size Σᵢ|d1ᵢ||δnodeᵢ|
+    /// (and the same with d2), so they carry an error ε times that, and the
+    /// form ε² times the energy those sizes would give; the stress terms
+    /// (tension, curvature) carry ε of their magnitude.
     pub roundoff: f64,
 }
 
@@ -393,25 +393,31 @@ impl CableElement {
             let qp = &self.bending[k];
             (BendingPoint::new(e, qp), 0.5 * qp.w * ei)
         });
+        let size = |de: &Vec8, d: &Vector4<f64>| -> f64 {
+            (0..4).map(|i| d[i].abs() * node(de, i).norm()).sum()
+        };
         for (de, o) in des.iter().zip(out.iter_mut()) {
-            let (mut ax, mut bd, mut mag) = (0.0, 0.0, 0.0);
+            let (mut ax, mut bd, mut cancel, mut stress) = (0.0, 0.0, 0.0, 0.0);
             for (qp, &(t, n, stretch, tension)) in self.axial.iter().zip(&axial) {
                 let d1 = combine(de, &qp.d1);
                 let (along, across) = (t.dot(&d1), n.dot(&d1));
                 ax += stretch * along * along;
                 bd += tension * across * across;
-                mag += stretch * (along * along + across * across);
+                cancel += stretch * size(de, &qp.d1).powi(2);
+                stress += (tension * across * across).abs();
             }
             for (qp, (b, c)) in self.bending.iter().zip(&bending) {
                 let (d1, d2) = (combine(de, &qp.d1), combine(de, &qp.d2));
                 let dk = b.p.dot(&d1) + b.q.dot(&d2);
                 let second = d1.dot(&(b.h11 * d1)) + 2.0 * d1.dot(&(b.h12 * d2));
                 bd += c * (dk * dk + b.kappa * second);
-                mag += c * (dk * dk + (b.kappa * second).abs());
+                let dk_size = b.p.norm() * size(de, &qp.d1) + b.q.norm() * size(de, &qp.d2);
+                cancel += c * dk_size * dk_size;
+                stress += (c * b.kappa * second).abs();
             }
             o.axial += ax;
             o.bending += bd;
-            o.roundoff += mag;
+            o.roundoff += f64::EPSILON * (f64::EPSILON * cancel + stress);
         }
     }
 

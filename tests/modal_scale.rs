@@ -222,3 +222,87 @@ fn the_error_bound_bounds_the_difference_to_the_other_path() {
         );
     }
 }
+
+#[test]
+fn a_mass_between_preloaded_springs_keeps_its_transverse_frequency() {
+    // Point mass m between two springs of stiffness k and tension T along
+    // x, each of length l: axial ω² = 2k/m, transverse ω² = 2T/(l m) (a
+    // string); without the preload the transverse motion is a mechanism.
+    let (m, k, l) = (2e-3, 500.0, 0.01);
+    for (tension, zeros) in [(3.0, 0), (0.0, 1)] {
+        let model = model(json!({
+            "name": "preloaded",
+            "point_masses": [{"id": "p", "mass": m, "position": [0.0, 0.0]}],
+            "springs": [
+                {"a": {"ground": [-l, 0.0]}, "b": {"body": "p"}, "stiffness": k, "preload": tension},
+                {"a": {"body": "p"}, "b": {"ground": [l, 0.0]}, "stiffness": k, "preload": tension}
+            ]
+        }));
+        let r = run(&model, 2, EigenMethod::Auto);
+        assert_eq!(
+            r.rigid_modes, zeros,
+            "preload {tension} N: zero-frequency modes"
+        );
+        let omega2: Vec<f64> = r.modes.iter().map(|md| md.eigenvalue).collect();
+        let mut expected = vec![2.0 * k / m];
+        if tension > 0.0 {
+            expected.insert(0, 2.0 * tension / (l * m));
+        } else {
+            expected.insert(0, 0.0);
+        }
+        for (got, want) in omega2.iter().zip(&expected) {
+            assert!(
+                (got - want).abs() <= 1e-10 * (2.0 * k / m),
+                "preload {tension} N: ω² = {got:e}, expected {want:e}"
+            );
+        }
+    }
+}
+
+/// A square grid of `k` horizontal and `k` vertical beams of 1 m, welded
+/// at all k² crossings.
+fn grid(k: usize, elements: usize) -> Model {
+    let step = 1.0 / (k - 1) as f64;
+    let section = json!({"height": 5e-3, "width": 5e-3});
+    let material = json!({"young": 210e9, "density": 7850.0});
+    let mut beams = Vec::new();
+    let mut joints = Vec::new();
+    for i in 0..k {
+        let y = i as f64 * step;
+        beams.push(
+            json!({"id": format!("h{i}"), "start": [0.0, y], "angle_deg": 0.0, "length": 1.0,
+                          "elements": elements, "section": section, "material": material}),
+        );
+        beams.push(
+            json!({"id": format!("v{i}"), "start": [y, 0.0], "angle_deg": 90.0, "length": 1.0,
+                          "elements": elements, "section": section, "material": material}),
+        );
+    }
+    for i in 0..k {
+        for j in 0..k {
+            joints.push(json!({"type": "weld",
+                "a": {"beam": format!("h{i}"), "s": j as f64 * step},
+                "b": {"beam": format!("v{j}"), "s": i as f64 * step}}));
+        }
+    }
+    model(json!({"name": "grid", "beams": beams, "joints": joints}))
+}
+
+#[test]
+fn a_welded_grid_frame_has_three_zero_modes_on_both_paths() {
+    let m = grid(6, 15);
+    let dense = run(&m, 10, EigenMethod::Dense);
+    let sparse = run(&m, 10, EigenMethod::Sparse);
+    assert_eq!(dense.rigid_modes, 3, "free grid, dense: 3 zero modes");
+    assert_eq!(sparse.rigid_modes, 3, "free grid, sparse: 3 zero modes");
+    for (a, b) in dense.modes.iter().zip(&sparse.modes).skip(3) {
+        let diff = rel(b.frequency_hz, a.frequency_hz).abs();
+        assert!(
+            diff <= 1e-9,
+            "mode {}: dense {} Hz, sparse {} Hz, relative difference {diff:.2e} > 1e-9",
+            a.index,
+            a.frequency_hz,
+            b.frequency_hz
+        );
+    }
+}

@@ -23,7 +23,8 @@
 //!    frequency error that the eigen-solve and round-off leave (not the
 //!    discretization error): with the M_r-normalized residual
 //!    ‖r‖ = ‖K_r x − ω² M_r x‖_{M_r⁻¹} and the gap δ to the nearest other
-//!    computed ω², |Δω²| ≤ min(‖r‖, ‖r‖²/δ) (Krylov–Bogoliubov and the
+//!    computed ω² outside its cluster of repeated values (within 1e-6),
+//!    |Δω²| ≤ min(‖r‖, ‖r‖²/δ) (Krylov–Bogoliubov and the
 //!    quadratic residual bound of a Rayleigh quotient), so
 //!    |Δf|/f ≤ ½ min(‖r‖, ‖r‖²/δ)/ω² + √dim·ε (the round-off of the
 //!    refined quotient's sums).
@@ -420,9 +421,12 @@ fn error_bounds(pencil: &Pencil, vectors: &Mat<f64>, values: &[f64]) -> Vec<f64>
             let r = dot(residuals.col_as_slice(j), solved.col_as_slice(j))
                 .max(0.0)
                 .sqrt();
+            // The gap to the nearest value outside this mode's cluster
+            // (values within 1e-6 of each other: a repeated frequency of a
+            // symmetric structure, whose subspace is what is determined).
             let gap = (0..count)
-                .filter(|&i| i != j)
                 .map(|i| (values[i] - values[j]).abs())
+                .filter(|&d| d > 1e-6 * values[j].abs())
                 .fold(f64::INFINITY, f64::min);
             let dl = r.min(r * r / gap);
             // Plus the round-off of the refined quotient itself, whose

@@ -11,17 +11,15 @@
 //! frequency.
 //!
 //! VᵀK_tV is formed from the cancellation-free energy form
-//! ([`crate::System::stiffness_quadratic_forms`], by polarization), in
-//! which a rigid motion of a beam strains nothing to round-off. The form
-//! also returns the size R of its terms before they cancel (the stretch
-//! stiffness times the whole slope variation squared, and so on:
-//! [`crate::system::EnergyBreakdown::roundoff`]); the tension factor
-//! |r'| − 1 of a stress-free state is ε-sized, so the form of a rigid
-//! motion comes out at a few ε·R. A stiffness μ = ω² of a candidate counts
-//! as zero when |μ| ≤ 64 ε R/m, m its mass: a pendulum of length L under
-//! gravity has μ/(ε R/m) ≈ ρ g L/(ε E), 5e7·L/m for steel, so even a
-//! 25 µm pendulum clears the threshold 1000-fold, while the free
-//! assemblies' rigid motions sit at ≤ 2 ε R/m.
+//! ([`crate::System::stiffness_quadratic_forms`], by polarization), which
+//! also estimates its own round-off R
+//! ([`crate::system::EnergyBreakdown::roundoff`]): strain variations that
+//! cancel nodal terms of size s carry ε·s, so a rigid motion's form is
+//! ~ε²·(the energy of those sizes), and stress terms (tension, curvature,
+//! preloads, constraint forces) carry ε of their size. A stiffness μ = ω²
+//! of a candidate counts as zero when |μ| ≤ 64 R/m, m its mass. A pendulum
+//! under gravity sits at ~1/(64 ε) times its threshold (its stiffness is a
+//! stress term), a rigid motion of a free 2,000-element beam at ≤ R/m.
 //!
 //! The rank of C_q V is decided on unit-norm columns and rows (the
 //! coefficient space of V mixes translations and rotations) by the same
@@ -69,18 +67,21 @@ pub fn zero_modes(
             b.push((i, f, v * w));
         }
     }
-    let mut col_norm = vec![0.0; c];
+    // Column scale: the size of each column's terms before they cancel
+    // (a rigid motion of a cluster satisfies its own welds, so its column
+    // of B is round-off; scaling by that would blow the motion up).
+    let mut col_size = vec![0.0; c];
     {
-        // Column norms of the summed matrix.
-        let mut summed = std::collections::HashMap::new();
+        let mut rows: std::collections::HashMap<(usize, usize), f64> =
+            std::collections::HashMap::new();
         for &(i, f, v) in &b {
-            *summed.entry((i, f)).or_insert(0.0) += v;
+            *rows.entry((i, f)).or_insert(0.0) += v.abs();
         }
-        for ((_, f), v) in summed {
-            col_norm[f] += v * v;
+        for ((_, f), v) in rows {
+            col_size[f] += v * v;
         }
     }
-    let col_norm: Vec<f64> = col_norm
+    let col_norm: Vec<f64> = col_size
         .iter()
         .map(|&s: &f64| if s > 0.0 { s.sqrt() } else { 1.0 })
         .collect();
@@ -106,6 +107,17 @@ pub fn zero_modes(
         }
         u.push(uk);
     }
+    // Unit mass for every candidate, so the forms below are ω²-sized.
+    let mass = system.mass();
+    let mut scratch = vec![0.0; n];
+    for uk in &mut u {
+        mass.mul_vec(uk, &mut scratch);
+        let m = dot(uk, &scratch);
+        if m > 0.0 {
+            let inv = 1.0 / m.sqrt();
+            uk.iter_mut().for_each(|x| *x *= inv);
+        }
+    }
     let out = |shapes| ZeroModes {
         shapes,
         clusters: motions.clusters,
@@ -115,7 +127,6 @@ pub fn zero_modes(
         return Ok(out(Vec::new()));
     }
     // Mass and stiffness of the candidates.
-    let mass = system.mass();
     let mu: Vec<Vec<f64>> = u
         .iter()
         .map(|x| {
@@ -161,7 +172,7 @@ pub fn zero_modes(
         }
         other => other,
     })?;
-    let zero = ZERO_FACTOR * f64::EPSILON * noise;
+    let zero = ZERO_FACTOR * noise;
     let mut result = Vec::new();
     for (k, &value) in eig.values.iter().enumerate() {
         if value.abs() <= zero {

@@ -12,6 +12,10 @@ pub struct ModalArgs {
     /// Number of modes to report, rigid ones included.
     #[arg(long, default_value_t = 12, value_parser = clap::value_parser!(u64).range(1..))]
     pub modes: u64,
+    /// Eigensolver: dense up to 300 free coordinates and sparse
+    /// shift-invert above (auto), or one of them forced.
+    #[arg(long, value_enum, default_value_t = Solver::Auto)]
+    pub solver: Solver,
     /// Print one JSON document instead of the table.
     #[arg(long)]
     pub json: bool,
@@ -69,5 +73,23 @@ pub fn finite(s: &str) -> Result<f64, String> {
         Ok(v)
     } else {
         Err(format!("`{s}` is not a finite number"))
+    }
+}
+
+/// `--solver` choices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Solver {
+    Auto,
+    Dense,
+    Sparse,
+}
+
+impl From<Solver> for ancf_modal::analysis::EigenMethod {
+    fn from(s: Solver) -> Self {
+        match s {
+            Solver::Auto => ancf_modal::analysis::EigenMethod::Auto,
+            Solver::Dense => ancf_modal::analysis::EigenMethod::Dense,
+            Solver::Sparse => ancf_modal::analysis::EigenMethod::Sparse,
+        }
     }
 }

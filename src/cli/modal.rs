@@ -12,7 +12,7 @@ pub fn run(args: ModalArgs) -> Result<()> {
     let system = System::new(&model);
     let settings = ModalSettings {
         modes: Some(args.modes as usize),
-        ..ModalSettings::default()
+        method: args.solver.into(),
     };
     if let Some(sweep) = args.sweep_load {
         return super::statics::run_sweep(&args, &model, &system, sweep, &settings);

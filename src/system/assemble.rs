@@ -25,10 +25,9 @@ pub struct EnergyBreakdown {
     /// Load stiffness and constraint-force (∂(C_qᵀλ)/∂q) terms; not strain
     /// energy, zero at an unloaded reference.
     pub other: f64,
-    /// Quadratic forms only: the size of the terms before they cancel
-    /// (beams: [`crate::element::EnergySplit::roundoff`]; springs, loads and
-    /// constraint forces: |v|ᵀ|H||v|) [SI: J]. A form below a small multiple
-    /// of ε times this is zero to round-off.
+    /// Quadratic forms only: an estimate of the form's round-off (beams:
+    /// [`crate::element::EnergySplit::roundoff`]; springs, loads and
+    /// constraint forces: ε|v|ᵀ|H||v|) [SI: J].
     pub roundoff: f64,
 }
 
@@ -349,7 +348,7 @@ impl System {
             for (e, phi) in out.iter_mut().zip(phis) {
                 let v = local(phi, &mut fe.pair().dofs());
                 e.springs += 0.5 * v.dot(&(h * v));
-                e.roundoff += 0.5 * v.abs().dot(&(h.abs() * v.abs()));
+                e.roundoff += 0.5 * f64::EPSILON * v.abs().dot(&(h.abs() * v.abs()));
             }
         }
         let mut hl = Hess::zeros();
@@ -359,7 +358,7 @@ impl System {
                 let v = local(phi, &mut l.anchor.dofs().iter().copied());
                 let v8 = v.fixed_rows::<8>(0);
                 e.other -= 0.5 * v8.dot(&(hl * v8));
-                e.roundoff += 0.5 * v8.abs().dot(&(hl.abs() * v8.abs()));
+                e.roundoff += 0.5 * f64::EPSILON * v8.abs().dot(&(hl.abs() * v8.abs()));
             }
         }
         if let Some(lambda) = at.lambda {
@@ -369,7 +368,7 @@ impl System {
                 for (e, phi) in out.iter_mut().zip(phis) {
                     let v = local(phi, &mut c.pair().dofs());
                     e.other += 0.5 * v.dot(&(h * v));
-                    e.roundoff += 0.5 * v.abs().dot(&(h.abs() * v.abs()));
+                    e.roundoff += 0.5 * f64::EPSILON * v.abs().dot(&(h.abs() * v.abs()));
                 }
             }
         }
