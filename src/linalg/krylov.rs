@@ -318,7 +318,7 @@ fn lanczos(
         alpha.push(a);
         let b = op.m_dot(&w, &w).max(0.0).sqrt();
         let j = basis.len();
-        let done = j >= wanted && (j - wanted) % CHECK_EVERY == 0 && {
+        let done = j >= wanted && (j - wanted).is_multiple_of(CHECK_EVERY) && {
             let (theta, s) = ritz(&alpha, &beta)?;
             let order = wanted_order(&theta, sigma);
             order
