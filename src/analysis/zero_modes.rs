@@ -148,8 +148,9 @@ pub fn zero_modes(
     let mut energies = vec![EnergyBreakdown::default(); refs.len()];
     system.stiffness_quadratic_forms(at, &refs, &mut energies);
     let form = |e: &EnergyBreakdown| 2.0 * e.total();
+    let field_noise = field_roundoff(system, at, &u);
     let mut kv = faer::Mat::zeros(r, r);
-    let mut noise = 0.0f64;
+    let mut noise = field_noise;
     for i in 0..r {
         kv[(i, i)] = form(&energies[i]);
         noise = noise.max(2.0 * energies[i].roundoff / mv[(i, i)]);
@@ -185,4 +186,64 @@ pub fn zero_modes(
         }
     }
     Ok(out(result))
+}
+
+/// Row sums of |A| of what is assembled into it.
+struct RowAbsSum(Vec<f64>);
+
+impl crate::linalg::Scatter for RowAbsSum {
+    fn add(&mut self, i: usize, _j: usize, v: f64) {
+        self.0[i] += v.abs();
+    }
+}
+
+/// The stiffness [SI: rad²/s²] a candidate's rounding gives it: a
+/// rotation field ẑ × (r − c) is formed with an error ε|r| per position
+/// (an assembly far from the origin loses digits in r − c), so a unit-mass
+/// candidate turning at rate θ (its largest slope or angle entry) carries an
+/// error vector e with eᵢ = ε|qᵢ|θ on positions, whose energy is at most
+/// λ_G Σᵢ Mᵢᵢeᵢ², λ_G = maxᵢ Σⱼ|Kᵢⱼ|/Mᵢᵢ (Gershgorin).
+fn field_roundoff(system: &System, at: &Linearization, u: &[Vec<f64>]) -> f64 {
+    let n = system.ndof();
+    let mut rows = RowAbsSum(vec![0.0; n]);
+    system.add_tangent_stiffness(at, &mut rows);
+    let md = system.mass().diagonal();
+    let lambda_g = rows
+        .0
+        .iter()
+        .zip(&md)
+        .filter(|(_, m)| **m > 0.0)
+        .fold(0.0f64, |a, (k, m)| a.max(k / m));
+    let mut position = vec![false; n];
+    let mut orientation = vec![false; n];
+    for b in &system.beams {
+        for k in 0..b.node_count() {
+            let i = b.dof0 + 4 * k;
+            position[i] = true;
+            position[i + 1] = true;
+            orientation[i + 2] = true;
+            orientation[i + 3] = true;
+        }
+    }
+    for rb in &system.rigid_bodies {
+        position[rb.dof0] = true;
+        position[rb.dof0 + 1] = true;
+        orientation[rb.dof0 + 2] = true;
+    }
+    for pm in &system.point_masses {
+        position[pm.dof0] = true;
+        position[pm.dof0 + 1] = true;
+    }
+    u.iter()
+        .map(|uk| {
+            let theta = (0..n)
+                .filter(|&i| orientation[i])
+                .fold(0.0f64, |a, i| a.max(uk[i].abs()));
+            let e2: f64 = (0..n)
+                .filter(|&i| position[i])
+                .map(|i| md[i] * (f64::EPSILON * at.q[i].abs() * theta).powi(2))
+                .sum();
+            lambda_g * e2
+        })
+        .fold(0.0, f64::max)
 }

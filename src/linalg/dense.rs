@@ -20,7 +20,7 @@ use faer::linalg::evd::{self, ComputeEigenvectors, SelfAdjointEvdParams};
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
-use faer::{Mat, Par, Side};
+use faer::{Mat, Par};
 
 /// A squared Cholesky pivot of the Jacobi-scaled mass below this marks M as
 /// singular (a unit-diagonal matrix: its smallest eigenvalue is at most
@@ -67,8 +67,8 @@ pub fn solve_generalized(
     let singular = || EigenFailure::SingularMass {
         direction: lowest_direction(&scaled_m, &d),
     };
-    let llt = scaled_m.llt(Side::Lower).map_err(|_| singular())?;
-    let l = llt.L();
+    let l = cholesky_lower(&scaled_m, p).ok_or_else(singular)?;
+    let l = l.as_ref();
     if (0..n).any(|i| l[(i, i)] * l[(i, i)] <= SINGULAR_PIVOT) {
         return Err(singular());
     }
@@ -90,6 +90,36 @@ pub fn solve_generalized(
         values: values[..wanted].to_vec(),
         vectors,
     })
+}
+
+/// The lower Cholesky factor L of a symmetric positive definite matrix
+/// (lower triangle read), L Lᵀ = A, with an explicit parallelism (small
+/// problems run sequentially: a thread pool costs more than the work);
+/// `None` if A is not positive definite.
+pub fn cholesky_lower(a: &Mat<f64>, par: Par) -> Option<Mat<f64>> {
+    use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
+    let n = a.nrows();
+    let mut l = a.clone();
+    let mut buf = MemBuffer::new(cholesky_in_place_scratch::<f64>(n, par, Default::default()));
+    cholesky_in_place(
+        l.as_mut(),
+        Default::default(),
+        par,
+        MemStack::new(&mut buf),
+        Default::default(),
+    )
+    .ok()?;
+    for j in 0..n {
+        for i in 0..j {
+            l[(i, j)] = 0.0;
+        }
+    }
+    Some(l)
+}
+
+/// Parallelism for a dense problem of size n: sequential below 256.
+pub fn par_for(n: usize) -> Par {
+    par(n)
 }
 
 /// Eigenvalues (ascending) and eigenvectors of a symmetric matrix by

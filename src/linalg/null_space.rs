@@ -311,7 +311,9 @@ fn dependent_rows(rows: &[f64], m: usize, d: usize) -> Vec<usize> {
 
 /// Orthonormal basis (d × (d − r)) of the vectors orthogonal to the r
 /// independent rows of the row-major block: the trailing columns of the
-/// full Q of B = [independent rows as columns] = Q R (faer's Householder QR).
+/// full Q of B = [independent rows as columns] = Q R (Householder QR;
+/// nalgebra's, sequential, since the blocks are small: a group couples the
+/// few coordinates of one joint or a short chain of joints).
 fn null_basis(rows: &[f64], d: usize, dependent: &[usize]) -> Mat<f64> {
     if d == 0 {
         return Mat::zeros(0, 0);
@@ -322,9 +324,17 @@ fn null_basis(rows: &[f64], d: usize, dependent: &[usize]) -> Mat<f64> {
     if r == 0 {
         return Mat::identity(d, d);
     }
-    let b = Mat::from_fn(d, r, |i, j| rows[independent[j] * d + i]);
-    let q = b.qr().compute_Q();
-    q.subcols(r, d - r).to_owned()
+    // Pad B with d − r unit columns so the thin Q of the padded matrix is
+    // the full Q of B; Householder QR keeps B's column space in the first r.
+    let b = nalgebra::DMatrix::from_fn(d, d, |i, j| {
+        if j < r {
+            rows[independent[j] * d + i]
+        } else {
+            0.0
+        }
+    });
+    let q = b.qr().q();
+    Mat::from_fn(d, d - r, |i, j| q[(i, r + j)])
 }
 
 #[cfg(test)]
