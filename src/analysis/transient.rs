@@ -248,7 +248,8 @@ impl<'s> Integrator<'s> {
         self.sys.external_force(&q, 0.0, 1.0, &mut rhs[..n]);
         self.sys.internal_force(&q, &mut self.force);
         let mut damping = vec![0.0; n];
-        self.sys.add_damping(&q, &v, &mut damping, None);
+        self.sys
+            .add_damping(&q, &v, &mut damping, None::<&mut Mat<f64>>);
         for ((r, f), d) in rhs.iter_mut().zip(&self.force).zip(&damping) {
             *r -= f + d;
         }
@@ -300,7 +301,8 @@ impl<'s> Integrator<'s> {
         for (r, f) in dyn_part.iter_mut().zip(&self.force) {
             *r -= f;
         }
-        self.sys.add_damping(&st.q, &st.v, dyn_part, None);
+        self.sys
+            .add_damping(&st.q, &st.v, dyn_part, None::<&mut Mat<f64>>);
         self.sys.add_constraint_forces(&st.q, &st.lambda, dyn_part);
         let s = -1.0 / self.beta_p;
         dyn_part.iter_mut().for_each(|r| *r *= s);
