@@ -12,7 +12,7 @@ pub mod householder;
 pub mod impulse;
 pub mod inverse_iteration;
 pub mod lanczos;
-pub mod lu;
+use crate::linalg::sparse as lu; // band.rs orders by super::lu::rcm_order
 pub mod modal;
 pub mod prestress;
 pub mod reduce;

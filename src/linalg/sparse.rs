@@ -132,6 +132,41 @@ pub fn diagonal(a: &SparseColMat<usize, f64>) -> Vec<f64> {
         .collect()
 }
 
+/// Reverse Cuthill–McKee ordering of a graph given by its adjacency lists
+/// (symmetric, no self-loops): breadth-first from a least-connected
+/// vertex, neighbours by increasing degree, reversed; disconnected parts
+/// follow one another. (The banded LU of `analysis/band.rs` orders by it;
+/// it came from the integrator's former hand-written LU.)
+pub(crate) fn rcm_order(adjacency: &[Vec<usize>]) -> Vec<usize> {
+    let n = adjacency.len();
+    let mut visited = vec![false; n];
+    let mut order = Vec::with_capacity(n);
+    while order.len() < n {
+        let start = (0..n)
+            .filter(|&i| !visited[i])
+            .min_by_key(|&i| adjacency[i].len())
+            .expect("an unvisited vertex");
+        visited[start] = true;
+        let mut head = order.len();
+        order.push(start);
+        while head < order.len() {
+            let mut next: Vec<usize> = adjacency[order[head]]
+                .iter()
+                .copied()
+                .filter(|&j| !visited[j])
+                .collect();
+            next.sort_by_key(|&j| adjacency[j].len());
+            for j in next {
+                visited[j] = true;
+                order.push(j);
+            }
+            head += 1;
+        }
+    }
+    order.reverse();
+    order
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
