@@ -187,4 +187,6 @@ pub enum TransientError {
     },
     #[error("the iteration matrix is singular at t = {time:.9e} s (in the direction of {dof})")]
     Singular { time: f64, dof: String },
+    #[error("no memory for the sparse LU factors of the {size}-unknown iteration matrix")]
+    OutOfMemory { size: usize },
 }

@@ -6,7 +6,6 @@ pub mod convergence;
 pub mod dispersion;
 pub mod frame;
 pub mod impulse;
-pub mod lu;
 pub mod modal;
 pub mod prestress;
 mod reduced_tangent;

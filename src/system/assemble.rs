@@ -239,14 +239,14 @@ impl System {
     }
 
     /// Adds the viscous forces of dampers (∂(damping power)/∂q̇) into `out`
-    /// and, if given, their q̇-Jacobian into `matrix`. Returns whether the
-    /// system has any damper.
-    pub fn add_damping(
+    /// and, if given, their q̇-Jacobian into `matrix` (any assembly target).
+    /// Returns whether the system has any damper.
+    pub fn add_damping<S: Scatter>(
         &self,
         q: &[f64],
         qd: &[f64],
         out: &mut [f64],
-        mut matrix: Option<&mut Mat<f64>>,
+        mut matrix: Option<&mut S>,
     ) -> bool {
         let mut any = false;
         let (mut f, mut c) = (PairGrad::zeros(), PairHess::zeros());
