@@ -72,12 +72,18 @@ pub fn zero_modes(
     // of B is round-off; scaling by that would blow the motion up).
     let mut col_size = vec![0.0; c];
     {
-        let mut rows: std::collections::HashMap<(usize, usize), f64> =
-            std::collections::HashMap::new();
-        for &(i, f, v) in &b {
-            *rows.entry((i, f)).or_insert(0.0) += v.abs();
-        }
-        for ((_, f), v) in rows {
+        // |B| summed per (row, column), then squared per column.
+        let mut sums: Vec<(usize, usize, f64)> =
+            b.iter().map(|&(i, f, v)| (i, f, v.abs())).collect();
+        sums.sort_unstable_by_key(|e| (e.1, e.0));
+        let mut k = 0;
+        while k < sums.len() {
+            let (i, f, mut v) = sums[k];
+            k += 1;
+            while k < sums.len() && sums[k].0 == i && sums[k].1 == f {
+                v += sums[k].2;
+                k += 1;
+            }
             col_size[f] += v * v;
         }
     }
@@ -205,6 +211,23 @@ impl crate::linalg::Scatter for RowAbsSum {
 /// λ_G Σᵢ Mᵢᵢeᵢ², λ_G = maxᵢ Σⱼ|Kᵢⱼ|/Mᵢᵢ (Gershgorin).
 fn field_roundoff(system: &System, at: &Linearization, u: &[Vec<f64>]) -> f64 {
     let n = system.ndof();
+    // Only an assembly far from the origin (|q| well beyond its own size)
+    // loses digits there; near it the field's rounding is that of the
+    // variation itself, which the energy form's estimate already holds.
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    let mut far = 0.0f64;
+    for i in system.point_coordinates() {
+        for axis in 0..2 {
+            let x = at.q[i + axis];
+            lo[axis] = lo[axis].min(x);
+            hi[axis] = hi[axis].max(x);
+            far = far.max(x.abs());
+        }
+    }
+    let size = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+    if far <= 4.0 * size {
+        return 0.0;
+    }
     let mut rows = RowAbsSum(vec![0.0; n]);
     system.add_tangent_stiffness(at, &mut rows);
     let md = system.mass().diagonal();
@@ -215,24 +238,19 @@ fn field_roundoff(system: &System, at: &Linearization, u: &[Vec<f64>]) -> f64 {
         .filter(|(_, m)| **m > 0.0)
         .fold(0.0f64, |a, (k, m)| a.max(k / m));
     let mut position = vec![false; n];
+    for i in system.point_coordinates() {
+        position[i] = true;
+        position[i + 1] = true;
+    }
     let mut orientation = vec![false; n];
     for b in &system.beams {
         for k in 0..b.node_count() {
-            let i = b.dof0 + 4 * k;
-            position[i] = true;
-            position[i + 1] = true;
-            orientation[i + 2] = true;
-            orientation[i + 3] = true;
+            orientation[b.dof0 + 4 * k + 2] = true;
+            orientation[b.dof0 + 4 * k + 3] = true;
         }
     }
     for rb in &system.rigid_bodies {
-        position[rb.dof0] = true;
-        position[rb.dof0 + 1] = true;
         orientation[rb.dof0 + 2] = true;
-    }
-    for pm in &system.point_masses {
-        position[pm.dof0] = true;
-        position[pm.dof0 + 1] = true;
     }
     u.iter()
         .map(|uk| {

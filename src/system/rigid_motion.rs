@@ -50,6 +50,12 @@ fn find(parent: &mut [usize], mut x: usize) -> usize {
 }
 
 impl System {
+    /// The x coordinate of every material point with a position (beam
+    /// nodes, rigid bodies, point masses); its y follows it [SI: m].
+    pub fn point_coordinates(&self) -> impl Iterator<Item = usize> + '_ {
+        self.bodies().into_iter().flat_map(points)
+    }
+
     fn bodies(&self) -> Vec<Body> {
         let mut bodies: Vec<Body> = self
             .beams
