@@ -1,5 +1,5 @@
 //! Objectivity behind the integrator's rotation-compensated Jacobian reuse
-//! (src/analysis/frame.rs): turning a deformed, loaded state of the paper's
+//! (src/analysis/transient/frame.rs): turning a deformed, loaded state of the paper's
 //! assembly rigidly by φ turns its tangent stiffness and constraint
 //! Jacobian as 𝐑 K 𝐑ᵀ and 𝐑 C_q 𝐑ᵀ, the mass matrix stays, and the
 //! best-fit rotation recovers φ.

@@ -11,7 +11,7 @@
 //! drift and spin of a free-free part do not leak into the spectrum.
 //! Units: [SI: m], [SI: m/s], [SI: m/s²].
 
-use super::transient::State;
+use crate::analysis::transient::State;
 use crate::model::{SensorFrame, SensorQuantity};
 use crate::system::{SensorPoint, System};
 use nalgebra::{Matrix2, Vector2};

@@ -15,14 +15,17 @@
 //! polynomials (value and rate at both ends), so sampling adds no error of
 //! its own at the step sizes used.
 
-use super::dispersion::{DispersionError, GenAlpha};
+pub mod sensor;
+pub mod spectrum;
+
 use super::modal::{modal_at_reference, ModalResult, ModalSettings, ModeKind};
-use super::sensor::SensorProbe;
-use super::spectrum::{self, Frf, Peak, PeakSettings, Spectrum, SpectrumError, SpectrumSettings};
+use super::transient::dispersion::{DispersionError, GenAlpha};
 use super::transient::{Integrator, RunStats, State, TransientSettings};
 use crate::error::{AnalysisError, TransientError};
 use crate::model::{Model, SensorQuantity, TimeFunction};
 use crate::system::System;
+use sensor::SensorProbe;
+use spectrum::{Frf, Peak, PeakSettings, Spectrum, SpectrumError, SpectrumSettings};
 use std::f64::consts::PI;
 
 /// Why the impulse experiment failed.

@@ -41,13 +41,16 @@
 //! The reduced-tangent machinery (factoring, corrections, zero modes,
 //! stability) lives in the sibling module `reduced_tangent`.
 
-use super::reduced_tangent::{definite_factor, Factor, TangentSolver};
+pub mod prestress;
+mod reduced_tangent;
+
 use crate::error::AnalysisError;
 use crate::linalg::null_space::NullSpace;
 pub(crate) use crate::linalg::vector::{argmax_abs, dot, norm2, norm_inf};
 use crate::system::{Linearization, System};
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
+use reduced_tangent::{definite_factor, Factor, TangentSolver};
 
 /// Settings of a static solution.
 #[derive(Debug, Clone, Copy, PartialEq)]

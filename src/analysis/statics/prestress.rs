@@ -21,8 +21,8 @@
 //! A load sweep follows the equilibrium path over load factors and stops at
 //! the first loss of stability (where ω²₁ reaches zero).
 
-use super::modal::{modal, modal_at_reference, ModalResult, ModalSettings, ModeKind};
-use super::statics::{continue_equilibrium, solve_equilibrium, Equilibrium, StaticSettings};
+use super::{continue_equilibrium, solve_equilibrium, Equilibrium, StaticSettings};
+use crate::analysis::modal::{modal, modal_at_reference, ModalResult, ModalSettings, ModeKind};
 use crate::error::AnalysisError;
 use crate::system::System;
 

@@ -34,13 +34,15 @@
 //! compensation acts on the right-hand side and the correction only, so it
 //! serves both paths alike.
 
-mod solver;
+pub mod dispersion;
+pub mod frame;
+pub mod solver;
 
-use super::dispersion::GenAlpha;
-use super::frame::RotatingFrame;
 use crate::error::TransientError;
 use crate::linalg::Scatter;
 use crate::system::{Linearization, System};
+use dispersion::GenAlpha;
+use frame::RotatingFrame;
 use solver::{DenseLu, FactorFailure, Factorization, Placed, Positions, Product, SparseLu};
 
 /// Contraction rate θ above which a factorization that has served at least
@@ -178,7 +180,7 @@ pub struct Integrator<'s> {
     row_weights: Vec<f64>,
     row_is_angle: Vec<bool>,
     lu: Factorization,
-    /// Rigid rotation since `lu` was factored (see [`super::frame`]).
+    /// Rigid rotation since `lu` was factored (see [`frame`]).
     frame: RotatingFrame,
     rhs: Vec<f64>,
     work: Vec<f64>,

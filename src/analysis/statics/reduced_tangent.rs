@@ -13,7 +13,7 @@
 //! loss of stability, located by regula falsi (Illinois) on ω²₁ between the
 //! last stable load and this one.
 
-use super::statics::{
+use super::{
     argmax_abs, dot, norm2, norm_inf, Damping, NewtonFailure, Ramp, Snapshot, Solver, State,
 };
 use crate::anchor::Anchor;
