@@ -33,7 +33,7 @@
 
 use super::zero_modes::zero_modes;
 use crate::error::AnalysisError;
-use crate::linalg::dense::{cholesky_lower, par_for, solve_generalized};
+use crate::linalg::dense::{solve_generalized, MassFactor};
 use crate::linalg::krylov::{lowest_modes, KrylovSettings};
 use crate::linalg::null_space::{symmetrize, NullSpace, Projected};
 use crate::linalg::sparse::mul_vec;
@@ -41,9 +41,6 @@ use crate::linalg::vector::{argmax_abs, dot};
 use crate::linalg::{EigenFailure, Triplets};
 use crate::system::{EnergyBreakdown, Linearization, System};
 use faer::linalg::solvers::Solve;
-use faer::linalg::triangular_solve::{
-    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
-};
 use faer::{Mat, Side};
 use serde::Serialize;
 
@@ -260,14 +257,16 @@ pub fn modal(
             symmetrize(&mut m);
             Pencil::Dense { k, m }
         };
-        let (values, vectors) = match &pencil {
+        let (values, vectors, factor) = match &pencil {
             Pencil::Dense { k, m } => {
-                dense_elastic(k, m, &z_reduced, elastic_wanted).map_err(|e| eigen_error(e, true))?
+                let (v, x, f) = dense_elastic(k, m, &z_reduced, elastic_wanted)
+                    .map_err(|e| eigen_error(e, true))?;
+                (v, x, Some(f))
             }
             Pencil::Sparse { k, m } => {
                 let r = lowest_modes(k, m, &z_reduced, &KrylovSettings::new(elastic_wanted))
                     .map_err(|e| eigen_error(e, true))?;
-                (r.values, r.vectors)
+                (r.values, r.vectors, None)
             }
         };
         let shapes: Vec<Vec<f64>> = (0..values.len())
@@ -283,7 +282,7 @@ pub fn modal(
             .zip(&energies)
             .map(|(s, e)| 2.0 * e.total() / mass.quadratic_form(s))
             .collect();
-        let bounds = error_bounds(&pencil, &vectors, &refined);
+        let bounds = error_bounds(&pencil, factor.as_ref(), &vectors, &refined);
         Ok(Elastic {
             sparse,
             shapes,
@@ -371,11 +370,11 @@ fn dense_elastic(
     m: &Mat<f64>,
     z: &[Vec<f64>],
     wanted: usize,
-) -> Result<(Vec<f64>, Mat<f64>), EigenFailure> {
+) -> Result<(Vec<f64>, Mat<f64>, MassFactor), EigenFailure> {
     let dim = k.nrows();
     if z.is_empty() {
         let e = solve_generalized(k, m, wanted)?;
-        return Ok((e.values, e.vectors));
+        return Ok((e.values, e.vectors, e.mass));
     }
     let bound: f64 = (0..dim)
         .map(|i| {
@@ -396,20 +395,26 @@ fn dense_elastic(
     Ok((
         e.values[skip..].to_vec(),
         e.vectors.subcols(skip, e.vectors.ncols() - skip).to_owned(),
+        e.mass,
     ))
 }
 
 /// Applies M_r⁻¹ to the columns of a matrix in place.
-type MassSolve = Box<dyn Fn(&mut Mat<f64>)>;
+type MassSolve<'a> = Box<dyn Fn(&mut Mat<f64>) + 'a>;
 
 /// ½ min(‖r‖, ‖r‖²/δ)/ω² per mode (module doc, item 4).
-fn error_bounds(pencil: &Pencil, vectors: &Mat<f64>, values: &[f64]) -> Vec<f64> {
+fn error_bounds(
+    pencil: &Pencil,
+    factor: Option<&MassFactor>,
+    vectors: &Mat<f64>,
+    values: &[f64],
+) -> Vec<f64> {
     let count = values.len();
     let dim = vectors.nrows();
     let mut residuals = Mat::zeros(dim, count);
     let mut kx = vec![0.0; dim];
     let mut mx = vec![0.0; dim];
-    let m_solver: Option<MassSolve> = match pencil {
+    let m_solver: Option<MassSolve<'_>> = match pencil {
         Pencil::Dense { k, m } => {
             for (j, &lambda) in values.iter().enumerate() {
                 let x = vectors.col_as_slice(j);
@@ -421,13 +426,7 @@ fn error_bounds(pencil: &Pencil, vectors: &Mat<f64>, values: &[f64]) -> Vec<f64>
                     residuals[(i, j)] = kx[i] - lambda * mx[i];
                 }
             }
-            cholesky_lower(m, par_for(dim)).map(|l| {
-                Box::new(move |r: &mut Mat<f64>| {
-                    let p = par_for(l.nrows());
-                    solve_lower_triangular_in_place(l.as_ref(), r.as_mut(), p);
-                    solve_upper_triangular_in_place(l.transpose(), r.as_mut(), p);
-                }) as _
-            })
+            factor.map(|f| Box::new(move |r: &mut Mat<f64>| f.solve_in_place(r)) as _)
         }
         Pencil::Sparse { k, m } => {
             let (kc, mc) = (k.to_sparse(), m.to_sparse());

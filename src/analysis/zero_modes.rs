@@ -25,7 +25,7 @@
 //! coefficient space of V mixes translations and rotations) by the same
 //! grouped Gram–Schmidt/QR as the constraint null space.
 
-use crate::linalg::dense::solve_generalized;
+use crate::linalg::dense::solve_generalized_small;
 use crate::linalg::null_space::NullSpace;
 use crate::linalg::vector::dot;
 use crate::linalg::{EigenFailure, Triplets};
@@ -168,7 +168,7 @@ pub fn zero_modes(
         kv[(j, i)] = v;
         noise = noise.max(2.0 * e.roundoff / (mv[(i, i)] + mv[(j, j)]));
     }
-    let eig = solve_generalized(&kv, &mv, r).map_err(|e| match e {
+    let (values, vectors) = solve_generalized_small(&kv, &mv).map_err(|e| match e {
         // A massless free motion: report it in the global coordinates.
         EigenFailure::SingularMass { direction } => {
             let mut full = vec![0.0; n];
@@ -181,11 +181,11 @@ pub fn zero_modes(
     })?;
     let zero = ZERO_FACTOR * noise;
     let mut result = Vec::new();
-    for (k, &value) in eig.values.iter().enumerate() {
+    for (k, &value) in values.iter().enumerate() {
         if value.abs() <= zero {
             let mut shape = vec![0.0; n];
             for (i, ui) in u.iter().enumerate() {
-                let a = eig.vectors[(i, k)];
+                let a = vectors[(i, k)];
                 shape.iter_mut().zip(ui).for_each(|(s, x)| *s += a * x);
             }
             result.push(shape);

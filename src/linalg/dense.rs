@@ -33,6 +33,33 @@ pub const SINGULAR_PIVOT: f64 = 1e-12;
 pub struct GeneralizedEigen {
     pub values: Vec<f64>,
     pub vectors: Mat<f64>,
+    /// The factor of M the solve used, for solves with M afterwards.
+    pub mass: MassFactor,
+}
+
+/// M = D⁻¹ L Lᵀ D⁻¹ (D = diag(M)^-½, L the Cholesky factor of D M D).
+#[derive(Debug, Clone)]
+pub struct MassFactor {
+    l: Mat<f64>,
+    d: Vec<f64>,
+}
+
+impl MassFactor {
+    /// X ← M⁻¹ X = D L⁻ᵀ L⁻¹ D X.
+    pub fn solve_in_place(&self, x: &mut Mat<f64>) {
+        let p = par(self.d.len());
+        let scale = |x: &mut Mat<f64>| {
+            for j in 0..x.ncols() {
+                for (v, di) in x.col_as_slice_mut(j).iter_mut().zip(&self.d) {
+                    *v *= di;
+                }
+            }
+        };
+        scale(x);
+        solve_lower_triangular_in_place(self.l.as_ref(), x.as_mut(), p);
+        solve_upper_triangular_in_place(self.l.transpose(), x.as_mut(), p);
+        scale(x);
+    }
 }
 
 fn par(n: usize) -> Par {
@@ -67,17 +94,20 @@ pub fn solve_generalized(
     let singular = || EigenFailure::SingularMass {
         direction: lowest_direction(&scaled_m, &d),
     };
-    let l = cholesky_lower(&scaled_m, p).ok_or_else(singular)?;
-    let l = l.as_ref();
+    let (factor, c) = {
+        let factor = cholesky_lower(&scaled_m, p).ok_or_else(singular)?;
+        // W = L⁻¹ D K D, then C = L⁻¹ Wᵀ = L⁻¹ (DKD) L⁻ᵀ, symmetrized.
+        let mut w = Mat::from_fn(n, n, |i, j| d[i] * k[(i, j)] * d[j]);
+        solve_lower_triangular_in_place(factor.as_ref(), w.as_mut(), p);
+        let mut c = w.transpose().to_owned();
+        solve_lower_triangular_in_place(factor.as_ref(), c.as_mut(), p);
+        let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
+        (factor, c)
+    };
+    let l = factor.as_ref();
     if (0..n).any(|i| l[(i, i)] * l[(i, i)] <= SINGULAR_PIVOT) {
         return Err(singular());
     }
-    // W = L⁻¹ D K D, then C = L⁻¹ Wᵀ = L⁻¹ (DKD) L⁻ᵀ, symmetrized.
-    let mut w = Mat::from_fn(n, n, |i, j| d[i] * k[(i, j)] * d[j]);
-    solve_lower_triangular_in_place(l, w.as_mut(), p);
-    let mut c = w.transpose().to_owned();
-    solve_lower_triangular_in_place(l, c.as_mut(), p);
-    let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
     let (values, vectors) = symmetric_eigen_qr(&c, p)?;
     let mut vectors = vectors.subcols(0, wanted).to_owned();
     solve_upper_triangular_in_place(l.transpose(), vectors.as_mut(), p);
@@ -89,7 +119,65 @@ pub fn solve_generalized(
     Ok(GeneralizedEigen {
         values: values[..wanted].to_vec(),
         vectors,
+        mass: MassFactor { l: factor, d },
     })
+}
+
+/// Eigenvalues (ascending) and M-normalized vectors of a tiny pencil
+/// (a few rigid-motion candidates), by nalgebra's Cholesky and symmetric
+/// eigensolver: faer's blocked kernels cost more in dispatch than the work
+/// at this size. Same Jacobi scaling and singular test as
+/// [`solve_generalized`].
+pub fn solve_generalized_small(
+    k: &Mat<f64>,
+    m: &Mat<f64>,
+) -> Result<(Vec<f64>, Mat<f64>), EigenFailure> {
+    let n = k.nrows();
+    let mut d = vec![0.0; n];
+    for (i, di) in d.iter_mut().enumerate() {
+        let mii = m[(i, i)];
+        if !(mii > 0.0 && mii.is_finite()) {
+            let mut direction = vec![0.0; n];
+            direction[i] = 1.0;
+            return Err(EigenFailure::SingularMass { direction });
+        }
+        *di = 1.0 / mii.sqrt();
+    }
+    let ms = nalgebra::DMatrix::from_fn(n, n, |i, j| d[i] * m[(i, j)] * d[j]);
+    let ks = nalgebra::DMatrix::from_fn(n, n, |i, j| d[i] * k[(i, j)] * d[j]);
+    let singular = |ms: &nalgebra::DMatrix<f64>| {
+        let e = nalgebra::SymmetricEigen::new(ms.clone());
+        let i = e.eigenvalues.imin();
+        EigenFailure::SingularMass {
+            direction: (0..n).map(|r| d[r] * e.eigenvectors[(r, i)]).collect(),
+        }
+    };
+    let Some(chol) = nalgebra::Cholesky::new(ms.clone()) else {
+        return Err(singular(&ms));
+    };
+    let l = chol.l();
+    if (0..n).any(|i| l[(i, i)] * l[(i, i)] <= SINGULAR_PIVOT) {
+        return Err(singular(&ms));
+    }
+    let w = l
+        .solve_lower_triangular(&ks)
+        .ok_or(EigenFailure::NoConvergence)?;
+    let c = l
+        .solve_lower_triangular(&w.transpose())
+        .ok_or(EigenFailure::NoConvergence)?;
+    let c = (&c + c.transpose()) * 0.5;
+    let e = nalgebra::SymmetricEigen::new(c);
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| e.eigenvalues[a].total_cmp(&e.eigenvalues[b]));
+    let y = nalgebra::DMatrix::from_fn(n, n, |r, c| e.eigenvectors[(r, order[c])]);
+    let x = l
+        .transpose()
+        .solve_upper_triangular(&y)
+        .ok_or(EigenFailure::NoConvergence)?;
+    Ok((
+        order.iter().map(|&i| e.eigenvalues[i]).collect(),
+        Mat::from_fn(n, n, |r, c| d[r] * x[(r, c)]),
+    ))
 }
 
 /// The lower Cholesky factor L of a symmetric positive definite matrix
