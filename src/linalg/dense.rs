@@ -62,6 +62,23 @@ impl MassFactor {
     }
 }
 
+/// D = diag(M)^-½; a diagonal entry that is not positive is a coordinate
+/// without mass (the singular direction).
+pub fn jacobi_scaling(m: &Mat<f64>) -> Result<Vec<f64>, EigenFailure> {
+    let n = m.nrows();
+    let mut d = vec![0.0; n];
+    for (i, di) in d.iter_mut().enumerate() {
+        let mii = m[(i, i)];
+        if !(mii > 0.0 && mii.is_finite()) {
+            let mut direction = vec![0.0; n];
+            direction[i] = 1.0;
+            return Err(EigenFailure::SingularMass { direction });
+        }
+        *di = 1.0 / mii.sqrt();
+    }
+    Ok(d)
+}
+
 fn par(n: usize) -> Par {
     if n >= 256 {
         Par::rayon(0)
@@ -79,16 +96,7 @@ pub fn solve_generalized(
 ) -> Result<GeneralizedEigen, EigenFailure> {
     let n = k.nrows();
     let wanted = wanted.min(n);
-    let mut d = vec![0.0; n];
-    for (i, di) in d.iter_mut().enumerate() {
-        let mii = m[(i, i)];
-        if !(mii > 0.0 && mii.is_finite()) {
-            let mut direction = vec![0.0; n];
-            direction[i] = 1.0;
-            return Err(EigenFailure::SingularMass { direction });
-        }
-        *di = 1.0 / mii.sqrt();
-    }
+    let d = jacobi_scaling(m)?;
     let p = par(n);
     let scaled_m = Mat::from_fn(n, n, |i, j| d[i] * m[(i, j)] * d[j]);
     let singular = || EigenFailure::SingularMass {
@@ -133,16 +141,7 @@ pub fn solve_generalized_small(
     m: &Mat<f64>,
 ) -> Result<(Vec<f64>, Mat<f64>), EigenFailure> {
     let n = k.nrows();
-    let mut d = vec![0.0; n];
-    for (i, di) in d.iter_mut().enumerate() {
-        let mii = m[(i, i)];
-        if !(mii > 0.0 && mii.is_finite()) {
-            let mut direction = vec![0.0; n];
-            direction[i] = 1.0;
-            return Err(EigenFailure::SingularMass { direction });
-        }
-        *di = 1.0 / mii.sqrt();
-    }
+    let d = jacobi_scaling(m)?;
     let ms = nalgebra::DMatrix::from_fn(n, n, |i, j| d[i] * m[(i, j)] * d[j]);
     let ks = nalgebra::DMatrix::from_fn(n, n, |i, j| d[i] * k[(i, j)] * d[j]);
     let singular = |ms: &nalgebra::DMatrix<f64>| {
