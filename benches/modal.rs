@@ -1,7 +1,7 @@
 //! Modal analysis speed: the built-in paper assembly, the bare 8-element
 //! blade (the case Exudyn's dense eigen call is quoted for), a 2,000-element
-//! cantilever (sparse path, lowest 10 modes) and free ladder frames of
-//! welded beams from 1k to 100k elements.
+//! cantilever (sparse path, lowest 10 modes) and free square grids of
+//! welded beams of 1k and 10k elements.
 //! Run: `cargo bench --bench modal`.
 
 use ancf_modal::analysis::{modal_at_reference, ModalSettings};
@@ -28,32 +28,26 @@ fn cantilever(elements: usize) -> Model {
     Model::from_json(&json, Source::BuiltIn).unwrap()
 }
 
-/// Two rails (2 elements per rung spacing each, plus a node at every weld)
-/// and `rungs` one-element rungs welded between them: 5 elements and 2
-/// welds per rung.
-pub fn ladder(rungs: usize) -> Model {
-    let (span, gap) = (0.02, 0.01);
-    let len = span * rungs as f64;
-    let sec = r#""section": {"height": 1e-3, "width": 5e-3}, "material": {"young": 127e9, "density": 8940}"#;
-    let mut beams = vec![
-        format!(
-            r#"{{"id": "r0", "start": [0, 0], "angle_deg": 0, "length": {len}, "elements": {}, {sec}}}"#,
-            2 * rungs
-        ),
-        format!(
-            r#"{{"id": "r1", "start": [0, {gap}], "angle_deg": 0, "length": {len}, "elements": {}, {sec}}}"#,
-            2 * rungs
-        ),
-    ];
+/// `k` horizontal and `k` vertical steel beams of 1 m, `e` elements each,
+/// welded at all k² crossings (the README's scaling table).
+pub fn grid(k: usize, e: usize) -> Model {
+    let step = 1.0 / (k - 1) as f64;
+    let sec = r#""section": {"height": 5e-3, "width": 5e-3}, "material": {"young": 210e9, "density": 7850}"#;
+    let mut beams = Vec::new();
     let mut joints = Vec::new();
-    for k in 0..rungs {
-        let s = span * (k as f64 + 0.5);
-        beams.push(format!(r#"{{"id": "g{k}", "start": [{s}, 0], "angle_deg": 90, "length": {gap}, "elements": 1, {sec}}}"#));
-        joints.push(format!(r#"{{"type": "weld", "a": {{"beam": "r0", "s": {s}}}, "b": {{"beam": "g{k}", "s": 0}}}}"#));
-        joints.push(format!(r#"{{"type": "weld", "a": {{"beam": "r1", "s": {s}}}, "b": {{"beam": "g{k}", "s": {gap}}}}}"#));
+    for i in 0..k {
+        let y = i as f64 * step;
+        beams.push(format!(r#"{{"id": "h{i}", "start": [0, {y}], "angle_deg": 0, "length": 1, "elements": {e}, {sec}}}"#));
+        beams.push(format!(r#"{{"id": "v{i}", "start": [{y}, 0], "angle_deg": 90, "length": 1, "elements": {e}, {sec}}}"#));
+    }
+    for i in 0..k {
+        for j in 0..k {
+            let (si, sj) = (i as f64 * step, j as f64 * step);
+            joints.push(format!(r#"{{"type": "weld", "a": {{"beam": "h{i}", "s": {sj}}}, "b": {{"beam": "v{j}", "s": {si}}}}}"#));
+        }
     }
     let json = format!(
-        r#"{{"name": "ladder", "beams": [{}], "joints": [{}]}}"#,
+        r#"{{"name": "grid", "beams": [{}], "joints": [{}]}}"#,
         beams.join(","),
         joints.join(",")
     );
@@ -97,11 +91,11 @@ fn bench(c: &mut Criterion) {
         "modal: 2000-element cantilever, 10 modes (from parsed model)",
         |b| b.iter(|| modal_at_reference(&System::new(&cantilever), &ten).unwrap()),
     );
-    for rungs in [100, 1000, 10_000] {
-        let frame = ladder(rungs);
-        let elements = 5 * rungs;
+    for (k, e) in [(10, 50), (32, 156)] {
+        let frame = grid(k, e);
+        let elements = 2 * k * e;
         group.bench_function(
-            format!("modal: free ladder frame, {elements} elements, 10 modes"),
+            format!("modal: free welded grid, {elements} elements, 10 modes"),
             |b| b.iter(|| modal_at_reference(&System::new(&frame), &ten).unwrap()),
         );
     }
