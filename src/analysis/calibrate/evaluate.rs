@@ -16,6 +16,7 @@ use super::params::ParameterSet;
 use super::sensitivity::eigenvalue_sensitivities;
 use crate::analysis::impulse::{run_impulse, ImpulseSettings};
 use crate::analysis::{modal_at_reference, ModalResult, ModalSettings, ModeKind};
+use crate::linalg::vector::dot;
 use crate::model::Model;
 use crate::system::System;
 use faer::Mat;
@@ -271,10 +272,6 @@ fn track(
         }
     }
     out.into_iter().map(|o| o.unwrap_or((0, 0.0))).collect()
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 /// One frequency from any function of the model, e.g. a time-domain
