@@ -149,6 +149,10 @@ pub enum AnalysisError {
     NoFreedom,
     #[error("the eigen solver did not converge ({size}×{size} problem)")]
     EigenSolver { size: usize },
+    /// Statics on a large model: the reduced tangent is singular (a
+    /// mechanism), which only the dense path resolves.
+    #[error("the static tangent is singular (a mechanism) and the model has {size} free coordinates: free motions are resolved on the dense path only, up to {max}")]
+    IndefiniteLargeTangent { size: usize, max: usize },
     /// Statics: the loads push the whole assembly as a rigid body.
     #[error("the assembly cannot carry the load: it has no support, so the loads move it as a rigid body (fix it to the ground with a joint)")]
     NoSupport,

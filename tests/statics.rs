@@ -319,3 +319,53 @@ mod cli {
         }
     }
 }
+
+#[test]
+fn large_elastica_on_the_sparse_tangent() {
+    // The same elastica with 500 elements (2,004 coordinates): the reduced
+    // tangent is factored sparse (no dense n × n matrix); α = 2.
+    let (alpha, v_ref, u_ref) = (2.0, 0.49346, 0.16064);
+    let h = 1e-3 * L;
+    let n = 500;
+    let p = alpha * ei(h) / (L * L);
+    let sys = System::new(&loaded_cantilever(n, h, [0.0, p]));
+    let eq = solve_equilibrium(&sys, &StaticSettings::default()).expect("equilibrium");
+    let tip = 4 * n;
+    let (v, u) = (eq.q[tip + 1] / L, (L - eq.q[tip]) / L);
+    assert!(
+        (v - v_ref).abs() <= 1e-4 && (u - u_ref).abs() <= 1e-4,
+        "α = {alpha}, {n} elements: v/L = {v:.6} (elastica {v_ref}), u/L = {u:.6} (elastica {u_ref}), limit 1e-4"
+    );
+}
+
+#[test]
+fn a_large_column_loses_stability_at_its_euler_load() {
+    // A 500-element pinned column under twice its Euler load: the sparse
+    // path (LU past the limit, shift-invert for the lowest mode) locates the
+    // loss of stability at half the load, as the dense path does.
+    let h = 1e-2 * L;
+    let n = 500;
+    let p_cr = std::f64::consts::PI.powi(2) * ei(h) / (L * L);
+    let m = model(json!({
+        "name": "column",
+        "beams": [{
+            "id": "b", "start": [0.0, 0.0], "angle_deg": 0.0, "length": L,
+            "elements": n, "nodes_at_attachments": false,
+            "section": {"height": h, "width": W},
+            "material": {"young": E, "density": RHO}
+        }],
+        "joints": [
+            {"type": "pin", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "b", "s": 0.0}},
+            {"type": "slider", "a": {"ground": [L, 0.0]}, "b": {"beam": "b", "s": L}, "axis": [1.0, 0.0]}
+        ],
+        "loads": [{"at": {"beam": "b", "s": L}, "force": [-2.0 * p_cr, 0.0]}]
+    }));
+    let sys = System::new(&m);
+    match solve_equilibrium(&sys, &StaticSettings::default()) {
+        Err(AnalysisError::Unstable { load_factor, .. }) => assert!(
+            (load_factor - 0.5).abs() <= 0.01,
+            "loss of stability at load factor {load_factor}, Euler: 0.5 (limit 0.01)"
+        ),
+        other => panic!("a column at twice its Euler load gave {other:?}"),
+    }
+}

@@ -45,8 +45,9 @@ pub mod prestress;
 mod reduced_tangent;
 
 use crate::error::AnalysisError;
-use crate::linalg::null_space::NullSpace;
+use crate::linalg::null_space::{symmetrize, NullSpace, Projected};
 pub(crate) use crate::linalg::vector::{argmax_abs, dot, norm2, norm_inf};
+use crate::linalg::Triplets;
 use crate::system::{Linearization, System};
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
@@ -222,7 +223,8 @@ pub(crate) struct Solver<'a> {
     pub(crate) settings: StaticSettings,
     pub(crate) has_gravity: bool,
     pub(crate) gravity_force: Vec<f64>,
-    pub(crate) mass: Mat<f64>,
+    /// M's diagonal (kinetic shares of coordinates).
+    pub(crate) mass_diagonal: Vec<f64>,
     /// Scale of each coordinate for step sizes: a length for positions, 1
     /// for slopes and angles.
     pub(crate) scales: Vec<f64>,
@@ -259,7 +261,7 @@ impl<'a> Solver<'a> {
             settings: *settings,
             has_gravity,
             gravity_force,
-            mass: system.mass_matrix(),
+            mass_diagonal: system.mass().diagonal(),
             scales,
             length,
             noise: 256.0 * f64::EPSILON * stiff,
@@ -534,30 +536,54 @@ impl<'a> Solver<'a> {
     ) -> Result<TangentSolver, NewtonFailure> {
         let sys = self.system;
         let n = sys.ndof();
-        let mut k = Mat::zeros(n, n);
-        sys.tangent_stiffness(
-            &Linearization {
-                q,
-                lambda: Some(&snap.lambda),
-                time: self.settings.time,
-                load_scale: loads,
-            },
-            &mut k,
-        );
-        let kr = snap.ns.project_dense(&k);
-        let d = kr.nrows();
+        let at = Linearization {
+            q,
+            lambda: Some(&snap.lambda),
+            time: self.settings.time,
+            load_scale: loads,
+        };
+        let mut k = Triplets::new(n, n);
+        sys.add_tangent_stiffness(&at, &mut k);
+        let d = snap.ns.dim();
         let factor = if d == 0 {
             Factor::Empty
-        } else if let Some(llt) = definite_factor(&kr) {
-            Factor::Cholesky(llt)
+        } else if d > crate::analysis::modal::DENSE_MAX {
+            let mut kr = Triplets::new(d, d);
+            sys.add_tangent_stiffness(&at, &mut Projected::new(&snap.ns, &mut kr));
+            // Large: the reduced tangent stays sparse; Cholesky when it is
+            // definite, LU past a loss of stability (the stability check
+            // then finds the critical load), an error when it is singular
+            // (a mechanism: only the dense path resolves its free motion).
+            let sparse = kr.to_sparse();
+            match sparse.sp_cholesky(Side::Lower) {
+                Ok(llt) => Factor::Sparse(llt),
+                Err(_) => match sparse.sp_lu() {
+                    Ok(lu) => Factor::SparseLu(Box::new(lu)),
+                    Err(_) => {
+                        return Err(NewtonFailure::Fatal(
+                            AnalysisError::IndefiniteLargeTangent {
+                                size: d,
+                                max: crate::analysis::modal::DENSE_MAX,
+                            },
+                        ))
+                    }
+                },
+            }
         } else {
-            Factor::Modes(
-                self.reduced_modes(&kr, &snap.ns)
-                    .map_err(NewtonFailure::Fatal)?,
-            )
+            let mut kr = Mat::zeros(d, d);
+            sys.add_tangent_stiffness(&at, &mut Projected::new(&snap.ns, &mut kr));
+            symmetrize(&mut kr);
+            if let Some(llt) = definite_factor(&kr) {
+                Factor::Cholesky(llt)
+            } else {
+                Factor::Modes(
+                    self.reduced_modes(&kr, &snap.ns)
+                        .map_err(NewtonFailure::Fatal)?,
+                )
+            }
         };
         Ok(TangentSolver {
-            k,
+            k: k.to_sparse(),
             ns: snap.ns.clone(),
             factor,
         })

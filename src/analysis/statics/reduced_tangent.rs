@@ -19,10 +19,14 @@ use super::{
 use crate::anchor::Anchor;
 use crate::error::AnalysisError;
 use crate::linalg::dense::solve_generalized;
-use crate::linalg::null_space::NullSpace;
+use crate::linalg::krylov::{lowest_modes, KrylovSettings};
+use crate::linalg::null_space::{symmetrize, NullSpace, Projected};
+use crate::linalg::sparse::mul_vec;
 use crate::linalg::EigenFailure;
+use crate::linalg::Triplets;
 use crate::system::{Linearization, System};
 use faer::linalg::solvers::Solve;
+use faer::sparse::SparseColMat;
 use faer::{Mat, Side};
 
 impl Solver<'_> {
@@ -32,7 +36,7 @@ impl Solver<'_> {
         kr: &Mat<f64>,
         ns: &NullSpace,
     ) -> Result<ReducedModes, AnalysisError> {
-        let mr = ns.project_dense(&self.mass);
+        let mr = self.reduced_mass(ns);
         let eig = solve_generalized(kr, &mr, kr.nrows()).map_err(|e| match e {
             EigenFailure::SingularMass { direction } => {
                 let full = ns.expand(&direction);
@@ -57,6 +61,17 @@ impl Solver<'_> {
         })
     }
 
+    /// NᵀMN, dense (small problems).
+    pub(crate) fn reduced_mass(&self, ns: &NullSpace) -> Mat<f64> {
+        let d = ns.dim();
+        let mut mr = Mat::zeros(d, d);
+        self.system
+            .mass()
+            .add_into(&mut Projected::new(ns, &mut mr));
+        symmetrize(&mut mr);
+        mr
+    }
+
     /// The error for a load that drives a zero-stiffness motion.
     pub(crate) fn free_motion_error(&self, motion: &[f64]) -> AnalysisError {
         let grounded = self.system.constraints.iter().any(|c| {
@@ -77,7 +92,7 @@ impl Solver<'_> {
         let w: Vec<f64> = phi
             .iter()
             .enumerate()
-            .map(|(i, p)| p * self.mass[(i, i)].max(0.0).sqrt())
+            .map(|(i, p)| p * self.mass_diagonal[i].max(0.0).sqrt())
             .collect();
         argmax_abs(&w)
     }
@@ -93,32 +108,53 @@ impl Solver<'_> {
     ) -> Result<Option<LowestMode>, AnalysisError> {
         let sys = self.system;
         let n = sys.ndof();
-        let mut k = Mat::zeros(n, n);
-        sys.tangent_stiffness(
-            &Linearization {
-                q: &state.q,
-                lambda: Some(&state.lambda),
-                time: self.settings.time,
-                load_scale: state.loads,
-            },
-            &mut k,
-        );
-        let mut cq = Mat::zeros(sys.constraint_count(), n);
-        sys.constraint_jacobian(&state.q, &mut cq);
-        let ns = NullSpace::from_dense(&cq);
-        if ns.dim() == 0 {
+        let at = Linearization {
+            q: &state.q,
+            lambda: Some(&state.lambda),
+            time: self.settings.time,
+            load_scale: state.loads,
+        };
+        let mut cq = Triplets::new(sys.constraint_count(), n);
+        sys.add_constraint_jacobian(&state.q, &mut cq);
+        let ns = NullSpace::new(cq.nrows(), n, cq.entries());
+        let d = ns.dim();
+        if d == 0 {
             return Ok(None);
         }
-        let kr = ns.project_dense(&k);
-        if !exact && definite_factor(&kr).is_some() {
+        let definite = || LowestMode {
+            value: f64::INFINITY,
+            shape: Vec::new(),
+            zero: 0.0,
+        };
+        if d > crate::analysis::modal::DENSE_MAX {
+            // Large: definite (a sparse Cholesky succeeds) or the lowest
+            // mode by shift-invert.
+            let (mut kr, mut mr) = (Triplets::new(d, d), Triplets::new(d, d));
+            sys.add_tangent_stiffness(&at, &mut Projected::new(&ns, &mut kr));
+            if !exact && kr.to_sparse().sp_cholesky(Side::Lower).is_ok() {
+                return Ok(Some(definite()));
+            }
+            sys.mass().add_into(&mut Projected::new(&ns, &mut mr));
+            let modes = lowest_modes(&kr, &mr, &[], &KrylovSettings::new(1))
+                .map_err(|_| AnalysisError::EigenSolver { size: d })?;
+            let lmax = crate::linalg::sparse::diagonal(&kr.to_sparse())
+                .iter()
+                .zip(crate::linalg::sparse::diagonal(&mr.to_sparse()))
+                .fold(0.0f64, |a, (k, m)| a.max((k / m).abs()));
             return Ok(Some(LowestMode {
-                value: f64::INFINITY,
-                shape: Vec::new(),
-                zero: 0.0,
+                value: modes.values[0],
+                shape: ns.expand(modes.vectors.col_as_slice(0)),
+                zero: 64.0 * f64::EPSILON * lmax,
             }));
         }
+        let mut kr = Mat::zeros(d, d);
+        sys.add_tangent_stiffness(&at, &mut Projected::new(&ns, &mut kr));
+        symmetrize(&mut kr);
+        if !exact && definite_factor(&kr).is_some() {
+            return Ok(Some(definite()));
+        }
         let modes = self.reduced_modes(&kr, &ns)?;
-        let xr: Vec<f64> = (0..ns.dim()).map(|r| modes.vectors[(r, 0)]).collect();
+        let xr: Vec<f64> = (0..d).map(|r| modes.vectors[(r, 0)]).collect();
         Ok(Some(LowestMode {
             value: modes.values[0],
             shape: ns.expand(&xr),
@@ -211,12 +247,17 @@ impl Solver<'_> {
 pub(crate) enum Factor {
     Empty,
     Cholesky(faer::linalg::solvers::Llt<f64>),
+    /// The reduced tangent of a large model, sparse and definite.
+    Sparse(faer::sparse::linalg::solvers::Llt<usize, f64>),
+    /// The reduced tangent of a large model, sparse and indefinite.
+    SparseLu(Box<faer::sparse::linalg::solvers::Lu<usize, f64>>),
     Modes(ReducedModes),
 }
 
 /// The tangent of one Newton iteration, ready to compute corrections.
 pub(crate) struct TangentSolver {
-    pub(crate) k: Mat<f64>,
+    /// The full tangent K (n × n, sparse).
+    pub(crate) k: SparseColMat<usize, f64>,
     pub(crate) ns: NullSpace,
     pub(crate) factor: Factor,
 }
@@ -235,6 +276,7 @@ impl TangentSolver {
         solver: &Solver,
     ) -> Result<Vec<f64>, NewtonFailure> {
         let n = self.k.nrows();
+        let mut kdq = vec![0.0; n];
         let mut dq = vec![0.0; n];
         if let Some(g) = &snap.gram {
             let rhs = Mat::from_fn(snap.rows.len(), 1, |a, _| -snap.c[snap.rows[a]]);
@@ -245,15 +287,22 @@ impl TangentSolver {
                     .sum();
             }
         }
-        let b: Vec<f64> = (0..n)
-            .map(|i| -(snap.r[i] + (0..n).map(|j| self.k[(i, j)] * dq[j]).sum::<f64>()))
-            .collect();
+        mul_vec(&self.k, &dq, &mut kdq);
+        let b: Vec<f64> = (0..n).map(|i| -(snap.r[i] + kdq[i])).collect();
         let br = self.ns.restrict(&b);
         let d = br.len();
         let dz: Vec<f64> = match &self.factor {
             Factor::Empty => Vec::new(),
             Factor::Cholesky(llt) => {
                 let x = llt.solve(Mat::from_fn(d, 1, |i, _| br[i]));
+                (0..d).map(|i| x[(i, 0)]).collect()
+            }
+            Factor::Sparse(llt) => {
+                let x = llt.solve(Mat::from_fn(d, 1, |i, _| br[i]));
+                (0..d).map(|i| x[(i, 0)]).collect()
+            }
+            Factor::SparseLu(lu) => {
+                let x = lu.solve(Mat::from_fn(d, 1, |i, _| br[i]));
                 (0..d).map(|i| x[(i, 0)]).collect()
             }
             Factor::Modes(modes) => {
@@ -273,7 +322,7 @@ impl TangentSolver {
                 }
                 if check {
                     // The force this free motion would have to take: M_r φ s.
-                    let mr = self.ns.project_dense(&solver.mass);
+                    let mr = solver.reduced_mass(&self.ns);
                     let force: Vec<f64> = (0..d)
                         .map(|r| (0..d).map(|c| mr[(r, c)] * driven[c]).sum())
                         .collect();
