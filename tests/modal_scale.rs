@@ -306,3 +306,53 @@ fn a_welded_grid_frame_has_three_zero_modes_on_both_paths() {
         );
     }
 }
+
+#[test]
+fn a_hanging_grid_under_gravity_gives_the_same_prestressed_modes_on_both_paths() {
+    // A welded grid clamped at one corner and hanging under gravity: its
+    // pre-stressed frequencies from the sparse statics and shift-invert
+    // agree with the dense statics and eigen-solve.
+    use ancf_modal::analysis::prestress::prestressed_modal;
+    use ancf_modal::analysis::statics::StaticSettings;
+    let mut v = serde_json::to_value(grid(6, 15)).expect("model serializes");
+    v["gravity"] = json!([0.0, -9.81]);
+    v["joints"]
+        .as_array_mut()
+        .expect("joints")
+        .push(json!({"type": "weld", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "h0", "s": 0.0}}));
+    let m = model(v);
+    let sys = System::new(&m);
+    let result = |method| {
+        let settings = ModalSettings {
+            modes: Some(6),
+            method,
+        };
+        prestressed_modal(&sys, &StaticSettings::default(), &settings)
+            .expect("pre-stressed modal analysis succeeds")
+    };
+    let (dense, sparse) = (result(EigenMethod::Dense), result(EigenMethod::Sparse));
+    assert_eq!(
+        sparse.prestressed.rigid_modes, 0,
+        "clamped grid: no zero modes"
+    );
+    assert!(
+        sparse.prestressed.reduced_dofs > 300,
+        "the statics run on the sparse tangent ({} free coordinates)",
+        sparse.prestressed.reduced_dofs
+    );
+    for (a, b) in dense
+        .prestressed
+        .modes
+        .iter()
+        .zip(&sparse.prestressed.modes)
+    {
+        let diff = rel(b.frequency_hz, a.frequency_hz).abs();
+        assert!(
+            diff <= 1e-9,
+            "pre-stressed mode {}: dense {} Hz, sparse {} Hz, relative difference {diff:.2e} > 1e-9",
+            a.index,
+            a.frequency_hz,
+            b.frequency_hz
+        );
+    }
+}

@@ -24,7 +24,8 @@
 //! twice) in the M inner product; the Ritz problem is solved by
 //! [`super::dense::symmetric_eigen_qr`]. The basis grows until the wanted
 //! Ritz pairs have residual estimates |βⱼ sⱼᵢ| ≤ tolerance·|θᵢ| (a short
-//! Lanczos, no restarts: shift-invert converges in a few steps per mode).
+//! Lanczos, no restarts: shift-invert converges in a few steps per mode; an
+//! invariant subspace found early is left for a fresh M-orthogonal vector).
 
 use super::dense::symmetric_eigen_qr;
 use super::sparse::{diagonal, mul_vec, Triplets};
@@ -326,7 +327,30 @@ fn lanczos(
                 .take(wanted)
                 .all(|&i| (b * s[(j - 1, i)]).abs() <= settings.tolerance * theta[i].abs())
         };
-        let exhausted = b <= 1e-14 * a.abs().max(f64::MIN_POSITIVE) || j >= limit;
+        let breakdown = b <= 1e-14 * a.abs().max(f64::MIN_POSITIVE);
+        if breakdown && !done && j < limit {
+            // An invariant subspace (the start was already an eigenvector,
+            // e.g. after the shift's inverse iterations): go on from a fresh
+            // vector M-orthogonal to it, with a zero coupling in T.
+            let mut fresh: Vec<f64> = (0..n)
+                .map(|i| (2.3 * i as f64 + 0.7 * j as f64).sin())
+                .collect();
+            op.deflate(&mut fresh);
+            for _ in 0..2 {
+                mul_vec(op.m, &fresh, &mut mw);
+                let coefs: Vec<f64> = basis.iter().map(|q| dot(q, &mw)).collect();
+                for (q, c) in basis.iter().zip(&coefs) {
+                    axpy(-c, q, &mut fresh);
+                }
+            }
+            let norm = op.m_dot(&fresh, &fresh).max(0.0).sqrt();
+            if norm > 0.0 {
+                beta.push(0.0);
+                v = fresh.iter().map(|x| x / norm).collect();
+                continue;
+            }
+        }
+        let exhausted = breakdown || j >= limit;
         if done || exhausted {
             let (theta, s) = ritz(&alpha, &beta)?;
             let order = wanted_order(&theta, sigma);

@@ -46,10 +46,12 @@ mod reduced_tangent;
 
 use crate::error::AnalysisError;
 use crate::linalg::null_space::{symmetrize, NullSpace, Projected};
+use crate::linalg::sparse::mul_vec;
 pub(crate) use crate::linalg::vector::{argmax_abs, dot, norm2, norm_inf};
-use crate::linalg::Triplets;
+use crate::linalg::{Scatter, Triplets};
 use crate::system::{Linearization, System};
 use faer::linalg::solvers::Solve;
+use faer::sparse::SparseColMat;
 use faer::{Mat, Side};
 use reduced_tangent::{definite_factor, Factor, TangentSolver};
 
@@ -209,12 +211,13 @@ pub(crate) struct Snapshot {
     pub(crate) r: Vec<f64>,
     pub(crate) lambda: Vec<f64>,
     pub(crate) c: Vec<f64>,
-    pub(crate) cq: Mat<f64>,
+    /// A: the independent rows of C_q (sparse, |rows| × n).
+    pub(crate) cq: SparseColMat<usize, f64>,
     pub(crate) ns: NullSpace,
     /// Independent constraint rows.
     pub(crate) rows: Vec<usize>,
-    /// Cholesky factor of A Aᵀ (A = independent rows of C_q).
-    pub(crate) gram: Option<faer::linalg::solvers::Llt<f64>>,
+    /// Sparse Cholesky factor of A Aᵀ.
+    pub(crate) gram: Option<faer::sparse::linalg::solvers::Llt<usize, f64>>,
     pub(crate) merit: f64,
 }
 
@@ -321,16 +324,10 @@ impl<'a> Solver<'a> {
             .map(|x| x.abs())
             .chain(g)
             .fold(0.0, f64::max);
-        let joint = (0..n)
-            .map(|j| {
-                snap.rows
-                    .iter()
-                    .map(|&i| snap.cq[(i, j)] * snap.lambda[i])
-                    .sum::<f64>()
-                    .abs()
-            })
-            .fold(0.0, f64::max);
-        f.max(joint)
+        let li: Vec<f64> = snap.rows.iter().map(|&i| snap.lambda[i]).collect();
+        let mut forces = vec![0.0; n];
+        mul_transpose(&snap.cq, &li, &mut forces);
+        f.max(norm_inf(&forces))
     }
 
     pub(crate) fn snapshot(&self, q: &[f64], gravity: f64, loads: f64) -> Snapshot {
@@ -340,34 +337,39 @@ impl<'a> Solver<'a> {
         self.unbalanced(q, gravity, loads, &mut f);
         let mut c = vec![0.0; m];
         sys.constraint_residual(q, &mut c);
-        let mut cq = Mat::zeros(m, n);
-        sys.constraint_jacobian(q, &mut cq);
-        let ns = NullSpace::from_dense(&cq);
+        let mut all = Triplets::new(m, n);
+        sys.add_constraint_jacobian(q, &mut all);
+        let ns = NullSpace::new(m, n, all.entries());
         let rows: Vec<usize> = (0..m).filter(|i| !ns.redundant_rows.contains(i)).collect();
         let mi = rows.len();
-        let gram_m = Mat::from_fn(mi, mi, |a, b| {
-            (0..n)
-                .map(|j| cq[(rows[a], j)] * cq[(rows[b], j)])
-                .sum::<f64>()
-        });
-        let gram = if mi > 0 {
-            gram_m.llt(Side::Lower).ok()
-        } else {
-            None
-        };
+        // A (independent rows, renumbered) and A Aᵀ, both sparse.
+        let mut index = vec![usize::MAX; m];
+        for (a, &i) in rows.iter().enumerate() {
+            index[i] = a;
+        }
+        let mut a_rows = Triplets::new(mi, n);
+        for (i, j, v) in all.entries() {
+            if index[i] != usize::MAX {
+                a_rows.add(index[i], j, v);
+            }
+        }
+        let cq = a_rows.to_sparse();
+        let gram = (mi > 0)
+            .then(|| gram_matrix(&cq).sp_cholesky(Side::Lower).ok())
+            .flatten();
         let mut lambda = vec![0.0; m];
         let mut r = f.clone();
         if let Some(g) = &gram {
-            let af = Mat::from_fn(mi, 1, |a, _| {
-                -(0..n).map(|j| cq[(rows[a], j)] * f[j]).sum::<f64>()
-            });
-            let li = g.solve(&af);
+            let mut af = vec![0.0; mi];
+            mul_vec(&cq, &f, &mut af);
+            let li = g.solve(Mat::from_fn(mi, 1, |a, _| -af[a]));
+            let li: Vec<f64> = (0..mi).map(|a| li[(a, 0)]).collect();
             for (a, &i) in rows.iter().enumerate() {
-                lambda[i] = li[(a, 0)];
+                lambda[i] = li[a];
             }
-            for (j, rj) in r.iter_mut().enumerate() {
-                *rj += rows.iter().map(|&i| cq[(i, j)] * lambda[i]).sum::<f64>();
-            }
+            let mut forces = vec![0.0; n];
+            mul_transpose(&cq, &li, &mut forces);
+            r.iter_mut().zip(&forces).for_each(|(rj, fj)| *rj += fj);
         }
         let merit = norm2(&r) + norm2(&c) / self.length;
         Snapshot {
@@ -588,6 +590,37 @@ impl<'a> Solver<'a> {
             factor,
         })
     }
+}
+
+/// y = Aᵀ x for a compressed-column A.
+pub(crate) fn mul_transpose(a: &SparseColMat<usize, f64>, x: &[f64], y: &mut [f64]) {
+    let a = a.as_ref();
+    for (j, yj) in y.iter_mut().enumerate().take(a.ncols()) {
+        *yj = a
+            .row_idx_of_col(j)
+            .zip(a.val_of_col(j))
+            .map(|(i, v)| v * x[i])
+            .sum();
+    }
+}
+
+/// A Aᵀ for a compressed-column A (rows of a few joints share columns).
+fn gram_matrix(a: &SparseColMat<usize, f64>) -> SparseColMat<usize, f64> {
+    let ar = a.as_ref();
+    let mut g = Triplets::new(ar.nrows(), ar.nrows());
+    for j in 0..ar.ncols() {
+        let entries: Vec<(usize, f64)> = ar
+            .row_idx_of_col(j)
+            .zip(ar.val_of_col(j))
+            .map(|(i, v)| (i, *v))
+            .collect();
+        for &(r, u) in &entries {
+            for &(c, v) in &entries {
+                g.add(r, c, u * v);
+            }
+        }
+    }
+    g.to_sparse()
 }
 
 /// A length for the assembly: the larger of the longest beam and the

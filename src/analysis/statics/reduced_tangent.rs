@@ -279,13 +279,10 @@ impl TangentSolver {
         let mut kdq = vec![0.0; n];
         let mut dq = vec![0.0; n];
         if let Some(g) = &snap.gram {
-            let rhs = Mat::from_fn(snap.rows.len(), 1, |a, _| -snap.c[snap.rows[a]]);
-            let y = g.solve(&rhs);
-            for (j, d) in dq.iter_mut().enumerate() {
-                *d = (0..snap.rows.len())
-                    .map(|a| snap.cq[(snap.rows[a], j)] * y[(a, 0)])
-                    .sum();
-            }
+            let mi = snap.rows.len();
+            let y = g.solve(Mat::from_fn(mi, 1, |a, _| -snap.c[snap.rows[a]]));
+            let y: Vec<f64> = (0..mi).map(|a| y[(a, 0)]).collect();
+            super::mul_transpose(&snap.cq, &y, &mut dq);
         }
         mul_vec(&self.k, &dq, &mut kdq);
         let b: Vec<f64> = (0..n).map(|i| -(snap.r[i] + kdq[i])).collect();
