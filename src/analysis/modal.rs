@@ -11,10 +11,13 @@
 //!    spectrum, and deflated: the eigensolver sees only the elastic
 //!    spectrum, so nothing elastic is ever called rigid.
 //! 2. Elastic modes: up to [`DENSE_MAX`] reduced coordinates, the dense
-//!    path ([`crate::linalg::dense`]) on the M_r-orthogonal complement of
-//!    the zero modes; above it, K_r and M_r stay sparse and the lowest modes
-//!    come from shift-invert Lanczos ([`crate::linalg::krylov`]), with memory
-//!    proportional to the nonzeros.
+//!    path ([`crate::linalg::dense`]) with the zero modes moved below the
+//!    spectrum by an exact rank-k shift; above it, K_r and M_r stay sparse
+//!    and the lowest modes come from shift-invert Lanczos
+//!    ([`crate::linalg::krylov`]) M-orthogonal to the zero modes, with
+//!    memory proportional to the nonzeros. A dense solve whose lowest
+//!    modes' bounds exceed [`ACCURACY_WARNING`] is repeated by shift-invert
+//!    ([`EigenMethod::Auto`]).
 //! 3. Each elastic ω² is refined by its Rayleigh quotient 2U(φ)/φᵀMφ, U
 //!    from strain variations (cancellation-free): a solver's ω² carries an
 //!    absolute error ~ε·max|ω²|, which a fine mesh or a short element makes
