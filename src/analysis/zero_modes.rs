@@ -54,7 +54,7 @@ pub fn zero_modes(
     let n = system.ndof();
     let motions = system.rigid_motions(at.q);
     let c = motions.fields.len();
-    // B = C_q V (m × c), columns scaled to unit norm.
+    // B = C_q V (m × c), its columns scaled by the size of their terms.
     let mut by_coord: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
     for (f, field) in motions.fields.iter().enumerate() {
         for &(i, v) in field {
