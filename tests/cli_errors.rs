@@ -994,3 +994,59 @@ fn csv_has_the_header_and_one_row_per_mode() {
         "only the CSV is written (no temporary file left)"
     );
 }
+
+#[test]
+fn modal_solver_flag_gives_the_same_modes_and_their_error_bounds() {
+    // The built-in assembly by the dense path and by shift-invert: the same
+    // frequencies (both Rayleigh-refined), each elastic mode with a bound
+    // that covers the difference, rigid modes without one.
+    let dir = TempDir::new().expect("a temp dir");
+    let modes = |solver: &str| -> serde_json::Value {
+        let (code, stdout, stderr) = run(
+            &["modal", "--json", "--modes", "8", "--solver", solver],
+            dir.path(),
+        );
+        assert_eq!(
+            code,
+            Some(0),
+            "modal --solver {solver} succeeds; stderr: {stderr}"
+        );
+        serde_json::from_str(&stdout).expect("one JSON document")
+    };
+    let (dense, sparse) = (modes("dense"), modes("sparse"));
+    assert_eq!(dense["solver"], "dense", "the dense path ran");
+    assert_eq!(
+        sparse["solver"], "sparse shift-invert Lanczos",
+        "the sparse path ran"
+    );
+    assert_eq!(dense["rigid_modes"], 3, "free assembly: 3 zero modes");
+    assert_eq!(
+        sparse["rigid_modes"], 3,
+        "free assembly: 3 zero modes (sparse)"
+    );
+    let (a, b) = (
+        dense["modes"].as_array().expect("modes"),
+        sparse["modes"].as_array().expect("modes"),
+    );
+    assert_eq!(a.len(), 8, "8 modes reported");
+    for (x, y) in a.iter().zip(b) {
+        let (fx, fy) = (
+            x["frequency_hz"].as_f64().unwrap(),
+            y["frequency_hz"].as_f64().unwrap(),
+        );
+        if x["kind"] == "rigid" {
+            assert!(
+                x["error_bound"].is_null(),
+                "a rigid mode has no error bound"
+            );
+            continue;
+        }
+        let bound = x["error_bound"].as_f64().unwrap() + y["error_bound"].as_f64().unwrap();
+        let diff = ((fx - fy) / fx).abs();
+        assert!(
+            diff <= bound.max(1e-12),
+            "mode {}: dense {fx} Hz, sparse {fy} Hz differ by {diff:.2e}, bounds {bound:.2e}",
+            x["index"]
+        );
+    }
+}
