@@ -1044,7 +1044,7 @@ fn modal_solver_flag_gives_the_same_modes_and_their_error_bounds() {
         let bound = x["error_bound"].as_f64().unwrap() + y["error_bound"].as_f64().unwrap();
         let diff = ((fx - fy) / fx).abs();
         assert!(
-            diff <= bound.max(1e-12),
+            diff <= bound,
             "mode {}: dense {fx} Hz, sparse {fy} Hz differ by {diff:.2e}, bounds {bound:.2e}",
             x["index"]
         );

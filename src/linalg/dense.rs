@@ -204,11 +204,6 @@ pub fn cholesky_lower(a: &Mat<f64>, par: Par) -> Option<Mat<f64>> {
     Some(l)
 }
 
-/// Parallelism for a dense problem of size n: sequential below 256.
-pub fn par_for(n: usize) -> Par {
-    par(n)
-}
-
 /// Eigenvalues (ascending) and eigenvectors of a symmetric matrix by
 /// faer's tridiagonal QR algorithm (divide and conquer disabled).
 pub fn symmetric_eigen_qr(c: &Mat<f64>, par: Par) -> Result<(Vec<f64>, Mat<f64>), EigenFailure> {

@@ -141,16 +141,6 @@ impl NullSpace {
         self.dim
     }
 
-    /// Number of full coordinates.
-    pub fn full_dim(&self) -> usize {
-        self.n
-    }
-
-    /// Number of stored nonzeros of N.
-    pub fn nonzeros(&self) -> usize {
-        self.map.len()
-    }
-
     /// Row g of N: (reduced index, weight) pairs.
     #[inline]
     pub fn row(&self, g: usize) -> &[(usize, f64)] {

@@ -23,19 +23,6 @@ impl Scatter for Mat<f64> {
     }
 }
 
-/// Keeps only the diagonal of what is assembled into it.
-#[derive(Debug, Clone)]
-pub struct DiagonalOnly(pub Vec<f64>);
-
-impl Scatter for DiagonalOnly {
-    #[inline]
-    fn add(&mut self, i: usize, j: usize, v: f64) {
-        if i == j {
-            self.0[i] += v;
-        }
-    }
-}
-
 /// A list of (row, column, value) entries of an nrows × ncols matrix;
 /// repeated positions add up.
 #[derive(Debug, Clone, Default)]
@@ -101,19 +88,6 @@ impl Triplets {
             m[(t.row, t.col)] += t.val;
         }
         m
-    }
-
-    /// Transposed list.
-    pub fn transposed(&self) -> Triplets {
-        Triplets {
-            nrows: self.ncols,
-            ncols: self.nrows,
-            entries: self
-                .entries
-                .iter()
-                .map(|t| Triplet::new(t.col, t.row, t.val))
-                .collect(),
-        }
     }
 }
 

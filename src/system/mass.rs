@@ -74,11 +74,6 @@ impl MassMatrix {
         }
     }
 
-    /// Number of coordinates.
-    pub fn size(&self) -> usize {
-        self.n
-    }
-
     /// The diagonal entries M_ii.
     pub fn diagonal(&self) -> Vec<f64> {
         let mut d = vec![0.0; self.n];
