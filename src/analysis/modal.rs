@@ -386,15 +386,11 @@ fn dense_elastic(
         })
         .fold(0.0, f64::max);
     let shift = -2.0 * bound;
-    let y: Vec<Vec<f64>> = z
-        .iter()
-        .map(|zi| (0..dim).map(|r| dot(m.col_as_slice(r), zi)).collect())
-        .collect();
-    let shifted = Mat::from_fn(dim, dim, |r, c| {
-        k[(r, c)] + shift * y.iter().map(|yi| yi[r] * yi[c]).sum::<f64>()
-    });
-    let e = solve_generalized(&shifted, m, z.len() + wanted)?;
-    let skip = z.len();
+    let z = Mat::from_fn(dim, z.len(), |r, c| z[c][r]);
+    let y = m * &z;
+    let shifted = k + shift * (&y * y.transpose());
+    let e = solve_generalized(&shifted, m, z.ncols() + wanted)?;
+    let skip = z.ncols();
     Ok((
         e.values[skip..].to_vec(),
         e.vectors.subcols(skip, e.vectors.ncols() - skip).to_owned(),
@@ -415,24 +411,19 @@ fn error_bounds(
     let count = values.len();
     let dim = vectors.nrows();
     let mut residuals = Mat::zeros(dim, count);
-    let mut kx = vec![0.0; dim];
-    let mut mx = vec![0.0; dim];
     let m_solver: Option<MassSolve<'_>> = match pencil {
         Pencil::Dense { k, m } => {
+            let (kx, mx) = (k * vectors, m * vectors);
             for (j, &lambda) in values.iter().enumerate() {
-                let x = vectors.col_as_slice(j);
                 for i in 0..dim {
-                    kx[i] = dot(k.col_as_slice(i), x);
-                    mx[i] = dot(m.col_as_slice(i), x);
-                }
-                for i in 0..dim {
-                    residuals[(i, j)] = kx[i] - lambda * mx[i];
+                    residuals[(i, j)] = kx[(i, j)] - lambda * mx[(i, j)];
                 }
             }
             factor.map(|f| Box::new(move |r: &mut Mat<f64>| f.solve_in_place(r)) as _)
         }
         Pencil::Sparse { k, m } => {
             let (kc, mc) = (k.to_sparse(), m.to_sparse());
+            let (mut kx, mut mx) = (vec![0.0; dim], vec![0.0; dim]);
             for (j, &lambda) in values.iter().enumerate() {
                 let x = vectors.col_as_slice(j);
                 mul_vec(&kc, x, &mut kx);
