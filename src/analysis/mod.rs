@@ -6,6 +6,7 @@ pub mod convergence;
 pub mod impulse;
 pub mod modal;
 pub mod statics;
+pub mod sweep;
 pub mod transient;
 pub mod zero_modes;
 

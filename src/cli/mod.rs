@@ -9,6 +9,8 @@ mod identify;
 mod impulse;
 mod modal;
 mod statics;
+mod sweep;
+mod sweep_merge;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -36,6 +38,10 @@ pub enum Command {
     Convergence(convergence::ConvergenceArgs),
     /// Static equilibrium under the model's constant loads and gravity.
     Static(statics::StaticArgs),
+    /// A quantity over a grid of model parameters (parallel; --shard for job arrays).
+    Sweep(sweep::SweepArgs),
+    /// Join the JSON documents of `sweep --shard K/N` into the complete sweep.
+    SweepMerge(sweep_merge::SweepMergeArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -46,5 +52,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Calibrate(a) => calibrate::run(a),
         Command::Convergence(a) => convergence::run(a),
         Command::Static(a) => statics::run(a),
+        Command::Sweep(a) => sweep::run(a),
+        Command::SweepMerge(a) => sweep_merge::run(a),
     }
 }

@@ -7,3 +7,4 @@ pub mod impulse_report;
 pub mod modal_report;
 pub mod plot;
 pub mod static_report;
+pub mod sweep_report;
