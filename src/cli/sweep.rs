@@ -4,6 +4,7 @@
 
 use super::args::{ModalArgs, Solver, Sweep as LoadRange};
 use super::common::{load_model, write_output};
+use ancf_modal::analysis::sweep::param::load_labels;
 use ancf_modal::analysis::sweep::{
     Execution, Quantity, Shard, Sweep, SweepDocument, SweepRun, SweepSettings,
     DEFAULT_TRACKED_MODES,
@@ -54,6 +55,13 @@ pub struct SweepArgs {
     /// Worker threads (default: all cores; 1 runs the points serially).
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
+    #[command(flatten)]
+    pub outputs: OutputArgs,
+}
+
+/// Where a sweep's document goes (`sweep` and `sweep-merge`).
+#[derive(Debug, Clone, Args)]
+pub struct OutputArgs {
     /// Print one JSON document instead of the table.
     #[arg(long)]
     pub json: bool,
@@ -64,13 +72,6 @@ pub struct SweepArgs {
     /// parameter (all tracked modes for frequency:K), a heat map for two.
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
-}
-
-/// Where a run's outputs go.
-pub struct Outputs<'a> {
-    pub json: bool,
-    pub csv: Option<&'a PathBuf>,
-    pub plot: Option<&'a PathBuf>,
 }
 
 pub fn run(args: SweepArgs) -> Result<()> {
@@ -101,19 +102,14 @@ pub fn run(args: SweepArgs) -> Result<()> {
         ..SweepSettings::new(quantity)
     };
     let sweep = Sweep::new(&model, &args.params, settings).map_err(|e| anyhow!("--param: {e}"))?;
-    let outputs = Outputs {
-        json: args.json,
-        csv: args.csv.as_ref(),
-        plot: args.plot.as_ref(),
-    };
-    if let Some(path) = outputs.plot {
+    if let Some(path) = &args.outputs.plot {
         if shard.is_some() {
             bail!("--plot: a shard is part of a sweep; draw the merged sweep (`ancf-modal sweep-merge SHARD.json... --plot FILE`)");
         }
         check_plottable(path, sweep.parameters.len()).map_err(|e| anyhow!("--plot: {e}"))?;
     }
     let run = compute(&sweep, shard, args.threads)?;
-    emit(&run.document(), &outputs)
+    emit(&run.document(), &args.outputs)
 }
 
 /// Runs the sweep on `threads` workers (all cores by default) with a
@@ -146,11 +142,11 @@ fn compute(sweep: &Sweep, shard: Option<Shard>, threads: Option<usize>) -> Resul
 
 /// Writes the CSV and the plot, prints the document or the table, and
 /// fails (exit code 1) when any point failed — after everything is out.
-pub fn emit(doc: &SweepDocument, out: &Outputs<'_>) -> Result<()> {
-    if let Some(path) = out.csv {
+pub fn emit(doc: &SweepDocument, out: &OutputArgs) -> Result<()> {
+    if let Some(path) = &out.csv {
         write_output(path, &sweep_csv(doc))?;
     }
-    if let Some(path) = out.plot {
+    if let Some(path) = &out.plot {
         write_sweep_figure(doc, path)?;
     }
     if out.json {
@@ -180,12 +176,7 @@ pub fn run_load_sweep(args: &ModalArgs, range: LoadRange) -> Result<()> {
     if model.loads.is_empty() {
         bail!("--sweep-load: the model has no loads to scale");
     }
-    let loads: Vec<String> = model
-        .loads
-        .iter()
-        .enumerate()
-        .map(|(i, l)| l.id.clone().unwrap_or_else(|| format!("loads[{i}]")))
-        .collect();
+    let loads = load_labels(&model);
     let param = format!(
         "load_scale:{}={:?}:{:?}:{}",
         loads.join(","),
@@ -202,8 +193,10 @@ pub fn run_load_sweep(args: &ModalArgs, range: LoadRange) -> Result<()> {
         solver: args.solver,
         shard: None,
         threads: None,
-        json: args.json,
-        csv: args.csv.clone(),
-        plot: args.plot.clone(),
+        outputs: OutputArgs {
+            json: args.json,
+            csv: args.csv.clone(),
+            plot: args.plot.clone(),
+        },
     })
 }

@@ -1,7 +1,7 @@
 //! `ancf-modal sweep-merge`: joins the shard documents of `sweep --shard
 //! K/N --json` into the document (and table, CSV, plot) a single run gives.
 
-use super::sweep::{emit, Outputs};
+use super::sweep::{emit, OutputArgs};
 use ancf_modal::analysis::sweep::{merge, SweepDocument, SweepError};
 use ancf_modal::output::figures::sweep::check_plottable;
 use anyhow::{anyhow, Result};
@@ -13,15 +13,8 @@ pub struct SweepMergeArgs {
     /// The shards' JSON documents (`sweep --shard K/N --json > FILE`).
     #[arg(value_name = "SHARD.json", required = true)]
     pub shards: Vec<PathBuf>,
-    /// Print one JSON document instead of the table.
-    #[arg(long)]
-    pub json: bool,
-    /// Also write the points as CSV to this file.
-    #[arg(long, value_name = "FILE")]
-    pub csv: Option<PathBuf>,
-    /// Also draw the sweep (.svg or .png).
-    #[arg(long, value_name = "FILE")]
-    pub plot: Option<PathBuf>,
+    #[command(flatten)]
+    pub outputs: OutputArgs,
 }
 
 pub fn run(args: SweepMergeArgs) -> Result<()> {
@@ -38,13 +31,8 @@ pub fn run(args: SweepMergeArgs) -> Result<()> {
         docs.push((file, doc));
     }
     let run = merge(&docs)?;
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.outputs.plot {
         check_plottable(path, run.header.parameters.len()).map_err(|e| anyhow!("--plot: {e}"))?;
     }
-    let outputs = Outputs {
-        json: args.json,
-        csv: args.csv.as_ref(),
-        plot: args.plot.as_ref(),
-    };
-    emit(&run.document(), &outputs)
+    emit(&run.document(), &args.outputs)
 }

@@ -319,6 +319,17 @@ fn check_settable(
         })
 }
 
+/// The names `load_scale:` accepts for the model's loads: the id, or
+/// `loads[i]` for a load without one.
+pub fn load_labels(model: &Model) -> Vec<String> {
+    model
+        .loads
+        .iter()
+        .enumerate()
+        .map(|(i, l)| l.id.clone().unwrap_or_else(|| format!("loads[{i}]")))
+        .collect()
+}
+
 /// The edits of `load_scale:ID[,ID…]`.
 fn load_scale(
     model: &Model,
@@ -326,12 +337,7 @@ fn load_scale(
     name: &str,
     ids: &str,
 ) -> Result<(String, Vec<Edit>), SweepError> {
-    let labels: Vec<String> = model
-        .loads
-        .iter()
-        .enumerate()
-        .map(|(i, l)| l.id.clone().unwrap_or_else(|| format!("loads[{i}]")))
-        .collect();
+    let labels = load_labels(model);
     let mut indices = Vec::new();
     for id in ids.split(',').map(str::trim) {
         let i = labels
