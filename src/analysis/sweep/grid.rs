@@ -89,12 +89,16 @@ impl Axis {
                 if i + 1 == n {
                     return self.hi;
                 }
-                let t = i as f64 / (n - 1) as f64;
-                if self.log {
-                    (self.lo.ln() + t * (self.hi.ln() - self.lo.ln())).exp()
+                let (a, b, m) = ((n - 1 - i) as f64, i as f64, (n - 1) as f64);
+                let v = if self.log {
+                    ((a * self.lo.ln() + b * self.hi.ln()) / m).exp()
                 } else {
-                    self.lo + t * (self.hi - self.lo)
-                }
+                    (a * self.lo + b * self.hi) / m
+                };
+                // 15 significant digits, so that a decimal range stays
+                // decimal (1e-3:1.2e-3:3 gives 1.1e-3, not
+                // 1.0999999999999998e-3); a change of at most 5e-16.
+                format!("{v:.14e}").parse().unwrap_or(v)
             })
             .collect()
     }
@@ -233,6 +237,10 @@ mod tests {
         let b = Axis::parse("0:1:5", "x").unwrap().values();
         assert_eq!(b, vec![0.0, 0.25, 0.5, 0.75, 1.0]);
         assert_eq!(Axis::parse("2:3:1", "x").unwrap().values(), vec![2.0]);
+        assert_eq!(
+            Axis::parse("1e-3:1.2e-3:3", "x").unwrap().values()[1],
+            1.1e-3
+        );
         for bad in [
             "1:2",
             "1:2:0",
