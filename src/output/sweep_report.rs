@@ -134,3 +134,47 @@ fn field(text: &str) -> String {
         text.to_string()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::sweep::{ParameterValues, PointRecord};
+
+    #[test]
+    fn csv_quotes_names_with_commas_and_leaves_failed_results_empty() {
+        let point = |index: usize, result: Option<f64>, error: Option<&str>| PointRecord {
+            index,
+            values: vec![index as f64],
+            result,
+            error: error.map(String::from),
+            frequencies_hz: None,
+            mac: None,
+            modes: None,
+        };
+        let d = SweepDocument {
+            model: "m".into(),
+            quantity: "first_bending_hz".into(),
+            sweep_id: "0".into(),
+            total_points: 2,
+            parameters: vec![ParameterValues {
+                name: "load_scale:a,b".into(),
+                target: "load_scale:loads[0],loads[1]".into(),
+                values: vec![0.0, 1.0],
+                log: false,
+            }],
+            prestress: true,
+            tracked_modes: None,
+            failed_points: 1,
+            shard: None,
+            points: vec![
+                point(0, Some(4600.0), None),
+                point(1, None, Some("x, \"y\"")),
+            ],
+        };
+        assert_eq!(
+            sweep_csv(&d),
+            "index,\"load_scale:a,b\",first_bending_hz,error\n0,0e0,4.6e3,\n1,1e0,,\"x, \"\"y\"\"\"\n"
+        );
+        assert!(sweep_table(&d).contains("1 of 2 points failed"));
+    }
+}
