@@ -81,6 +81,12 @@ pub enum Problem {
     ZeroLength,
     #[error("the model has no bodies (no beam, rigid body or point mass)")]
     NoBodies,
+    #[error("the segment has length {length:.3e} m: its end points coincide")]
+    DegenerateSegment { length: f64 },
+    #[error("the pin radius {radius:?} m must be below half the slot width {width:?} m (no clearance left)")]
+    PinTooLarge { radius: f64, width: f64 },
+    #[error("the point starts {distance:.3e} m from the line, within its radius {radius:?} m: give `side` (`left` or `right` of from→to)")]
+    SideNeeded { distance: f64, radius: f64 },
     #[error("the spring's free length {free_length:.3e} m is not positive (preload {preload:?} N, stiffness {stiffness:?} N/m, initial length {length:.3e} m)")]
     NonPositiveFreeLength {
         free_length: f64,

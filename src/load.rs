@@ -28,6 +28,13 @@ impl TimeFunction {
                     0.0
                 }
             }
+            TimeFunction::Until(until) => {
+                if t <= until {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
         }
     }
 }

@@ -2,9 +2,12 @@
 //! README for the format). Parsing maps serde errors to the JSON path of the
 //! offending value; [`Model::validate`] then checks physics and references.
 
+mod contact;
+mod rigid;
 mod types;
 pub mod validate;
 
+pub use contact::*;
 pub use types::*;
 pub use validate::PointTarget;
 

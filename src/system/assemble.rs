@@ -20,7 +20,7 @@ pub struct EnergyBreakdown {
     pub axial: f64,
     /// Bending energy of the beams.
     pub bending: f64,
-    /// Energy of springs and torsion springs.
+    /// Energy of springs, torsion springs and contacts.
     pub springs: f64,
     /// Load stiffness and constraint-force (∂(C_qᵀλ)/∂q) terms; not strain
     /// energy, zero at an unloaded reference.
@@ -122,7 +122,7 @@ impl System {
             }
         }
         let mut g = PairGrad::zeros();
-        for fe in &self.force_elements {
+        for fe in self.elastic_elements() {
             fe.gradient(q, &mut g);
             for (i, d) in fe.pair().dofs().enumerate() {
                 out[d] += g[i];
@@ -183,7 +183,7 @@ impl System {
             }
         }
         let mut h = PairHess::zeros();
-        for fe in &self.force_elements {
+        for fe in self.elastic_elements() {
             fe.hessian(q, &mut h);
             let dofs: Vec<usize> = fe.pair().dofs().collect();
             scatter_mat(&dofs, &h, out);
@@ -291,7 +291,7 @@ impl System {
                 e.bending += s.bending;
             }
         }
-        e.springs = self.force_elements.iter().map(|f| f.energy(q)).sum();
+        e.springs = self.elastic_elements().map(|f| f.energy(q)).sum();
         e
     }
 
@@ -343,7 +343,7 @@ impl System {
             v
         };
         let mut h = PairHess::zeros();
-        for fe in &self.force_elements {
+        for fe in self.elastic_elements() {
             fe.hessian(q, &mut h);
             for (e, phi) in out.iter_mut().zip(phis) {
                 let v = local(phi, &mut fe.pair().dofs());
