@@ -160,10 +160,16 @@ mod tests {
             let fd = (l.total(d + hd, r, v).force - l.total(d - hd, r, v).force) / (2.0 * hd);
             let fr = (l.total(d, r + hr, v).force - l.total(d, r - hr, v).force) / (2.0 * hr);
             assert!((f.d_delta - fd).abs() <= 1e-7 * fd.abs(), "{model:?} ∂F/∂δ");
-            assert!((f.d_rate - fr).abs() <= 1e-6 * fr.abs().max(1.0), "{model:?} ∂F/∂δ̇");
+            assert!(
+                (f.d_rate - fr).abs() <= 1e-6 * fr.abs().max(1.0),
+                "{model:?} ∂F/∂δ̇"
+            );
             // The energy is the integral of the elastic force: dU/dδ = F_e.
             let du = (l.energy(d + hd) - l.energy(d - hd)) / (2.0 * hd);
-            assert!((du - l.elastic(d).force).abs() <= 1e-7 * du, "{model:?} dU/dδ");
+            assert!(
+                (du - l.elastic(d).force).abs() <= 1e-7 * du,
+                "{model:?} dU/dδ"
+            );
         }
     }
 

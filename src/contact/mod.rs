@@ -28,8 +28,8 @@
 
 pub mod law;
 
-use crate::anchor::Anchor;
 use crate::anchor::perp;
+use crate::anchor::Anchor;
 use crate::joint::{Constraint, ConstraintJac, Slider};
 use crate::pair::{Pair, PairGrad, PairHess, PairJac2};
 use crate::spring::ForceElement;
@@ -108,7 +108,11 @@ impl ContactElement {
         let (a, b) = (from.position(q0), to.position(q0));
         let length = (b - a).norm();
         let tangent0 = (b - a) / length;
-        let angle0 = if from.has_angle() { from.angle(q0) } else { 0.0 };
+        let angle0 = if from.has_angle() {
+            from.angle(q0)
+        } else {
+            0.0
+        };
         let line = Slider {
             label: label.clone(),
             pair: Pair {
@@ -335,5 +339,36 @@ impl ForceElement for ContactElement {
     }
     fn damping(&self, _: &[f64], _: &PairGrad, _: &mut PairGrad, _: &mut PairHess) -> bool {
         false
+    }
+}
+
+impl ContactElement {
+    /// The regularizing stiffness of static Newton iterations [SI: N/m]:
+    /// the law's tangent at a penetration of 1e-3 of the contact's own
+    /// size (the clearance of a slot, the radius of a point, or 1 µm).
+    pub fn regularizing_stiffness(&self) -> f64 {
+        let size = match self.kind {
+            ContactKind::PinSlot { clearance } => clearance,
+            ContactKind::PointLine { radius, .. } => radius,
+        };
+        let size = if size > 0.0 { size } else { 1e-6 };
+        self.law.elastic(1e-3 * size).d_delta
+    }
+
+    /// Adds (k_r − F_e')⁺ ∇δ∇δᵀ, k_r the regularizing stiffness, into
+    /// `out` (local): a Newton matrix that stays regular while the contact
+    /// is open or barely closed (F_e' = nKδⁿ⁻¹ → 0 as δ → 0). Only the
+    /// iteration matrix of statics gets it, never the residual, so the
+    /// equilibrium found is exact.
+    pub fn regularization(&self, q: &[f64], out: &mut PairHess) -> bool {
+        let Some(g) = self.gap(q, None) else {
+            return false;
+        };
+        let extra = self.regularizing_stiffness() - self.law.elastic(g.delta).d_delta;
+        if extra <= 0.0 {
+            return false;
+        }
+        *out = g.grad * g.grad.transpose() * extra;
+        true
     }
 }

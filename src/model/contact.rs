@@ -312,12 +312,9 @@ impl Model {
                 pin_radius, slot, ..
             } => {
                 positive(*pin_radius, &format!("{p}.pin_radius"))?;
-                let width = slot.width.ok_or_else(|| {
-                    (
-                        format!("{p}.slot"),
-                        Problem::MissingKey { key: "width" },
-                    )
-                })?;
+                let width = slot
+                    .width
+                    .ok_or_else(|| (format!("{p}.slot"), Problem::MissingKey { key: "width" }))?;
                 positive(width, &format!("{p}.slot.width"))?;
                 if *pin_radius >= 0.5 * width {
                     return Err((
@@ -393,10 +390,7 @@ impl Model {
         }
         match (law.is_dissipative(), law.restitution) {
             (true, None) => {
-                return Err((
-                    p.to_string(),
-                    Problem::MissingKey { key: "restitution" },
-                ))
+                return Err((p.to_string(), Problem::MissingKey { key: "restitution" }))
             }
             (true, Some(c)) if !(c > 0.0 && c <= 1.0) => {
                 return Err((

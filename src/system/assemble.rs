@@ -270,6 +270,18 @@ impl System {
         any
     }
 
+    /// Adds the contacts' regularizing stiffness of static Newton
+    /// iterations into `out` (see [`crate::contact::ContactElement::regularization`]).
+    pub fn add_contact_regularization(&self, q: &[f64], out: &mut impl Scatter) {
+        let mut h = PairHess::zeros();
+        for c in &self.contacts {
+            if c.regularization(q, &mut h) {
+                let dofs: Vec<usize> = crate::spring::ForceElement::pair(c).dofs().collect();
+                scatter_mat(&dofs, &h, out);
+            }
+        }
+    }
+
     /// Adds ∂(C_qᵀλ)/∂q = Σ λᵢ ∂²Cᵢ/∂q² into `out`.
     pub fn add_constraint_hessian(&self, q: &[f64], lambda: &[f64], out: &mut impl Scatter) {
         let mut h = PairHess::zeros();

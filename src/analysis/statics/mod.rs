@@ -30,6 +30,15 @@
 //! increments carries large deflections: gravity is ramped first, then the
 //! applied loads up to their factor.
 //!
+//! **Contacts** act as nonlinear springs (their elastic law). Their
+//! tangent nKδⁿ⁻¹ vanishes at δ = 0 and an open contact has none, so a
+//! body resting on a contact, or a small gap away from it, would make the
+//! Newton matrix singular: the Newton matrix (never the residual) gets a
+//! regularizing stiffness for each contact whose own tangent is below it
+//! ([`crate::contact::ContactElement::regularization`]), so the iteration
+//! closes the gap and converges to the exact equilibrium, where the
+//! regularization has dropped out of any loaded contact stiffer than it.
+//!
 //! **Failures.** A reduced tangent that is singular in a direction the load
 //! pushes means the assembly cannot carry the load: the error names the free
 //! motion (the whole assembly unsupported, or the coordinate a mechanism
@@ -546,12 +555,14 @@ impl<'a> Solver<'a> {
         };
         let mut k = Triplets::new(n, n);
         sys.add_tangent_stiffness(&at, &mut k);
+        sys.add_contact_regularization(q, &mut k);
         let d = snap.ns.dim();
         let factor = if d == 0 {
             Factor::Empty
         } else if d > crate::analysis::modal::DENSE_MAX {
             let mut kr = Triplets::new(d, d);
             sys.add_tangent_stiffness(&at, &mut Projected::new(&snap.ns, &mut kr));
+            sys.add_contact_regularization(q, &mut Projected::new(&snap.ns, &mut kr));
             // Large: the reduced tangent stays sparse; Cholesky when it is
             // definite, LU past a loss of stability (the stability check
             // then finds the critical load), an error when it is singular
@@ -574,6 +585,7 @@ impl<'a> Solver<'a> {
         } else {
             let mut kr = Mat::zeros(d, d);
             sys.add_tangent_stiffness(&at, &mut Projected::new(&snap.ns, &mut kr));
+            sys.add_contact_regularization(q, &mut Projected::new(&snap.ns, &mut kr));
             symmetrize(&mut kr);
             if let Some(llt) = definite_factor(&kr) {
                 Factor::Cholesky(llt)

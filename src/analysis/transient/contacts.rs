@@ -56,13 +56,20 @@ pub struct ContactTracker {
     pub stats: Vec<ContactStats>,
     /// Upper bound on the step while impacts last [SI: s].
     pub step_limit: f64,
+    /// When each contact's current impact started [SI: s] (`None`: open,
+    /// or closed since the start of the run).
+    impact_start: Vec<Option<f64>>,
 }
 
 impl ContactTracker {
     /// The tracker at the initial state q.
     pub fn new(sys: &System, q: &[f64]) -> ContactTracker {
         let diag = sys.mass().diagonal();
-        let closed: Vec<bool> = sys.contacts.iter().map(|c| c.penetration(q) > 0.0).collect();
+        let closed: Vec<bool> = sys
+            .contacts
+            .iter()
+            .map(|c| c.penetration(q) > 0.0)
+            .collect();
         ContactTracker {
             impact: sys
                 .contacts
@@ -84,6 +91,7 @@ impl ContactTracker {
                     ..ContactStats::default()
                 })
                 .collect(),
+            impact_start: vec![None; closed.len()],
             closed,
             step_limit: f64::INFINITY,
         }
@@ -121,8 +129,8 @@ impl ContactTracker {
         (shrink < 1.0).then_some(h * shrink)
     }
 
-    /// Record an accepted step ending at (q, v) with length h.
-    pub fn accept(&mut self, sys: &System, q: &[f64], v: &[f64], h: f64) {
+    /// Record an accepted step of length h ending at (t, q, v).
+    pub fn accept(&mut self, sys: &System, (t, q, v): (f64, &[f64], &[f64]), h: f64) {
         self.step_limit = f64::INFINITY;
         let mut d = Dissipation::default();
         for (i, c) in sys.contacts.iter().enumerate() {
@@ -130,9 +138,11 @@ impl ContactTracker {
             let closed = delta > 0.0;
             if closed && !self.closed[i] {
                 self.stats[i].impacts += 1;
+                self.impact_start[i] = Some(t - h);
             }
             self.closed[i] = closed;
             if !closed {
+                self.impact_start[i] = None;
                 continue;
             }
             let local = local_velocity(c.pair().dofs(), v);
@@ -141,11 +151,15 @@ impl ContactTracker {
             s.max_penetration = s.max_penetration.max(delta);
             s.max_force = s.max_force.max(d.normal_force);
             s.dissipated += h * d.force.dot(&local);
+            // Short steps while an impact lasts (twice its expected
+            // duration); a contact at rest keeps the nominal step.
             let speed = self.impact[i].max(c.law.min_impact_velocity);
-            let dmax = c.law.max_penetration(self.mass[i], speed);
-            self.step_limit = self
-                .step_limit
-                .min(3.0 * dmax / speed / STEPS_PER_IMPACT);
+            let duration = 3.0 * c.law.max_penetration(self.mass[i], speed) / speed;
+            if let Some(t0) = self.impact_start[i] {
+                if t - t0 < 2.0 * duration {
+                    self.step_limit = self.step_limit.min(duration / STEPS_PER_IMPACT);
+                }
+            }
         }
     }
 }

@@ -293,7 +293,8 @@ impl<'s> Integrator<'s> {
             return;
         }
         self.h = h;
-        self.beta_p = (1.0 - self.coef.alpha_m) / ((1.0 - self.coef.alpha_f) * self.coef.beta * h * h);
+        self.beta_p =
+            (1.0 - self.coef.alpha_m) / ((1.0 - self.coef.alpha_f) * self.coef.beta * h * h);
         self.gamma_p = self.coef.gamma / (self.coef.beta * h);
         self.stale = true;
     }
@@ -617,7 +618,8 @@ impl<'s> Integrator<'s> {
                 }
                 _ => {
                     result?;
-                    self.contacts.accept(self.sys, &state.q, &state.v, h);
+                    self.contacts
+                        .accept(self.sys, (state.t, &state.q, &state.v), h);
                     return Ok(());
                 }
             }
