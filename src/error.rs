@@ -200,3 +200,16 @@ pub enum TransientError {
     #[error("no memory for the sparse LU factors of the {size}-unknown iteration matrix")]
     OutOfMemory { size: usize },
 }
+
+/// Why a simulation (`transient`, `switch-off`) failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SimulationError {
+    #[error("the initial static equilibrium: {0}")]
+    Equilibrium(#[from] AnalysisError),
+    #[error("time integration: {0}")]
+    Transient(#[from] TransientError),
+    #[error("{flag}: {value:?} must be positive and finite")]
+    InvalidSetting { flag: &'static str, value: f64 },
+    #[error("--point: {why}")]
+    InvalidPoint { why: String },
+}

@@ -9,6 +9,8 @@ mod identify;
 mod impulse;
 mod modal;
 mod statics;
+mod switch_off;
+mod transient;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -36,6 +38,10 @@ pub enum Command {
     Convergence(convergence::ConvergenceArgs),
     /// Static equilibrium under the model's constant loads and gravity.
     Static(statics::StaticArgs),
+    /// Time integration with sensors, contacts and the energy balance.
+    Transient(transient::TransientArgs),
+    /// The paper's switch-off: pre-stressed equilibrium, release, node-0 travel (Figs. 7–9).
+    SwitchOff(switch_off::SwitchOffArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -46,5 +52,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Calibrate(a) => calibrate::run(a),
         Command::Convergence(a) => convergence::run(a),
         Command::Static(a) => statics::run(a),
+        Command::Transient(a) => transient::run(a),
+        Command::SwitchOff(a) => switch_off::run(a),
     }
 }

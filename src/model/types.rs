@@ -217,6 +217,10 @@ pub enum TimeFunction {
     /// in full in a static equilibrium (t = 0) whenever `until` ≥ 0, so
     /// `{"until": 0}` releases it at the start of a transient.
     Until(f64),
+    /// f = 1 up to `start`, then falling linearly to 0 over `duration`
+    /// [SI: s]: a release that takes time (the paper's pre-stress forces
+    /// "rapidly decrease to zero", Eq. 7). Acts in full in statics.
+    RampDown { start: f64, duration: f64 },
 }
 
 /// A point force.

@@ -515,6 +515,10 @@ impl Model {
                 check_non_negative(start, &format!("{p}.time.step.start"))
             }
             TimeFunction::Until(until) => check_non_negative(until, &format!("{p}.time.until")),
+            TimeFunction::RampDown { start, duration } => {
+                check_non_negative(start, &format!("{p}.time.ramp_down.start"))?;
+                check_positive(duration, &format!("{p}.time.ramp_down.duration"))
+            }
         }
     }
 }

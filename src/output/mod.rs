@@ -7,3 +7,5 @@ pub mod impulse_report;
 pub mod modal_report;
 pub mod plot;
 pub mod static_report;
+pub mod switch_off_report;
+pub mod transient_report;

@@ -194,6 +194,12 @@ impl System {
         }
     }
 
+    /// Anchor of a resolved point (a rigid body's centre for `{"body": id}`
+    /// without `local`).
+    pub fn anchor_of(&self, target: &PointTarget) -> Anchor {
+        self.anchor(target, None)
+    }
+
     /// Anchor of a resolved point; `partner` is the other point's initial
     /// position for `{"body": id}` without `local` inside a joint.
     fn anchor(&self, target: &PointTarget, partner: Option<[f64; 2]>) -> Anchor {

@@ -28,7 +28,9 @@
 //! can carry. A backtracking line search on ‖r‖ (plus the constraint
 //! violation) damps the steps; load stepping (continuation) with adaptive
 //! increments carries large deflections: gravity is ramped first, then the
-//! applied loads up to their factor.
+//! applied loads up to their factor; an assembly that only its loads hold
+//! (a pre-stressed mechanism, e.g. the switch-off's ON state) is ramped
+//! loads first when gravity alone finds no equilibrium.
 //!
 //! **Contacts** act as nonlinear springs (their elastic law). Their
 //! tangent nKδⁿ⁻¹ vanishes at δ = 0 and an open contact has none, so a
@@ -143,11 +145,31 @@ pub fn solve_equilibrium(
 ) -> Result<Equilibrium, AnalysisError> {
     let solver = Solver::new(system, settings);
     let mut state = solver.reference_state();
-    if solver.has_gravity {
-        solver.ramp(&mut state, Ramp::Gravity, 1.0)?;
+    let gravity_first = |state: &mut State| {
+        if solver.has_gravity {
+            solver.ramp(state, Ramp::Gravity, 1.0)?;
+        }
+        solver.ramp(state, Ramp::Loads, settings.load_scale)
+    };
+    match gravity_first(&mut state) {
+        Ok(()) => Ok(solver.finish(state)),
+        // An assembly that only the applied loads hold in place (a
+        // pre-stressed mechanism: springs and loads balance, gravity alone
+        // would move it) is found with the loads first.
+        Err(
+            e @ (AnalysisError::Mechanism { .. }
+            | AnalysisError::NoSupport
+            | AnalysisError::NotConverged { .. }),
+        ) if solver.has_gravity && settings.load_scale != 0.0 => {
+            let mut state = solver.reference_state();
+            solver
+                .ramp(&mut state, Ramp::Loads, settings.load_scale)
+                .and_then(|()| solver.ramp(&mut state, Ramp::Gravity, 1.0))
+                .map_err(|_| e)?;
+            Ok(solver.finish(state))
+        }
+        Err(e) => Err(e),
     }
-    solver.ramp(&mut state, Ramp::Loads, settings.load_scale)?;
-    Ok(solver.finish(state))
 }
 
 /// Continue an equilibrium to another applied-load factor (same time and

@@ -30,17 +30,20 @@ pub const ONSET_FRACTION: f64 = 0.02;
 pub const STEPS_PER_IMPACT: f64 = 25.0;
 
 /// What a run saw of one contact.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
 pub struct ContactStats {
     pub id: String,
     /// Largest penetration [SI: m] (0 if it never closed).
+    #[serde(rename = "max_penetration_m")]
     pub max_penetration: f64,
     /// Largest normal force [SI: N].
+    #[serde(rename = "max_force_n")]
     pub max_force: f64,
     /// Number of closings during the run (a contact closed at t = 0 does
     /// not count).
     pub impacts: usize,
     /// Energy dissipated by its damping and friction [SI: J].
+    #[serde(rename = "dissipated_j")]
     pub dissipated: f64,
 }
 

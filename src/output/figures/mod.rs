@@ -18,6 +18,7 @@
 pub mod convergence;
 pub mod impulse;
 pub mod modal;
+pub mod switch_off;
 mod write;
 
 pub use convergence::convergence_figure;
