@@ -369,3 +369,71 @@ fn sliding_pin_keeps_its_energy_and_friction_takes_mu_n_per_metre() {
         "friction work {lost:.6e} J vs μ m g × distance {expected:.6e} J"
     );
 }
+
+/// Each bad contact gives one error naming its JSON path.
+#[test]
+fn bad_contacts_are_clear_errors() {
+    use ancf_modal::error::Source;
+    let base = |contact: Value| {
+        json!({
+            "name": "bad",
+            "rigid_bodies": [{"id": "slot", "mass": 1e-3, "inertia": 1e-9, "position": [0.0, 0.0]}],
+            "point_masses": [{"id": "pin", "mass": 1e-3, "position": [0.0, 0.0]}],
+            "contacts": [contact]
+        })
+        .to_string()
+    };
+    let slot = |width: f64, to: [f64; 2], law: Value| {
+        json!({"id": "c", "type": "pin_slot",
+               "slot": {"body": "slot", "from": [-1e-3, 0.0], "to": to, "width": width},
+               "pin": {"body": "pin"}, "pin_radius": 0.4e-3, "law": law})
+    };
+    let ln = |c: f64| json!({"model": "lankarani_nikravesh", "stiffness": 1e9, "restitution": c});
+    let cases = [
+        (
+            slot(0.8e-3, [1e-3, 0.0], ln(0.5)),
+            "contacts[0].pin_radius",
+            "below half the slot width",
+        ),
+        (
+            slot(1e-3, [1e-3, 0.0], ln(1.5)),
+            "contacts[0].law.restitution",
+            "outside",
+        ),
+        (
+            slot(1e-3, [1e-3, 0.0], ln(0.0)),
+            "contacts[0].law.restitution",
+            "outside",
+        ),
+        (
+            slot(1e-3, [-1e-3, 0.0], ln(0.5)),
+            "contacts[0].slot",
+            "end points coincide",
+        ),
+        (
+            slot(
+                1e-3,
+                [1e-3, 0.0],
+                json!({"model": "nonsense", "stiffness": 1e9}),
+            ),
+            // Inside the tagged contact serde names the contact, and the
+            // message lists the laws.
+            "contacts[0]",
+            "unknown variant `nonsense`, expected one of `linear`, `hertz`",
+        ),
+        (
+            json!({"id": "c", "type": "pin_slot",
+                   "slot": {"body": "nope", "from": [-1e-3, 0.0], "to": [1e-3, 0.0], "width": 1e-3},
+                   "pin": {"body": "pin"}, "pin_radius": 0.4e-3, "law": ln(0.5)}),
+            "contacts[0].slot.body",
+            "no rigid body with id `nope`",
+        ),
+    ];
+    for (contact, path, what) in cases {
+        let err = Model::from_json(&base(contact), Source::BuiltIn)
+            .expect_err("invalid contact")
+            .to_string();
+        assert!(err.contains(path) && err.contains(what), "{path}: {err}");
+        assert_eq!(err.lines().count(), 1, "one line: {err}");
+    }
+}
