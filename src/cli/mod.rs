@@ -11,6 +11,8 @@ mod modal;
 mod statics;
 mod sweep;
 mod sweep_merge;
+mod switch_off;
+mod transient;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -42,6 +44,10 @@ pub enum Command {
     Sweep(sweep::SweepArgs),
     /// Join the JSON documents of `sweep --shard K/N` into the complete sweep.
     SweepMerge(sweep_merge::SweepMergeArgs),
+    /// Time integration with sensors, contacts and the energy balance.
+    Transient(transient::TransientArgs),
+    /// The paper's switch-off: pre-stressed equilibrium, release, node-0 travel (Figs. 7–9).
+    SwitchOff(switch_off::SwitchOffArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -54,5 +60,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Static(a) => statics::run(a),
         Command::Sweep(a) => sweep::run(a),
         Command::SweepMerge(a) => sweep_merge::run(a),
+        Command::Transient(a) => transient::run(a),
+        Command::SwitchOff(a) => switch_off::run(a),
     }
 }

@@ -34,6 +34,9 @@ pub struct Model {
     pub loads: Vec<Load>,
     #[serde(default)]
     pub sensors: Vec<Sensor>,
+    /// Unilateral contacts (see [`super::contact`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub contacts: Vec<super::contact::Contact>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reference: Option<Reference>,
 }
@@ -56,6 +59,10 @@ pub struct Beam {
     pub nodes_at_attachments: bool,
     pub section: Section,
     pub material: Material,
+    /// Model the beam as one rigid body with its mass, centre and inertia
+    /// (the paper's rigid comparison); attachments stay where they are.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub rigid: bool,
 }
 
 /// Rectangular cross-section.
@@ -206,6 +213,14 @@ pub enum TimeFunction {
     HalfSine { duration: f64 },
     /// f = 0 before `start`, 1 from then on.
     Step { start: f64 },
+    /// f = 1 up to t = `until` [SI: s], 0 after: a release. The load acts
+    /// in full in a static equilibrium (t = 0) whenever `until` ≥ 0, so
+    /// `{"until": 0}` releases it at the start of a transient.
+    Until(f64),
+    /// f = 1 up to `start`, then falling linearly to 0 over `duration`
+    /// [SI: s]: a release that takes time (the paper's pre-stress forces
+    /// "rapidly decrease to zero", Eq. 7). Acts in full in statics.
+    RampDown { start: f64, duration: f64 },
 }
 
 /// A point force.

@@ -8,3 +8,5 @@ pub mod modal_report;
 pub mod plot;
 pub mod static_report;
 pub mod sweep_report;
+pub mod switch_off_report;
+pub mod transient_report;

@@ -22,6 +22,7 @@ pub mod convergence;
 pub mod impulse;
 pub mod modal;
 pub mod sweep;
+pub mod switch_off;
 mod write;
 
 pub use convergence::convergence_figure;
