@@ -48,6 +48,8 @@ pub enum Command {
     Transient(transient::TransientArgs),
     /// The paper's switch-off: pre-stressed equilibrium, release, node-0 travel (Figs. 7–9).
     SwitchOff(switch_off::SwitchOffArgs),
+    /// Print the JSON Schema of the model file.
+    Schema,
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -62,5 +64,12 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::SweepMerge(a) => sweep_merge::run(a),
         Command::Transient(a) => transient::run(a),
         Command::SwitchOff(a) => switch_off::run(a),
+        Command::Schema => {
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&ancf_modal::Model::json_schema())?
+            );
+            Ok(())
+        }
     }
 }

@@ -31,7 +31,7 @@ pub const DEFAULT_MIN_IMPACT_VELOCITY: f64 = 1e-3;
 pub const DEFAULT_FRICTION_VELOCITY: f64 = 1e-4;
 
 /// A contact between a point and a segment.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Contact {
     /// A pin in a slot with clearance.
@@ -71,7 +71,7 @@ pub enum Contact {
 
 /// A segment fixed in a rigid body (`body`) or in space (`ground: true`),
 /// its end points in the body frame (global for the ground) [SI: m].
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Segment {
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -86,7 +86,7 @@ pub struct Segment {
 }
 
 /// Side of a directed line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Side {
     Left,
@@ -94,7 +94,7 @@ pub enum Side {
 }
 
 /// The normal-force law.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum LawModel {
     Linear,
@@ -105,7 +105,7 @@ pub enum LawModel {
 }
 
 /// Parameters of a contact law; which apply depends on `model`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ContactLaw {
     pub model: LawModel,

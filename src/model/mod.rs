@@ -93,6 +93,13 @@ impl Model {
             .expect("the built-in switch-off model is valid")
     }
 
+    /// The JSON Schema of the model file, generated from these serde types
+    /// (`ancf-modal schema`). It checks structure and types; the physics
+    /// and cross references are [`Model::validate`]'s.
+    pub fn json_schema() -> serde_json::Value {
+        serde_json::to_value(schemars::schema_for!(Model)).expect("a schema serializes")
+    }
+
     /// The model as pretty JSON (a valid model file).
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("models serialize")

@@ -9,7 +9,7 @@
 use serde::{Deserialize, Serialize};
 
 /// A whole assembly as written in a model file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Model {
     /// Short name, used in reports.
@@ -42,7 +42,7 @@ pub struct Model {
 }
 
 /// A straight, stress-free ANCF cable beam in its reference configuration.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Beam {
     pub id: String,
@@ -66,7 +66,7 @@ pub struct Beam {
 }
 
 /// Rectangular cross-section.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Section {
     /// Height, in the bending plane [SI: m].
@@ -76,7 +76,7 @@ pub struct Section {
 }
 
 /// Linear-elastic isotropic material.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Material {
     /// Young's modulus [SI: Pa].
@@ -86,7 +86,7 @@ pub struct Material {
 }
 
 /// A planar rigid body; its reference point is its centre of mass.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RigidBody {
     pub id: String,
@@ -102,7 +102,7 @@ pub struct RigidBody {
 }
 
 /// A point mass (no rotational inertia).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PointMass {
     pub id: String,
@@ -116,7 +116,7 @@ pub struct PointMass {
 ///
 /// Exactly one of `beam` (with `s`), `body` (optionally with `local`) or
 /// `ground` must be given.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PointSpec {
     /// Beam id; the point is at arc length `s` from node 0.
@@ -137,7 +137,7 @@ pub struct PointSpec {
 }
 
 /// Kind of a joint.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum JointType {
     /// Revolute joint: the two points coincide (2 equations).
@@ -149,7 +149,7 @@ pub enum JointType {
 }
 
 /// A joint between two points.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Joint {
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -171,7 +171,7 @@ pub struct Joint {
 
 /// A translational spring-damper along the line of its two points.
 /// Give exactly one of `free_length` and `preload`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Spring {
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -192,7 +192,9 @@ pub struct Spring {
 }
 
 /// Frame in which a load's force vector is given.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum LoadFrame {
     #[default]
@@ -203,7 +205,7 @@ pub enum LoadFrame {
 }
 
 /// Time history of a load: F(t) = force · f(t).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum TimeFunction {
     /// f = 1.
@@ -224,7 +226,7 @@ pub enum TimeFunction {
 }
 
 /// A point force.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Load {
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -239,7 +241,7 @@ pub struct Load {
 }
 
 /// What a sensor measures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum SensorQuantity {
     Displacement,
@@ -248,7 +250,9 @@ pub enum SensorQuantity {
 }
 
 /// Frame of a sensor reading.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum SensorFrame {
     Global,
@@ -258,7 +262,7 @@ pub enum SensorFrame {
 }
 
 /// A measuring point (vibrometer-like).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Sensor {
     pub id: String,
@@ -272,7 +276,7 @@ pub struct Sensor {
 }
 
 /// Measured data the model is compared with.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Reference {
     /// First bending frequency [SI: Hz].
