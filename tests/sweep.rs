@@ -433,3 +433,28 @@ fn cli_bad_flags_are_one_line_errors_naming_the_flag() {
         );
     }
 }
+
+/// Fig. 10's first panel: a larger pre-stress (both released loads and the
+/// spring's preload, scaled together so that the ON state stays in
+/// equilibrium) opens the contact faster.
+#[test]
+fn switch_off_time_falls_with_rising_prestress() {
+    let m = Model::switch_off_builtin();
+    let s = sweep(
+        &m,
+        &["load_scale:F_x2,F_c,helical_spring=1:2:3"],
+        "time_to_distance_s",
+        1,
+    );
+    let t = results(&complete(&s));
+    assert_eq!(t.len(), 3);
+    assert!(
+        (t[0] - 1.75e-3).abs() < 0.1 * 1.75e-3,
+        "the calibrated point: {:.4e} s",
+        t[0]
+    );
+    assert!(
+        t[1] < t[0] && t[2] < t[1],
+        "time to 2 mm falls with the pre-stress: {t:?}"
+    );
+}

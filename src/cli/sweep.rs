@@ -33,10 +33,19 @@ pub struct SweepArgs {
         allow_hyphen_values = true
     )]
     pub params: Vec<String>,
-    /// What to compute at each point: first_bending_hz, or frequency:K (the
-    /// K-th elastic mode, tracked by MAC across the points).
+    /// What to compute at each point: first_bending_hz, frequency:K (the
+    /// K-th elastic mode, tracked by MAC across the points),
+    /// time_to_distance_s (the switch-off; the built-in switch-off assembly
+    /// when no model is given) or peak:SENSOR (largest |reading| over a
+    /// transient run).
     #[arg(long, value_name = "QUANTITY")]
     pub quantity: Option<String>,
+    /// Time step of transient quantities [s] (default 1e-6).
+    #[arg(long, value_name = "S")]
+    pub step: Option<f64>,
+    /// End time of transient quantities [s] (default 3e-3).
+    #[arg(long, value_name = "S")]
+    pub end_time: Option<f64>,
     /// Elastic modes tracked for frequency:K (at least K; all are drawn by
     /// --plot and written by --csv).
     #[arg(long, value_name = "N", default_value_t = DEFAULT_TRACKED_MODES)]
@@ -75,7 +84,6 @@ pub struct OutputArgs {
 }
 
 pub fn run(args: SweepArgs) -> Result<()> {
-    let model = load_model(args.model.as_deref())?;
     let quantity = match &args.quantity {
         Some(q) => Quantity::parse(q).map_err(|e| anyhow!("--quantity: {e}"))?,
         None => bail!(
@@ -83,6 +91,17 @@ pub fn run(args: SweepArgs) -> Result<()> {
             ancf_modal::analysis::sweep::quantity::AVAILABLE.join(", ")
         ),
     };
+    let model = match (&args.model, &quantity) {
+        (None, Quantity::TimeToDistance) => ancf_modal::Model::switch_off_builtin(),
+        _ => load_model(args.model.as_deref())?,
+    };
+    for (flag, value) in [("--step", args.step), ("--end-time", args.end_time)] {
+        if let Some(v) = value {
+            if !(v > 0.0 && v.is_finite()) {
+                bail!("{flag}: {v:?} must be positive and finite");
+            }
+        }
+    }
     let shard = args
         .shard
         .as_deref()
@@ -99,6 +118,8 @@ pub fn run(args: SweepArgs) -> Result<()> {
         tracked_modes: args.modes,
         prestress: args.prestress,
         method: args.solver.into(),
+        step: args.step,
+        end_time: args.end_time,
         ..SweepSettings::new(quantity)
     };
     let sweep = Sweep::new(&model, &args.params, settings).map_err(|e| anyhow!("--param: {e}"))?;
@@ -188,6 +209,8 @@ pub fn run_load_sweep(args: &ModalArgs, range: LoadRange) -> Result<()> {
         model: args.model.clone(),
         params: vec![param],
         quantity: Some(String::from("frequency:1")),
+        step: None,
+        end_time: None,
         modes: (args.modes as usize).min(6),
         prestress: true,
         solver: args.solver,

@@ -145,4 +145,10 @@ pub enum PointError {
     NoBendingMode { computed: usize },
     #[error("elastic mode {wanted} asked for, but the model has only {available}")]
     TooFewModes { wanted: usize, available: usize },
+    #[error("the tracked point does not travel {distance:e} m within {end_time:e} s")]
+    NotReached { distance: f64, end_time: f64 },
+    #[error("no sensor `{id}` in the model")]
+    UnknownSensor { id: String },
+    #[error("{0}")]
+    Simulation(#[from] crate::error::SimulationError),
 }

@@ -39,9 +39,13 @@ use crate::model::Model;
 use rayon::prelude::*;
 
 /// How a sweep is computed.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct SweepSettings {
     pub quantity: Quantity,
+    /// Step and end time of transient quantities [SI: s] (`None`: the
+    /// switch-off's defaults).
+    pub step: Option<f64>,
+    pub end_time: Option<f64>,
     /// Elastic modes tracked for a tracked quantity (at least its K).
     pub tracked_modes: usize,
     /// Linearize at the static equilibrium under the model's loads (implied
@@ -54,6 +58,8 @@ impl SweepSettings {
     pub fn new(quantity: Quantity) -> Self {
         SweepSettings {
             quantity,
+            step: None,
+            end_time: None,
             tracked_modes: DEFAULT_TRACKED_MODES,
             prestress: false,
             method: EigenMethod::Auto,
@@ -122,7 +128,7 @@ impl Sweep {
         let grid = Grid::new(parameters.iter().map(|p| p.axis.values()).collect())?;
         let header = Header {
             model: model.name.clone(),
-            quantity: settings.quantity,
+            quantity: settings.quantity.clone(),
             sweep_id: fingerprint(model, &parameters, &settings),
             parameters: parameters
                 .iter()
@@ -173,6 +179,8 @@ impl Sweep {
             prestress: self.settings.prestress,
             method: self.settings.method,
             modes: self.settings.tracked_modes + margin(self.settings.tracked_modes),
+            step: self.settings.step,
+            end_time: self.settings.end_time,
         };
         let outcome = self
             .model_at(&values)
@@ -219,8 +227,13 @@ fn fingerprint(model: &Model, parameters: &[Parameter], settings: &SweepSettings
         text.push_str(&format!("\n{}={}", p.target, p.axis));
     }
     text.push_str(&format!(
-        "\n{}\n{}\n{}\n{:?}",
-        settings.quantity, settings.tracked_modes, settings.prestress, settings.method
+        "\n{}\n{}\n{}\n{:?}\n{:?}\n{:?}",
+        settings.quantity,
+        settings.tracked_modes,
+        settings.prestress,
+        settings.method,
+        settings.step,
+        settings.end_time
     ));
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for b in text.bytes() {

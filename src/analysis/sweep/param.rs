@@ -12,7 +12,9 @@
 //!   `slot.mass`, …), resolved by [`crate::analysis::calibrate::params`]
 //!   and then treated as its JSON path;
 //! * `load_scale:ID[,ID…]` — the value multiplies the force of each named
-//!   load (an id, or `loads[i]` for a load without one): the paper's
+//!   load (an id, or `loads[i]` for a load without one) and the preload of
+//!   each named spring (by its id; the whole pre-stress of the switch-off
+//!   scales with `load_scale:F_x2,F_c,helical_spring`): the paper's
 //!   "pre-stress" factor. It only acts through a static equilibrium, so a
 //!   sweep with it linearizes there.
 //!
@@ -339,7 +341,19 @@ fn load_scale(
 ) -> Result<(String, Vec<Edit>), SweepError> {
     let labels = load_labels(model);
     let mut indices = Vec::new();
+    // Springs with a preload, by id: the pre-stress they carry scales too.
+    let mut springs = Vec::new();
     for id in ids.split(',').map(str::trim) {
+        let spring = model
+            .springs
+            .iter()
+            .position(|s| s.id.as_deref() == Some(id) && s.preload.is_some());
+        if let Some(k) = spring {
+            if !springs.contains(&k) {
+                springs.push(k);
+            }
+            continue;
+        }
         let i = labels
             .iter()
             .position(|l| l == id)
@@ -357,6 +371,7 @@ fn load_scale(
         }
     }
     indices.sort_unstable();
+    springs.sort_unstable();
     let mut edits = Vec::new();
     for &i in &indices {
         for c in 0..2 {
@@ -374,7 +389,24 @@ fn load_scale(
             });
         }
     }
-    let target: Vec<String> = indices.iter().map(|i| format!("loads[{i}]")).collect();
+    for &k in &springs {
+        let path = vec![
+            Step::Key("springs".into()),
+            Step::Index(k),
+            Step::Key("preload".into()),
+        ];
+        let base = get(json, &path).and_then(Value::as_f64).unwrap_or(0.0);
+        edits.push(Edit {
+            path,
+            op: Op::Scale { base },
+            integer: false,
+        });
+    }
+    let target: Vec<String> = indices
+        .iter()
+        .map(|i| format!("loads[{i}]"))
+        .chain(springs.iter().map(|k| format!("springs[{k}]")))
+        .collect();
     Ok((format!("load_scale:{}", target.join(",")), edits))
 }
 

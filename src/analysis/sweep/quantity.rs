@@ -9,6 +9,13 @@
 //!   whose shape matches (MAC, [`super::tracking`]), so a mode keeps its
 //!   identity where it crosses another.
 //!
+//! * `time_to_distance_s` — the switch-off ([`crate::analysis::switch_off`]
+//!   with its defaults: equilibrium, release, node 0 of the first beam
+//!   travelling 2 mm along x) [s];
+//! * `peak:SENSOR` — the largest |reading| of a sensor over a `transient`
+//!   run (from the static equilibrium when the sweep is pre-stressed) [SI
+//!   unit of the sensor].
+//!
 //! Modes are computed at the reference configuration, or at the static
 //! equilibrium under the model's constant loads and gravity when the sweep
 //! is pre-stressed (the linearization of `modal --prestress`).
@@ -18,23 +25,35 @@
 
 use super::error::{PointError, SweepError};
 use crate::analysis::modal::{modal, ModalResult, ModalSettings, ModeKind};
+use crate::analysis::simulate::{simulate, SimulationSettings};
 use crate::analysis::statics::{solve_equilibrium, StaticSettings};
+use crate::analysis::switch_off::{run_switch_off, SwitchOffSettings};
+use crate::analysis::transient::TransientSettings;
 use crate::analysis::EigenMethod;
 use crate::model::Model;
 use crate::system::System;
 use serde::{Deserialize, Serialize};
 
 /// A quantity a sweep computes at each point.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Quantity {
     /// First bending frequency [Hz].
     FirstBendingHz,
     /// The tracked K-th elastic mode's frequency [Hz] (K ≥ 1).
     Frequency { mode: usize },
+    /// Switch-off time to the travel distance [SI: s].
+    TimeToDistance,
+    /// Largest |reading| of a sensor over a transient run.
+    Peak { sensor: String },
 }
 
 /// The quantity names [`Quantity::parse`] accepts.
-pub const AVAILABLE: [&str; 2] = ["first_bending_hz", "frequency:K"];
+pub const AVAILABLE: [&str; 4] = [
+    "first_bending_hz",
+    "frequency:K",
+    "time_to_distance_s",
+    "peak:SENSOR",
+];
 
 impl Quantity {
     /// Parses a name of [`AVAILABLE`].
@@ -46,6 +65,18 @@ impl Quantity {
         let t = text.trim();
         if t == "first_bending_hz" {
             return Ok(Quantity::FirstBendingHz);
+        }
+        if t == "time_to_distance_s" {
+            return Ok(Quantity::TimeToDistance);
+        }
+        if let Some(id) = t.strip_prefix("peak:") {
+            let id = id.trim();
+            if id.is_empty() {
+                return Err(unknown());
+            }
+            return Ok(Quantity::Peak {
+                sensor: id.to_string(),
+            });
         }
         if let Some(k) = t.strip_prefix("frequency:") {
             let mode = k.trim().parse::<usize>().ok().filter(|&k| k >= 1);
@@ -60,7 +91,7 @@ impl Quantity {
     pub fn tracked_mode(&self) -> Option<usize> {
         match self {
             Quantity::Frequency { mode } => Some(*mode),
-            Quantity::FirstBendingHz => None,
+            _ => None,
         }
     }
 
@@ -69,12 +100,18 @@ impl Quantity {
         match self {
             Quantity::FirstBendingHz => "First bending frequency".into(),
             Quantity::Frequency { mode } => format!("Frequency of mode {mode}"),
+            Quantity::TimeToDistance => "Time to distance".into(),
+            Quantity::Peak { sensor } => format!("Peak of sensor {sensor}"),
         }
     }
 
-    /// SI unit of the value.
+    /// SI unit of the value ("" for a sensor peak: the sensor's unit).
     pub fn unit(&self) -> &'static str {
-        "Hz"
+        match self {
+            Quantity::FirstBendingHz | Quantity::Frequency { .. } => "Hz",
+            Quantity::TimeToDistance => "s",
+            Quantity::Peak { .. } => "",
+        }
     }
 }
 
@@ -83,6 +120,8 @@ impl std::fmt::Display for Quantity {
         match self {
             Quantity::FirstBendingHz => f.write_str("first_bending_hz"),
             Quantity::Frequency { mode } => write!(f, "frequency:{mode}"),
+            Quantity::TimeToDistance => f.write_str("time_to_distance_s"),
+            Quantity::Peak { sensor } => write!(f, "peak:{sensor}"),
         }
     }
 }
@@ -114,6 +153,10 @@ pub struct EvalSettings {
     pub method: EigenMethod,
     /// Elastic modes computed for tracking.
     pub modes: usize,
+    /// Step and end time of transient quantities [SI: s] (`None`: the
+    /// switch-off's 1 µs and 3 ms).
+    pub step: Option<f64>,
+    pub end_time: Option<f64>,
 }
 
 /// Computes `quantity` on `model`.
@@ -154,6 +197,55 @@ pub fn evaluate(
                 });
             }
             Ok(Evaluation { value: None, modes })
+        }
+        Quantity::TimeToDistance => {
+            let defaults = SwitchOffSettings::default();
+            let so = SwitchOffSettings {
+                step: settings.step.unwrap_or(defaults.step),
+                end_time: settings.end_time.unwrap_or(defaults.end_time),
+                ..defaults
+            };
+            let r = run_switch_off(model, &so)?;
+            let t = r
+                .flexible
+                .time_to_distance_s
+                .ok_or(PointError::NotReached {
+                    distance: so.distance,
+                    end_time: so.end_time,
+                })?;
+            Ok(Evaluation {
+                value: Some(t),
+                modes: Vec::new(),
+            })
+        }
+        Quantity::Peak { sensor } => {
+            let index = system
+                .sensors
+                .iter()
+                .position(|s| &s.id == sensor)
+                .ok_or_else(|| PointError::UnknownSensor { id: sensor.clone() })?;
+            let defaults = SwitchOffSettings::default();
+            let sim = simulate(
+                &system,
+                &[],
+                &SimulationSettings {
+                    transient: TransientSettings {
+                        step: settings.step.unwrap_or(defaults.step),
+                        end_time: settings.end_time.unwrap_or(defaults.end_time),
+                        ..TransientSettings::default()
+                    },
+                    from_equilibrium: settings.prestress,
+                    sample_rate: 0.0,
+                },
+            )?;
+            let peak = sim.sensors[index]
+                .1
+                .iter()
+                .fold(0.0f64, |m, x| m.max(x.abs()));
+            Ok(Evaluation {
+                value: Some(peak),
+                modes: Vec::new(),
+            })
         }
     }
 }
