@@ -11,7 +11,7 @@
 //! Failed points leave gaps (lines) or grey cells (heat map). Parameters
 //! are shown in the model file's SI units; frequencies with an SI prefix.
 
-use crate::analysis::sweep::{ParameterValues, SweepDocument};
+use crate::analysis::sweep::{ParameterValues, Quantity, SweepDocument};
 use crate::output::plot::{
     render, write_atomic, Figure, Format, HeatMap, LineFigure, Panel, PlotError, PlotSize, Scale,
     Series, SeriesStyle,
@@ -91,7 +91,16 @@ pub fn sweep_figure(d: &SweepDocument) -> Result<Figure, PlotError> {
             p.result.into_iter().chain(tracked)
         })
         .fold(0.0, f64::max);
-    let z_scale = Scale::si("Hz", fmax);
+    // What the quantity is and its unit (frequencies in Hz, the switch-off
+    // time in s, a sensor peak in the sensor's unit).
+    let (z_label, unit) = match Quantity::parse(&d.quantity) {
+        Ok(Quantity::FirstBendingHz | Quantity::Frequency { .. }) => {
+            ("Frequency".to_string(), "Hz")
+        }
+        Ok(q) => (q.label(), q.unit()),
+        Err(_) => (d.quantity.clone(), ""),
+    };
+    let z_scale = Scale::si(unit, fmax);
     match &d.parameters[..] {
         [p] => {
             let x: Vec<f64> = d.points.iter().map(|r| r.values[0]).collect();
@@ -101,7 +110,7 @@ pub fn sweep_figure(d: &SweepDocument) -> Result<Figure, PlotError> {
                 parameter_scale(p),
             );
             fig.x_log = p.log;
-            let mut panel = Panel::new("Frequency", z_scale);
+            let mut panel = Panel::new(z_label, z_scale);
             match d.tracked_modes {
                 Some(n) => {
                     let k = d
@@ -163,7 +172,7 @@ pub fn sweep_figure(d: &SweepDocument) -> Result<Figure, PlotError> {
                 x: fast.values.clone(),
                 y: slow.values.clone(),
                 z,
-                z_label: String::from("Frequency"),
+                z_label,
                 z_scale,
             }
             .into())
