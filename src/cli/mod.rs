@@ -5,6 +5,7 @@ mod args;
 mod calibrate;
 mod common;
 mod convergence;
+mod frf;
 mod identify;
 mod impulse;
 mod modal;
@@ -36,6 +37,9 @@ pub enum Command {
     Convergence(convergence::ConvergenceArgs),
     /// Static equilibrium under the model's constant loads and gravity.
     Static(statics::StaticArgs),
+    /// Measured hammer records (CSV, UFF 58) in: H1, H2, coherence, and the
+    /// modes' frequencies and damping ratios (LSCF fit).
+    Frf(frf::FrfArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -46,5 +50,6 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Calibrate(a) => calibrate::run(a),
         Command::Convergence(a) => convergence::run(a),
         Command::Static(a) => statics::run(a),
+        Command::Frf(a) => frf::run(a),
     }
 }

@@ -19,6 +19,9 @@ use super::{Channel, MeasuredError, TimeRecord, MIN_SAMPLES};
 
 /// Largest allowed distance of a time stamp from the uniform grid, in steps.
 pub const GRID_TOLERANCE: f64 = 0.02;
+/// Largest allowed deviation of one step from the median step (printed
+/// times with few digits jitter; a missing sample doubles a step).
+pub const STEP_TOLERANCE: f64 = 0.5;
 
 fn split<'a>(line: &'a str, sep: Option<char>) -> Vec<&'a str> {
     match sep {
@@ -155,6 +158,23 @@ pub fn uniform_rate(file: &Path, t: &[f64], lines: &[usize]) -> Result<f64, Meas
         }
     }
     let n = t.len();
+    // A dropped or repeated sample: one step far from the typical one.
+    let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+    steps.sort_by(f64::total_cmp);
+    let typical = steps[steps.len() / 2];
+    for i in 1..n {
+        let offset = (t[i] - t[i - 1]) / typical - 1.0;
+        if offset.abs() > STEP_TOLERANCE {
+            return Err(MeasuredError::UnevenSampling {
+                file: file.to_path_buf(),
+                line: lines[i],
+                time: t[i],
+                step: typical,
+                offset,
+            });
+        }
+    }
+    // A slow drift: the grid from the first and last times.
     let step = (t[n - 1] - t[0]) / (n - 1) as f64;
     for i in 1..n {
         let offset = (t[i] - t[0]) / step - i as f64;

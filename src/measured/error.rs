@@ -55,7 +55,7 @@ pub enum MeasuredError {
         time: f64,
         previous: f64,
     },
-    #[error("{}:{line}: uneven sampling: time {time:e} s is {offset:.2} steps off the uniform grid of {step:e} s", file.display())]
+    #[error("{}:{line}: uneven sampling: time {time:e} s is {offset:+.2} steps off the uniform grid of {step:e} s", file.display())]
     UnevenSampling {
         file: PathBuf,
         line: usize,
@@ -119,6 +119,8 @@ pub enum MeasuredError {
     },
     #[error("{}:{line}: UFF block has no closing `    -1` line", file.display())]
     UffUnterminated { file: PathBuf, line: usize },
+    #[error("{}: holds an FRF, which cannot be averaged with other files; give it alone", file.display())]
+    MixedKinds { file: PathBuf },
     #[error("{}: {what}", file.display())]
     NoChannel { file: PathBuf, what: &'static str },
     #[error("{}: the record is {duration:e} s long; the exponential window needs a positive length", file.display())]

@@ -47,6 +47,9 @@ pub struct FrfEstimate {
     pub window: Window,
     /// Decay rate the window added to every mode, 1/s (exponential window).
     pub window_decay_rate: f64,
+    /// Mean force auto spectrum G_ff/hits, N² (unscaled DFT), to judge
+    /// which band the hammer excited.
+    pub force_power: Vec<f64>,
 }
 
 impl FrfEstimate {
@@ -153,5 +156,6 @@ pub fn estimate(records: &[TimeRecord], window: Window) -> Result<FrfEstimate, M
         samples: n,
         window,
         window_decay_rate: window.decay_rate(n, fs),
+        force_power: gff.iter().map(|g| g / records.len() as f64).collect(),
     })
 }

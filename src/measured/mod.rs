@@ -24,6 +24,7 @@
 //! Units: time in s, frequency in Hz, force in N, response in the unit of
 //! its quantity (m, m/s or m/s²); an FRF is response per newton.
 
+pub mod analysis;
 pub mod csv;
 pub mod decimate;
 pub mod error;

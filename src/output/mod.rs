@@ -3,7 +3,9 @@
 pub mod calibrate_report;
 pub mod figures;
 pub mod files;
+pub mod frf_report;
 pub mod impulse_report;
 pub mod modal_report;
 pub mod plot;
+pub mod provenance;
 pub mod static_report;
