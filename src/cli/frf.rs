@@ -93,7 +93,7 @@ fn parse_window(s: &str) -> Result<Window, String> {
     s.parse()
 }
 
-fn parse_band(s: &str) -> Result<(f64, f64), String> {
+pub fn parse_band(s: &str) -> Result<(f64, f64), String> {
     let (a, b) = s
         .split_once(':')
         .ok_or_else(|| format!("`{s}` is not LO:HI (Hz)"))?;
