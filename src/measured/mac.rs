@@ -12,17 +12,17 @@ use nalgebra::DMatrix;
 /// MAC(aᵢ, bⱼ) for each pair, `rows = a.len()`, `cols = b.len()`. Shapes of
 /// one pair must have equal length; a zero shape gives 0.
 pub fn mac(a: &[Vec<f64>], b: &[Vec<f64>]) -> DMatrix<f64> {
-    DMatrix::from_fn(a.len(), b.len(), |i, j| {
-        pair(&a[i], &b[j], |x, y| dot(x, y))
-    })
+    DMatrix::from_fn(a.len(), b.len(), |i, j| pair(&a[i], &b[j], dot))
 }
 
-/// Mass-weighted MAC with the symmetric matrix `m` (size of the shapes).
-pub fn mac_weighted(a: &[Vec<f64>], b: &[Vec<f64>], m: &DMatrix<f64>) -> DMatrix<f64> {
-    let w = |x: &[f64], y: &[f64]| {
-        let y = m * nalgebra::DVector::from_column_slice(y);
-        dot(x, y.as_slice())
-    };
+/// Mass-weighted MAC; `m_times(y)` returns M·y for the symmetric mass
+/// matrix M of the shapes' coordinates.
+pub fn mac_weighted(
+    a: &[Vec<f64>],
+    b: &[Vec<f64>],
+    m_times: impl Fn(&[f64]) -> Vec<f64>,
+) -> DMatrix<f64> {
+    let w = |x: &[f64], y: &[f64]| dot(x, &m_times(y));
     DMatrix::from_fn(a.len(), b.len(), |i, j| pair(&a[i], &b[j], w))
 }
 

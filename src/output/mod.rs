@@ -6,6 +6,7 @@ pub mod files;
 pub mod frf_report;
 pub mod impulse_report;
 pub mod modal_report;
+pub mod modal_uff;
 pub mod plot;
 pub mod provenance;
 pub mod static_report;
