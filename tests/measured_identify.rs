@@ -201,3 +201,39 @@ fn calibrate_takes_its_targets_from_an_frf_result() {
     let err = String::from_utf8(bad.stderr).unwrap();
     assert!(err.contains("no `peaks` array"), "{err}");
 }
+
+#[test]
+fn reports_of_the_same_try_end_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    // A point mass on two springs: the static report has its bodies table
+    // and no empty beam-node table.
+    let pm = dir.path().join("pm.json");
+    std::fs::write(
+        &pm,
+        r#"{"name": "pm", "point_masses": [{"id": "m", "mass": 0.01, "position": [0.0, 0.0]}],
+            "springs": [{"a": {"ground": [0.0, 0.01]}, "b": {"body": "m"}, "stiffness": 100.0, "free_length": 0.01},
+                        {"a": {"ground": [0.01, 0.0]}, "b": {"body": "m"}, "stiffness": 100.0, "free_length": 0.01}],
+            "gravity": [0.0, -9.81]}"#,
+    )
+    .unwrap();
+    let out = bin().arg("static").arg(&pm).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(!text.contains("\nnodes\n"), "{text}");
+    let bodies = text.split("\nbodies\n").nth(1).expect("a bodies table");
+    assert!(bodies.lines().nth(1).unwrap().starts_with("m "), "{text}");
+    // modal --prestress ends its table with a newline.
+    let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("models/rcbo_prestressed.json");
+    let out = bin()
+        .arg("modal")
+        .arg(&model)
+        .arg("--prestress")
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert!(out.stdout.ends_with(b"\n"));
+}
