@@ -23,7 +23,7 @@ pub const GRID_TOLERANCE: f64 = 0.02;
 /// times with few digits jitter; a missing sample doubles a step).
 pub const STEP_TOLERANCE: f64 = 0.5;
 
-fn split<'a>(line: &'a str, sep: Option<char>) -> Vec<&'a str> {
+fn split(line: &str, sep: Option<char>) -> Vec<&str> {
     match sep {
         Some(c) => line.split(c).map(str::trim).collect(),
         None => line.split_whitespace().collect(),
