@@ -4,11 +4,10 @@
 mod measured_support;
 
 use assert_cmd::Command;
-use measured_support::{hammer_records, TestMode};
+use measured_support::{write_csv_hits, TestMode};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
-const FS: f64 = 10_240.0;
 const N: usize = 5_120;
 
 fn modes() -> Vec<TestMode> {
@@ -27,25 +26,7 @@ fn modes() -> Vec<TestMode> {
 }
 
 fn write_hits(dir: &Path, hits: usize) -> Vec<PathBuf> {
-    hammer_records(&modes(), FS, N, hits, 1e-3, 1e-9, 5)
-        .iter()
-        .enumerate()
-        .map(|(i, r)| {
-            let mut s = String::from("time,force,response\n");
-            for k in 0..N {
-                let _ = writeln!(
-                    s,
-                    "{:.9e},{:.9e},{:.9e}",
-                    k as f64 / FS,
-                    r.force[k],
-                    r.response[k]
-                );
-            }
-            let p = dir.join(format!("hit{i}.csv"));
-            std::fs::write(&p, s).unwrap();
-            p
-        })
-        .collect()
+    write_csv_hits(dir, &modes(), hits, 5)
 }
 
 fn bin() -> Command {

@@ -4,9 +4,8 @@
 mod measured_support;
 
 use assert_cmd::Command;
-use measured_support::{hammer_records, TestMode};
+use measured_support::{write_csv_hits, TestMode};
 use serde_json::Value;
-use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 fn bin() -> Command {
@@ -94,28 +93,8 @@ fn without_a_reference_there_is_nothing_to_compare_with() {
     assert!(rows.iter().all(|r| r["error_percent"].is_null()));
 }
 
-/// Hammer records of a two-mode structure written as CSV.
 fn hits(dir: &Path, modes: &[TestMode]) -> Vec<PathBuf> {
-    let (fs, n) = (10_240.0, 5_120);
-    hammer_records(modes, fs, n, 3, 1e-3, 1e-9, 9)
-        .iter()
-        .enumerate()
-        .map(|(i, r)| {
-            let mut s = String::from("time,force,velocity\n");
-            for k in 0..n {
-                let _ = writeln!(
-                    s,
-                    "{:.9e},{:.9e},{:.9e}",
-                    k as f64 / fs,
-                    r.force[k],
-                    r.response[k]
-                );
-            }
-            let p = dir.join(format!("hit{i}.csv"));
-            std::fs::write(&p, s).unwrap();
-            p
-        })
-        .collect()
+    write_csv_hits(dir, modes, 3, 9)
 }
 
 #[test]

@@ -139,3 +139,35 @@ pub fn hammer_records(
 pub fn peak(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |a, b| a.max(b.abs()))
 }
+
+/// `hits` records at 10.24 kHz, 0.5 s (force noise 1e-3 N, response noise
+/// 1e-9), written as CSV files `hit{i}.csv` (columns time, force, response)
+/// in `dir`.
+pub fn write_csv_hits(
+    dir: &std::path::Path,
+    modes: &[TestMode],
+    hits: usize,
+    seed: u64,
+) -> Vec<PathBuf> {
+    use std::fmt::Write;
+    let (fs, n) = (10_240.0, 5_120);
+    hammer_records(modes, fs, n, hits, 1e-3, 1e-9, seed)
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let mut s = String::from("time,force,response\n");
+            for k in 0..n {
+                let _ = writeln!(
+                    s,
+                    "{:.9e},{:.9e},{:.9e}",
+                    k as f64 / fs,
+                    r.force[k],
+                    r.response[k]
+                );
+            }
+            let p = dir.join(format!("hit{i}.csv"));
+            std::fs::write(&p, s).unwrap();
+            p
+        })
+        .collect()
+}
