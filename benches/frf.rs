@@ -33,7 +33,11 @@ fn record(i: usize) -> TimeRecord {
         let (w, t) = (2.0 * PI * f, 1.0 / FS);
         let wd = w * (1.0f64 - z * z).sqrt();
         let e = (-z * w * t).exp();
-        let (a1, a2, b1) = (2.0 * e * (wd * t).cos(), -e * e, t * e * (wd * t).sin() / wd);
+        let (a1, a2, b1) = (
+            2.0 * e * (wd * t).cos(),
+            -e * e,
+            t * e * (wd * t).sin() / wd,
+        );
         let (mut y1, mut y2, mut x1) = (0.0, 0.0, 0.0);
         for k in 0..N {
             let v = a1 * y1 + a2 * y2 + b1 * x1;
@@ -60,16 +64,25 @@ fn bench(c: &mut Criterion) {
         window: Window::Force { fraction: 0.01 },
         ..AnalysisSettings::default()
     };
-    c.bench_function("frf: 5 × 0.2 s at 51.2 kHz → H1/H2/γ² + LSCF fit", |b| {
-        b.iter(|| {
-            let m: Vec<Measurement> = records.iter().cloned().map(Measurement::Time).collect();
-            analyse(black_box(m), settings).unwrap()
-        })
-    });
+    c.bench_function(
+        "frf: 5 × 0.2 s at 51.2 kHz → H1/H2/γ² + LSCF fit",
+        |b| {
+            b.iter(|| {
+                let m: Vec<Measurement> = records.iter().cloned().map(Measurement::Time).collect();
+                analyse(black_box(m), settings).unwrap()
+            })
+        },
+    );
     let mut text = String::from("time,force,velocity\n");
     let r = &records[0];
     for k in 0..N {
-        let _ = writeln!(text, "{:.9e},{:.9e},{:.9e}", k as f64 / FS, r.force[k], r.response[k]);
+        let _ = writeln!(
+            text,
+            "{:.9e},{:.9e},{:.9e}",
+            k as f64 / FS,
+            r.force[k],
+            r.response[k]
+        );
     }
     c.bench_function("frf: parse one 0.2 s CSV record", |b| {
         b.iter(|| parse_csv(&r.file, black_box(&text), &Channels::default()).unwrap())

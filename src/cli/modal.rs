@@ -44,8 +44,20 @@ pub fn run(args: ModalArgs) -> Result<()> {
     if let Some(path) = &args.plot {
         ancf_modal::output::figures::write_mode_shapes(&system, &system.q0, &result, path)?;
     }
+    let ratio = |m: &Mode| -> Option<f64> {
+        (m.kind != ModeKind::Rigid).then(|| {
+            model.damping.map_or(0.0, |d| {
+                d.ratio(2.0 * std::f64::consts::PI * m.frequency_hz)
+            })
+        })
+    };
     if args.json {
         let mut doc = modal_json(&model.name, &result);
+        if let Some(modes) = doc["modes"].as_array_mut() {
+            for (entry, m) in modes.iter_mut().zip(&result.modes) {
+                entry["damping_ratio"] = serde_json::json!(ratio(m));
+            }
+        }
         if let Some((rows, cols, m)) = &mac {
             doc["mac"] = serde_json::json!({
                 "rows_hz": rows, "columns_hz": cols,
@@ -55,6 +67,19 @@ pub fn run(args: ModalArgs) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&doc)?);
     } else {
         print!("{}", modal_table(&model.name, &result));
+        if let Some(d) = model.damping {
+            let ratios: Vec<String> = result
+                .modes
+                .iter()
+                .filter_map(|m| ratio(m).map(|z| format!("mode {}: {:.4} %", m.index, 100.0 * z)))
+                .collect();
+            println!(
+                "Rayleigh damping (α = {} 1/s, β = {:e} s), ζ = α/(2ω) + βω/2: {}",
+                d.alpha,
+                d.beta,
+                ratios.join(", ")
+            );
+        }
         if let Some((rows, cols, m)) = &mac {
             print!("{}", mac_table(rows, cols, m));
         }
