@@ -208,3 +208,73 @@ fn bad_measurement_files_are_one_line_errors() {
     );
     fails(&p, &[], "weird.uff:5: unknown UFF dataset type `777`");
 }
+
+#[test]
+fn frf_overlays_the_model_on_its_own_simulated_measurement() {
+    let dir = tempfile::tempdir().unwrap();
+    let sig = dir.path().join("sig.csv");
+    let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("models/rcbo_free_free.json");
+    let out = bin()
+        .arg("impulse")
+        .arg(&model)
+        .args(["--end-time", "0.05", "--csv"])
+        .arg(&sig)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = bin()
+        .arg("frf")
+        .arg(&sig)
+        .args(["--force", "force_n", "--response", "vibrometer_velocity"])
+        .args([
+            "--window",
+            "exponential:0.01",
+            "--json",
+            "--at",
+            "vibrometer",
+            "--model",
+        ])
+        .arg(&model)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    use sha2::Digest;
+    let sha: String = sha2::Sha256::digest(std::fs::read(&model).unwrap())
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    assert_eq!(doc["model_sha256"], sha);
+    // The model's FRF peaks in the measured first bending bin.
+    let f: Vec<f64> = doc["frequency_hz"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let mag = |v: &serde_json::Value| {
+        v.as_array().map_or(0.0, |p| {
+            p[0].as_f64().unwrap().hypot(p[1].as_f64().unwrap())
+        })
+    };
+    let h = doc["model_frf"]["h"].as_array().unwrap();
+    let peak = (0..f.len())
+        .filter(|&k| (4_000.0..5_000.0).contains(&f[k]))
+        .max_by(|&a, &b| mag(&h[a]).total_cmp(&mag(&h[b])))
+        .unwrap();
+    let measured = doc["peaks"][0]["frequency_hz"].as_f64().unwrap();
+    assert!(
+        (f[peak] - measured).abs() <= f[1],
+        "model peak {} Hz, measured {measured} Hz",
+        f[peak]
+    );
+    assert!((measured - 4_568.9).abs() < 1.0, "measured {measured}");
+}

@@ -34,6 +34,67 @@ pub struct FrfArgs {
     /// Also write H1 and the coherence as UFF 58 (complex double).
     #[arg(long, value_name = "FILE")]
     pub uff: Option<PathBuf>,
+    /// Overlay this model's FRF (modal superposition, its Rayleigh damping
+    /// or 0.5 % if it has none) at the sensor --at, per newton of its first
+    /// load.
+    #[arg(long, value_name = "MODEL.json", requires = "at")]
+    pub model: Option<PathBuf>,
+    /// The model's sensor for --model.
+    #[arg(long, value_name = "SENSOR", requires = "model")]
+    pub at: Option<String>,
+}
+
+/// Damping ratio assumed for a model without `damping`.
+const DEFAULT_MODEL_ZETA: f64 = 0.005;
+
+/// The model's FRF on the measured frequencies, its label and the model
+/// file's SHA-256.
+fn model_overlay(
+    path: &std::path::Path,
+    sensor: &str,
+    q: ResponseQuantity,
+    f: &[f64],
+) -> Result<(
+    String,
+    Vec<realfft::num_complex::Complex64>,
+    String,
+    serde_json::Value,
+)> {
+    use anyhow::Context;
+    let bytes =
+        std::fs::read(path).with_context(|| format!("{}: cannot read the file", path.display()))?;
+    let sha = ancf_modal::output::provenance::sha256_hex(&bytes);
+    let model = ancf_modal::Model::from_file(path)?;
+    let system = ancf_modal::System::new(&model);
+    let modal = ancf_modal::analysis::modal_at_reference(
+        &system,
+        &ancf_modal::analysis::ModalSettings {
+            modes: Some(30),
+            ..Default::default()
+        },
+    )
+    .with_context(|| path.display().to_string())?;
+    let damping = model.damping;
+    let zeta = |w: f64| damping.map_or(DEFAULT_MODEL_ZETA, |d| d.ratio(w));
+    let power = match q {
+        ResponseQuantity::Displacement => 0,
+        ResponseQuantity::Velocity => 1,
+        ResponseQuantity::Acceleration => 2,
+    };
+    let h = ancf_modal::measured::model_frf::model_frf(&system, &modal, sensor, zeta, power, f)
+        .with_context(|| path.display().to_string())?;
+    let label = match damping {
+        Some(_) => format!("model {} at {sensor}", model.name),
+        None => format!("model {} at {sensor} (ζ = 0.5 % assumed)", model.name),
+    };
+    let info = serde_json::json!({
+        "model": model.name,
+        "sensor": sensor,
+        "damping": damping.map(|d| serde_json::json!({"alpha": d.alpha, "beta": d.beta})),
+        "assumed_damping_ratio": if damping.is_none() { Some(DEFAULT_MODEL_ZETA) } else { None },
+        "h": h.iter().map(|c| serde_json::json!([c.re, c.im])).collect::<Vec<_>>(),
+    });
+    Ok((label, h, sha, info))
 }
 
 /// How measurement files are read and analysed (shared with `identify
@@ -135,11 +196,19 @@ impl MeasuredArgs {
 pub fn run(args: FrfArgs) -> Result<()> {
     let a = args.measured.analyse(&args.files)?;
     let q: ResponseQuantity = args.measured.response_quantity.into();
+    let overlay = match (&args.model, &args.at) {
+        (Some(m), Some(at)) => Some(model_overlay(m, at, q, &a.frequency_hz)?),
+        _ => None,
+    };
+    let sha = overlay.as_ref().map(|o| o.2.as_str());
     // Everything is rendered before anything is written: an error leaves
     // no output file behind.
     let plot = match &args.plot {
         Some(p) => {
-            let fig: Figure = frf_figure(&a, q, None).into();
+            let ov = overlay
+                .as_ref()
+                .map(|(label, h, _, _)| (label.as_str(), a.frequency_hz.as_slice(), h.as_slice()));
+            let fig: Figure = frf_figure(&a, q, ov).into();
             let size = PlotSize {
                 height: 1100,
                 ..PlotSize::default()
@@ -149,7 +218,7 @@ pub fn run(args: FrfArgs) -> Result<()> {
         None => None,
     };
     let csv = args.csv.as_ref().map(|p| (p, frf_csv(&a)));
-    let uff = args.uff.as_ref().map(|p| (p, frf_uff(&a, q, None)));
+    let uff = args.uff.as_ref().map(|p| (p, frf_uff(&a, q, sha)));
     if let Some((p, bytes)) = plot {
         ancf_modal::output::files::write_atomic(p, &bytes)?;
     }
@@ -160,7 +229,11 @@ pub fn run(args: FrfArgs) -> Result<()> {
         write_output(p, &text)?;
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&frf_json(&a, q, None))?);
+        let mut doc = frf_json(&a, q, sha);
+        if let Some((_, _, _, info)) = &overlay {
+            doc["model_frf"] = info.clone();
+        }
+        println!("{}", serde_json::to_string_pretty(&doc)?);
     } else {
         print!("{}", frf_table(&a, q));
     }

@@ -31,6 +31,7 @@ pub mod error;
 pub mod fit;
 pub mod frf;
 pub mod mac;
+pub mod model_frf;
 pub mod uff;
 pub mod window;
 
