@@ -278,3 +278,48 @@ fn frf_overlays_the_model_on_its_own_simulated_measurement() {
     );
     assert!((measured - 4_568.9).abs() < 1.0, "measured {measured}");
 }
+
+#[test]
+fn impulse_uff_records_are_a_hammer_test_for_frf() {
+    let dir = tempfile::tempdir().unwrap();
+    let uff = dir.path().join("impulse.uff");
+    let out = bin()
+        .args(["impulse", "--end-time", "0.05", "--json", "--uff"])
+        .arg(&uff)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let imp: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // The records carry the integrator's numerical frequency (the raw FFT
+    // value, before the period-error correction).
+    let raw = imp["first_bending_raw_hz"].as_f64().unwrap();
+    let text = std::fs::read_to_string(&uff).unwrap();
+    let f = ancf_modal::measured::uff::read_functions(&uff, &text).unwrap();
+    assert_eq!(f.len(), 2);
+    assert_eq!((f[0].function_type.code(), f[0].ordinate_type.0), (1, 13));
+    assert_eq!((f[1].function_type.code(), f[1].ordinate_type.0), (1, 11));
+    assert_eq!(f[0].ordinate.len(), 2_561);
+    // dx is written as %13.5e (1.95313e-05 s): the rate reads 2.6e-6 low.
+    assert!((1.0 / f[0].dx / 51_200.0 - 1.0).abs() < 5e-6);
+    let out = bin()
+        .arg("frf")
+        .arg(&uff)
+        .args(["--window", "exponential:0.01", "--json"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let f1 = doc["peaks"][0]["frequency_hz"].as_f64().unwrap();
+    assert!(
+        (f1 - raw).abs() < 0.05,
+        "first bending {f1} Hz, impulse's raw FFT {raw} Hz"
+    );
+}

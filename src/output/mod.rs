@@ -9,4 +9,5 @@ pub mod modal_report;
 pub mod modal_uff;
 pub mod plot;
 pub mod provenance;
+pub mod records_uff;
 pub mod static_report;
