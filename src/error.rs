@@ -81,6 +81,12 @@ pub enum Problem {
     ZeroLength,
     #[error("the model has no bodies (no beam, rigid body or point mass)")]
     NoBodies,
+    #[error("the segment has length {length:.3e} m: its end points coincide")]
+    DegenerateSegment { length: f64 },
+    #[error("the pin radius {radius:?} m must be below half the slot width {width:?} m (no clearance left)")]
+    PinTooLarge { radius: f64, width: f64 },
+    #[error("the point starts {distance:.3e} m from the line, within its radius {radius:?} m: give `side` (`left` or `right` of from→to)")]
+    SideNeeded { distance: f64, radius: f64 },
     #[error("the spring's free length {free_length:.3e} m is not positive (preload {preload:?} N, stiffness {stiffness:?} N/m, initial length {length:.3e} m)")]
     NonPositiveFreeLength {
         free_length: f64,
@@ -193,4 +199,17 @@ pub enum TransientError {
     Singular { time: f64, dof: String },
     #[error("no memory for the sparse LU factors of the {size}-unknown iteration matrix")]
     OutOfMemory { size: usize },
+}
+
+/// Why a simulation (`transient`, `switch-off`) failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SimulationError {
+    #[error("the initial static equilibrium: {0}")]
+    Equilibrium(#[from] AnalysisError),
+    #[error("time integration: {0}")]
+    Transient(#[from] TransientError),
+    #[error("{flag}: {value:?} must be positive and finite")]
+    InvalidSetting { flag: &'static str, value: f64 },
+    #[error("--point: {why}")]
+    InvalidPoint { why: String },
 }

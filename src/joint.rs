@@ -152,7 +152,8 @@ pub struct Slider {
 }
 
 impl Slider {
-    fn normal(&self, q: &[f64]) -> Vector2<f64> {
+    /// The axis normal, turned with anchor a since the reference.
+    pub fn normal(&self, q: &[f64]) -> Vector2<f64> {
         let phi = self.pair.a.angle(q) - self.angle0;
         let (s, c) = phi.sin_cos();
         Vector2::new(

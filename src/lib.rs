@@ -12,6 +12,7 @@
 
 pub mod analysis;
 pub mod anchor;
+pub mod contact;
 pub mod element;
 pub mod error;
 pub mod joint;

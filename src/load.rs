@@ -28,6 +28,22 @@ impl TimeFunction {
                     0.0
                 }
             }
+            TimeFunction::RampDown { start, duration } => {
+                if t <= start {
+                    1.0
+                } else if t >= start + duration {
+                    0.0
+                } else {
+                    1.0 - (t - start) / duration
+                }
+            }
+            TimeFunction::Until(until) => {
+                if t <= until {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
         }
     }
 }

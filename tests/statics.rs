@@ -234,7 +234,9 @@ mod cli {
             stderr.starts_with("Error: ") && stderr.contains("loses stability at load factor 0.83"),
             "{stderr}"
         );
-        // Below it the sweep tabulates, and stops past it with the reason.
+        // Below it the sweep (an alias of `sweep --param load_scale:…`)
+        // tabulates; the point past it fails alone with the reason, and the
+        // exit code says so after everything is printed.
         let (code, stdout, stderr) = run(&[
             "modal",
             path.to_str().unwrap(),
@@ -242,17 +244,21 @@ mod cli {
             "0:1:5",
             "--json",
         ]);
-        assert_eq!(code, 0, "sweep exit code; stderr {stderr}");
+        assert_eq!(code, 1, "a point failed; stderr {stderr}");
+        assert!(stderr.contains("1 of 5 points failed"), "{stderr}");
         let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
-        let points = v["sweep"].as_array().unwrap();
-        assert_eq!(
-            points.len(),
-            4,
+        let points = v["points"].as_array().unwrap();
+        assert_eq!(points.len(), 5);
+        assert!(
+            points[..4].iter().all(|p| p["error"].is_null()),
             "factors 0, 0.25, 0.5, 0.75 are stable (critical 1/1.2)"
         );
-        assert!(v["stopped"].as_str().unwrap().contains("loses stability"));
+        assert!(points[4]["error"]
+            .as_str()
+            .unwrap()
+            .contains("loses stability"));
         // f₁ falls with compression: f₁² ∝ 1 − P/P_cr (Euler–Bernoulli).
-        let f1: Vec<f64> = points
+        let f1: Vec<f64> = points[..4]
             .iter()
             .map(|p| p["frequencies_hz"][0].as_f64().unwrap())
             .collect();

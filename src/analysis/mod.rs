@@ -5,7 +5,10 @@ pub mod calibrate;
 pub mod convergence;
 pub mod impulse;
 pub mod modal;
+pub mod simulate;
 pub mod statics;
+pub mod sweep;
+pub mod switch_off;
 pub mod transient;
 pub mod zero_modes;
 

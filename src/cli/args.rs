@@ -1,6 +1,6 @@
 //! Flags shared by more than one subcommand: `modal`'s arguments (its
-//! `--prestress` and `--sweep-load` variants run in [`super::statics`]) and
-//! the number parsers they use.
+//! `--prestress` variant runs in [`super::statics`], `--sweep-load` in
+//! [`super::sweep`]) and the number parsers they use.
 
 use clap::Args;
 use std::path::PathBuf;
@@ -41,7 +41,9 @@ pub struct ModalArgs {
     #[arg(long, value_name = "S", requires = "prestress", allow_negative_numbers = true, value_parser = finite)]
     pub load_scale: Option<f64>,
     /// Frequencies at the equilibrium for N load factors from A to B (first
-    /// min(--modes, 6) elastic modes); --plot draws them, --csv writes them.
+    /// min(--modes, 6) elastic modes, tracked); --plot draws them, --csv
+    /// writes them. Short for `sweep --param load_scale:<every load>=A:B:N
+    /// --quantity frequency:1`.
     #[arg(long, value_name = "A:B:N", conflicts_with_all = ["prestress", "load_scale"], value_parser = parse_sweep, allow_hyphen_values = true)]
     pub sweep_load: Option<Sweep>,
 }

@@ -10,6 +10,10 @@ mod identify;
 mod impulse;
 mod modal;
 mod statics;
+mod sweep;
+mod sweep_merge;
+mod switch_off;
+mod transient;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -37,6 +41,16 @@ pub enum Command {
     Convergence(convergence::ConvergenceArgs),
     /// Static equilibrium under the model's constant loads and gravity.
     Static(statics::StaticArgs),
+    /// A quantity over a grid of model parameters (parallel; --shard for job arrays).
+    Sweep(sweep::SweepArgs),
+    /// Join the JSON documents of `sweep --shard K/N` into the complete sweep.
+    SweepMerge(sweep_merge::SweepMergeArgs),
+    /// Time integration with sensors, contacts and the energy balance.
+    Transient(transient::TransientArgs),
+    /// The paper's switch-off: pre-stressed equilibrium, release, node-0 travel (Figs. 7–9).
+    SwitchOff(switch_off::SwitchOffArgs),
+    /// Print the JSON Schema of the model file.
+    Schema,
     /// Measured hammer records (CSV, UFF 58) in: H1, H2, coherence, and the
     /// modes' frequencies and damping ratios (LSCF fit).
     Frf(frf::FrfArgs),
@@ -50,6 +64,17 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Calibrate(a) => calibrate::run(a),
         Command::Convergence(a) => convergence::run(a),
         Command::Static(a) => statics::run(a),
+        Command::Sweep(a) => sweep::run(a),
+        Command::SweepMerge(a) => sweep_merge::run(a),
+        Command::Transient(a) => transient::run(a),
+        Command::SwitchOff(a) => switch_off::run(a),
+        Command::Schema => {
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&ancf_modal::Model::json_schema())?
+            );
+            Ok(())
+        }
         Command::Frf(a) => frf::run(a),
     }
 }

@@ -13,15 +13,15 @@ use anyhow::{Context, Result};
 use std::path::Path;
 
 pub fn run(args: ModalArgs) -> Result<()> {
+    if let Some(range) = args.sweep_load {
+        return super::sweep::run_load_sweep(&args, range);
+    }
     let model = load_model(args.model.as_deref())?;
     let system = System::new(&model);
     let settings = ModalSettings {
         modes: Some(args.modes as usize),
         method: args.solver.into(),
     };
-    if let Some(sweep) = args.sweep_load {
-        return super::statics::run_sweep(&args, &model, &system, sweep, &settings);
-    }
     if args.prestress {
         return super::statics::run_prestress(&args, &model, &system, &settings);
     }

@@ -2,20 +2,19 @@
 //! (node positions, joint reactions, spring forces).
 
 //!
-//! Also the pre-stressed variants of `modal` (`--prestress`, `--sweep-load`),
-//! which share the statics settings.
+//! Also the pre-stressed variant of `modal` (`--prestress`), which shares
+//! the statics settings (`--sweep-load` is a sweep: [`super::sweep`]).
 
-use super::args::{finite, ModalArgs, Sweep};
+use super::args::{finite, ModalArgs};
 use super::common::{load_model, source_label, write_output};
-use ancf_modal::analysis::prestress::{linspace, load_sweep, prestressed_modal};
+use ancf_modal::analysis::prestress::prestressed_modal;
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf_modal::analysis::ModalSettings;
 use ancf_modal::output::figures::{write_figure, write_mode_shapes};
 use ancf_modal::output::modal_report::modal_csv;
 use ancf_modal::output::plot::PlotSize;
 use ancf_modal::output::static_report::{
-    equilibrium_figure, prestress_json, prestress_table, static_report, static_table, sweep_csv,
-    sweep_figure, sweep_json, sweep_table,
+    equilibrium_figure, prestress_json, prestress_table, static_report, static_table,
 };
 use ancf_modal::{Model, System};
 use anyhow::{Context, Result};
@@ -91,45 +90,6 @@ pub fn run_prestress(
         );
     } else {
         print!("{}", prestress_table(&model.name, &result));
-    }
-    Ok(())
-}
-
-/// `modal --sweep-load A:B:N`.
-pub fn run_sweep(
-    args: &ModalArgs,
-    model: &Model,
-    system: &System,
-    sweep: Sweep,
-    settings: &ModalSettings,
-) -> Result<()> {
-    let factors = linspace(sweep.from, sweep.to, sweep.count);
-    let modes = (args.modes as usize).min(6);
-    let result = load_sweep(
-        system,
-        &factors,
-        modes,
-        &StaticSettings::default(),
-        settings,
-    )
-    .with_context(|| source_label(args.model.as_deref()))?;
-    if let Some(path) = &args.csv {
-        write_output(path, &sweep_csv(&result))?;
-    }
-    if let Some(path) = &args.plot {
-        write_figure(
-            &sweep_figure(&model.name, &result).into(),
-            path,
-            PlotSize::default(),
-        )?;
-    }
-    if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&sweep_json(&model.name, &result))?
-        );
-    } else {
-        print!("{}", sweep_table(&model.name, &result));
     }
     Ok(())
 }

@@ -2,9 +2,12 @@
 //! README for the format). Parsing maps serde errors to the JSON path of the
 //! offending value; [`Model::validate`] then checks physics and references.
 
+mod contact;
+mod rigid;
 mod types;
 pub mod validate;
 
+pub use contact::*;
 pub use types::*;
 pub use validate::PointTarget;
 
@@ -13,6 +16,10 @@ use std::path::Path;
 
 /// The paper's free-free assembly, embedded in the binary.
 pub const DEFAULT_MODEL_JSON: &str = include_str!("../../models/rcbo_free_free.json");
+
+/// The paper's switch-off assembly (pre-stressed ON state, contacts),
+/// embedded in the binary: the default of `switch-off`.
+pub const SWITCH_OFF_MODEL_JSON: &str = include_str!("../../models/rcbo_switch_off.json");
 
 impl Model {
     /// Parse and validate a model from JSON text.
@@ -78,6 +85,19 @@ impl Model {
     /// The built-in default: the paper's free-free rigid-flexible assembly.
     pub fn builtin() -> Model {
         Model::from_json(DEFAULT_MODEL_JSON, Source::BuiltIn).expect("the built-in model is valid")
+    }
+
+    /// The built-in switch-off assembly.
+    pub fn switch_off_builtin() -> Model {
+        Model::from_json(SWITCH_OFF_MODEL_JSON, Source::BuiltIn)
+            .expect("the built-in switch-off model is valid")
+    }
+
+    /// The JSON Schema of the model file, generated from these serde types
+    /// (`ancf-modal schema`). It checks structure and types; the physics
+    /// and cross references are [`Model::validate`]'s.
+    pub fn json_schema() -> serde_json::Value {
+        serde_json::to_value(schemars::schema_for!(Model)).expect("a schema serializes")
     }
 
     /// The model as pretty JSON (a valid model file).

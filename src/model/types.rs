@@ -9,7 +9,7 @@
 use serde::{Deserialize, Serialize};
 
 /// A whole assembly as written in a model file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Model {
     /// Short name, used in reports.
@@ -34,6 +34,9 @@ pub struct Model {
     pub loads: Vec<Load>,
     #[serde(default)]
     pub sensors: Vec<Sensor>,
+    /// Unilateral contacts (see [`super::contact`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub contacts: Vec<super::contact::Contact>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reference: Option<Reference>,
     /// Rayleigh damping C = αM + βK of the whole assembly.
@@ -42,7 +45,7 @@ pub struct Model {
 }
 
 /// A straight, stress-free ANCF cable beam in its reference configuration.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Beam {
     pub id: String,
@@ -59,10 +62,14 @@ pub struct Beam {
     pub nodes_at_attachments: bool,
     pub section: Section,
     pub material: Material,
+    /// Model the beam as one rigid body with its mass, centre and inertia
+    /// (the paper's rigid comparison); attachments stay where they are.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub rigid: bool,
 }
 
 /// Rectangular cross-section.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Section {
     /// Height, in the bending plane [SI: m].
@@ -72,7 +79,7 @@ pub struct Section {
 }
 
 /// Linear-elastic isotropic material.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Material {
     /// Young's modulus [SI: Pa].
@@ -82,7 +89,7 @@ pub struct Material {
 }
 
 /// A planar rigid body; its reference point is its centre of mass.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RigidBody {
     pub id: String,
@@ -98,7 +105,7 @@ pub struct RigidBody {
 }
 
 /// A point mass (no rotational inertia).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PointMass {
     pub id: String,
@@ -112,7 +119,7 @@ pub struct PointMass {
 ///
 /// Exactly one of `beam` (with `s`), `body` (optionally with `local`) or
 /// `ground` must be given.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PointSpec {
     /// Beam id; the point is at arc length `s` from node 0.
@@ -133,7 +140,7 @@ pub struct PointSpec {
 }
 
 /// Kind of a joint.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum JointType {
     /// Revolute joint: the two points coincide (2 equations).
@@ -145,7 +152,7 @@ pub enum JointType {
 }
 
 /// A joint between two points.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Joint {
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -167,7 +174,7 @@ pub struct Joint {
 
 /// A translational spring-damper along the line of its two points.
 /// Give exactly one of `free_length` and `preload`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Spring {
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -188,7 +195,9 @@ pub struct Spring {
 }
 
 /// Frame in which a load's force vector is given.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum LoadFrame {
     #[default]
@@ -199,7 +208,7 @@ pub enum LoadFrame {
 }
 
 /// Time history of a load: F(t) = force · f(t).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum TimeFunction {
     /// f = 1.
@@ -209,10 +218,18 @@ pub enum TimeFunction {
     HalfSine { duration: f64 },
     /// f = 0 before `start`, 1 from then on.
     Step { start: f64 },
+    /// f = 1 up to t = `until` [SI: s], 0 after: a release. The load acts
+    /// in full in a static equilibrium (t = 0) whenever `until` ≥ 0, so
+    /// `{"until": 0}` releases it at the start of a transient.
+    Until(f64),
+    /// f = 1 up to `start`, then falling linearly to 0 over `duration`
+    /// [SI: s]: a release that takes time (the paper's pre-stress forces
+    /// "rapidly decrease to zero", Eq. 7). Acts in full in statics.
+    RampDown { start: f64, duration: f64 },
 }
 
 /// A point force.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Load {
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -227,7 +244,7 @@ pub struct Load {
 }
 
 /// What a sensor measures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum SensorQuantity {
     Displacement,
@@ -236,7 +253,9 @@ pub enum SensorQuantity {
 }
 
 /// Frame of a sensor reading.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum SensorFrame {
     Global,
@@ -246,7 +265,7 @@ pub enum SensorFrame {
 }
 
 /// A measuring point (vibrometer-like).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Sensor {
     pub id: String,
@@ -261,7 +280,7 @@ pub struct Sensor {
 
 /// Rayleigh (proportional) damping C = αM + βK. α acts on absolute
 /// coordinates, so it also slows a free assembly's rigid drift.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RayleighDamping {
     /// Mass-proportional factor α [SI: 1/s].
@@ -286,7 +305,7 @@ impl RayleighDamping {
 }
 
 /// Measured data the model is compared with.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Reference {
     /// First bending frequency [SI: Hz].

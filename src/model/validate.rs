@@ -282,6 +282,9 @@ impl Model {
                 ));
             }
         }
+        for (i, c) in self.contacts.iter().enumerate() {
+            self.validate_contact(c, &format!("contacts[{i}]"))?;
+        }
         if let Some(r) = &self.reference {
             check_positive(r.first_bending_hz, "reference.first_bending_hz")?;
         }
@@ -313,6 +316,10 @@ impl Model {
         );
         for (path, id) in bodies {
             check_id(id, &path, &mut seen)?;
+        }
+        let mut contacts = std::collections::HashSet::new();
+        for (i, c) in self.contacts.iter().enumerate() {
+            check_id(c.id(), &format!("contacts[{i}].id"), &mut contacts)?;
         }
         let mut sensors = std::collections::HashSet::new();
         for (i, s) in self.sensors.iter().enumerate() {
@@ -510,6 +517,11 @@ impl Model {
             }
             TimeFunction::Step { start } => {
                 check_non_negative(start, &format!("{p}.time.step.start"))
+            }
+            TimeFunction::Until(until) => check_non_negative(until, &format!("{p}.time.until")),
+            TimeFunction::RampDown { start, duration } => {
+                check_non_negative(start, &format!("{p}.time.ramp_down.start"))?;
+                check_positive(duration, &format!("{p}.time.ramp_down.duration"))
             }
         }
     }

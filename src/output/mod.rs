@@ -11,3 +11,6 @@ pub mod plot;
 pub mod provenance;
 pub mod records_uff;
 pub mod static_report;
+pub mod sweep_report;
+pub mod switch_off_report;
+pub mod transient_report;

@@ -1,7 +1,8 @@
 //! Reports of the statics and the pre-stressed modal analysis: the
 //! equilibrium (node positions, joint reactions, spring forces) as a table,
 //! JSON and a figure; frequencies at the equilibrium beside the unstressed
-//! ones; a load sweep as a table, JSON, CSV and a figure.
+//! ones. (Load sweeps, `modal --sweep-load`, are parameter studies:
+//! [`crate::analysis::sweep`].)
 //!
 //! Units: SI throughout (m, N, N m, Hz); tables show millimetres and degrees
 //! where the header says so.
@@ -11,7 +12,7 @@
 //! (n the current axis normal), and for a weld also the moment −λ₂ on b
 //! (conjugate to b's angle). The joint exerts the opposite on `a`.
 
-use crate::analysis::prestress::{LoadSweep, PrestressedModal};
+use crate::analysis::prestress::PrestressedModal;
 use crate::analysis::statics::Equilibrium;
 use crate::model::{JointType, Model};
 use crate::output::figures::assembly_geometry;
@@ -443,110 +444,4 @@ pub fn prestress_json(model_name: &str, r: &PrestressedModal) -> serde_json::Val
         },
         "modes": modes,
     })
-}
-
-fn stop_note(sweep: &LoadSweep) -> Option<String> {
-    sweep
-        .stopped
-        .as_ref()
-        .map(|e| format!("sweep stopped: {e}"))
-}
-
-/// Frequencies [Hz] against the load factor.
-pub fn sweep_table(model_name: &str, sweep: &LoadSweep) -> String {
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "model {model_name}: elastic frequencies [Hz] at the equilibrium against the load factor"
-    );
-    let cols = sweep
-        .points
-        .iter()
-        .map(|p| p.frequencies_hz.len())
-        .max()
-        .unwrap_or(0);
-    let _ = write!(s, "{:>12}", "load factor");
-    for k in 0..cols {
-        let _ = write!(s, "  {:>12}", format!("f{} [Hz]", k + 1));
-    }
-    let _ = writeln!(s);
-    for p in &sweep.points {
-        let _ = write!(s, "{:>12.6}", p.load_factor);
-        for f in &p.frequencies_hz {
-            let _ = write!(s, "  {f:>12.3}");
-        }
-        let _ = writeln!(s);
-    }
-    if let Some(note) = stop_note(sweep) {
-        let _ = writeln!(s, "{note}");
-    }
-    s
-}
-
-/// JSON of a sweep.
-pub fn sweep_json(model_name: &str, sweep: &LoadSweep) -> serde_json::Value {
-    json!({
-        "model": model_name,
-        "sweep": sweep.points,
-        "stopped": stop_note(sweep),
-    })
-}
-
-/// CSV of a sweep: load factor, then f1…fn [Hz].
-pub fn sweep_csv(sweep: &LoadSweep) -> String {
-    let cols = sweep
-        .points
-        .iter()
-        .map(|p| p.frequencies_hz.len())
-        .max()
-        .unwrap_or(0);
-    let mut s = String::from("load_factor");
-    for k in 0..cols {
-        let _ = write!(s, ",f{}_hz", k + 1);
-    }
-    s.push('\n');
-    for p in &sweep.points {
-        let _ = write!(s, "{:.10e}", p.load_factor);
-        for f in &p.frequencies_hz {
-            let _ = write!(s, ",{f:.10e}");
-        }
-        s.push('\n');
-    }
-    s
-}
-
-/// One line per mode: frequency against the load factor.
-pub fn sweep_figure(model_name: &str, sweep: &LoadSweep) -> LineFigure {
-    let cols = sweep
-        .points
-        .iter()
-        .map(|p| p.frequencies_hz.len())
-        .max()
-        .unwrap_or(0);
-    let fmax = sweep
-        .points
-        .iter()
-        .flat_map(|p| p.frequencies_hz.iter().copied())
-        .fold(0.0, f64::max);
-    let mut panel = Panel::new("Frequency", Scale::si("Hz", fmax));
-    for k in 0..cols {
-        let (x, y): (Vec<f64>, Vec<f64>) = sweep
-            .points
-            .iter()
-            .filter_map(|p| p.frequencies_hz.get(k).map(|f| (p.load_factor, *f)))
-            .unzip();
-        panel.series.push(Series::new(
-            format!("mode {}", k + 1),
-            x,
-            y,
-            SeriesStyle::LinePoints,
-        ));
-    }
-    let mut fig = LineFigure::new(
-        format!("{model_name}: frequencies at the static equilibrium"),
-        "Load factor",
-        Scale::none(),
-    );
-    fig.panels.push(panel);
-    fig
 }

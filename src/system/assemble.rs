@@ -20,7 +20,7 @@ pub struct EnergyBreakdown {
     pub axial: f64,
     /// Bending energy of the beams.
     pub bending: f64,
-    /// Energy of springs and torsion springs.
+    /// Energy of springs, torsion springs and contacts.
     pub springs: f64,
     /// Load stiffness and constraint-force (∂(C_qᵀλ)/∂q) terms; not strain
     /// energy, zero at an unloaded reference.
@@ -122,7 +122,7 @@ impl System {
             }
         }
         let mut g = PairGrad::zeros();
-        for fe in &self.force_elements {
+        for fe in self.elastic_elements() {
             fe.gradient(q, &mut g);
             for (i, d) in fe.pair().dofs().enumerate() {
                 out[d] += g[i];
@@ -183,7 +183,7 @@ impl System {
             }
         }
         let mut h = PairHess::zeros();
-        for fe in &self.force_elements {
+        for fe in self.elastic_elements() {
             fe.hessian(q, &mut h);
             let dofs: Vec<usize> = fe.pair().dofs().collect();
             scatter_mat(&dofs, &h, out);
@@ -270,6 +270,18 @@ impl System {
         any
     }
 
+    /// Adds the contacts' regularizing stiffness of static Newton
+    /// iterations into `out` (see [`crate::contact::ContactElement::regularization`]).
+    pub fn add_contact_regularization(&self, q: &[f64], out: &mut impl Scatter) {
+        let mut h = PairHess::zeros();
+        for c in &self.contacts {
+            if c.regularization(q, &mut h) {
+                let dofs: Vec<usize> = crate::spring::ForceElement::pair(c).dofs().collect();
+                scatter_mat(&dofs, &h, out);
+            }
+        }
+    }
+
     /// Adds ∂(C_qᵀλ)/∂q = Σ λᵢ ∂²Cᵢ/∂q² into `out`.
     pub fn add_constraint_hessian(&self, q: &[f64], lambda: &[f64], out: &mut impl Scatter) {
         let mut h = PairHess::zeros();
@@ -291,7 +303,7 @@ impl System {
                 e.bending += s.bending;
             }
         }
-        e.springs = self.force_elements.iter().map(|f| f.energy(q)).sum();
+        e.springs = self.elastic_elements().map(|f| f.energy(q)).sum();
         e
     }
 
@@ -343,7 +355,7 @@ impl System {
             v
         };
         let mut h = PairHess::zeros();
-        for fe in &self.force_elements {
+        for fe in self.elastic_elements() {
             fe.hessian(q, &mut h);
             for (e, phi) in out.iter_mut().zip(phis) {
                 let v = local(phi, &mut fe.pair().dofs());

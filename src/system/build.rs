@@ -1,11 +1,15 @@
 //! Construction of a [`System`] from a validated [`Model`].
 
 use super::{BeamMesh, PointMassDofs, RigidDofs, SensorPoint, System};
-use crate::anchor::Anchor;
+use crate::anchor::{perp, Anchor};
+use crate::contact::law::NormalLaw;
+use crate::contact::{ContactElement, ContactKind};
 use crate::element::{CableElement, CableSection};
 use crate::joint::{Constraint, Pin, Slider, Weld};
 use crate::load::PointLoad;
-use crate::model::{JointType, LoadFrame, Model, PointSpec, PointTarget};
+use crate::model::{
+    Contact, JointType, LoadFrame, Model, PointSpec, PointTarget, SegmentOwner, Side,
+};
 use crate::pair::Pair;
 use crate::spring::{LinearSpring, TorsionSpring};
 use nalgebra::Vector2;
@@ -25,6 +29,7 @@ fn all_points(model: &Model) -> impl Iterator<Item = &PointSpec> {
         .chain(springs)
         .chain(model.loads.iter().map(|l| &l.at))
         .chain(model.sensors.iter().map(|s| &s.at))
+        .chain(model.contacts.iter().map(|c| c.point()))
 }
 
 /// Node arc lengths: uniform division plus attachment points.
@@ -47,8 +52,16 @@ fn mesh_nodes(model: &Model, beam: &crate::model::Beam) -> Vec<f64> {
 }
 
 impl System {
-    /// Assemble a validated model.
+    /// Assemble a validated model. Beams marked `rigid` become rigid
+    /// bodies first ([`Model::with_rigid_beams`]).
     pub fn new(model: &Model) -> System {
+        if model.beams.iter().any(|b| b.rigid) {
+            return System::assemble(&model.with_rigid_beams());
+        }
+        System::assemble(model)
+    }
+
+    fn assemble(model: &Model) -> System {
         let mut dof = 0;
         let mut q0 = Vec::new();
         let mut beams = Vec::new();
@@ -109,6 +122,7 @@ impl System {
             point_masses,
             constraints: Vec::new(),
             force_elements: Vec::new(),
+            contacts: Vec::new(),
             loads: Vec::new(),
             sensors: Vec::new(),
             gravity: v2(model.gravity),
@@ -121,7 +135,69 @@ impl System {
         sys.add_joints(model);
         sys.add_springs(model);
         sys.add_loads_and_sensors(model);
+        sys.add_contacts(model);
         sys
+    }
+
+    fn add_contacts(&mut self, model: &Model) {
+        for c in &model.contacts {
+            let seg = c.segment();
+            let owner = model.segment_owner(seg, "").expect("validated");
+            let end = |local: [f64; 2]| match owner {
+                SegmentOwner::Ground => Anchor::Ground {
+                    position: v2(local),
+                },
+                SegmentOwner::Body(i) => {
+                    let d = self.rigid_bodies[i].dof0;
+                    Anchor::Rigid {
+                        dofs: [d, d + 1, d + 2],
+                        local: v2(local),
+                    }
+                }
+            };
+            let target = model.resolve(c.point(), "point").expect("validated");
+            let point = self.anchor(&target, None);
+            let kind = match c {
+                Contact::PinSlot {
+                    pin_radius, slot, ..
+                } => ContactKind::PinSlot {
+                    clearance: 0.5 * slot.width.expect("validated") - pin_radius,
+                },
+                Contact::PointLine { radius, side, .. } => {
+                    let side = match side {
+                        Some(Side::Left) => 1.0,
+                        Some(Side::Right) => -1.0,
+                        None => {
+                            // The side the point starts on (validated: off the line).
+                            let (a, b) = model.segment_global(seg, owner);
+                            let (a, b) = (v2(a), v2(b));
+                            let t = (b - a).normalize();
+                            let h = perp(t).dot(&(point.position(&self.q0) - a));
+                            h.signum()
+                        }
+                    };
+                    ContactKind::PointLine {
+                        radius: *radius,
+                        side,
+                    }
+                }
+            };
+            self.contacts.push(ContactElement::new(
+                c.id().to_string(),
+                kind,
+                [end(seg.from), end(seg.to)],
+                point,
+                NormalLaw::new(c.law()),
+                c.friction(),
+                &self.q0,
+            ));
+        }
+    }
+
+    /// Anchor of a resolved point (a rigid body's centre for `{"body": id}`
+    /// without `local`).
+    pub fn anchor_of(&self, target: &PointTarget) -> Anchor {
+        self.anchor(target, None)
     }
 
     /// Anchor of a resolved point; `partner` is the other point's initial

@@ -21,6 +21,7 @@ pub use mass::MassMatrix;
 pub use rigid_motion::{RigidMotions, SparseColumn};
 
 use crate::anchor::Anchor;
+use crate::contact::ContactElement;
 use crate::element::{CableElement, CableSection};
 use crate::joint::Constraint;
 use crate::load::PointLoad;
@@ -118,6 +119,8 @@ pub struct System {
     pub point_masses: Vec<PointMassDofs>,
     pub constraints: Vec<Box<dyn Constraint>>,
     pub force_elements: Vec<Box<dyn ForceElement>>,
+    /// Unilateral contacts (their elastic part acts like a spring).
+    pub contacts: Vec<ContactElement>,
     pub loads: Vec<PointLoad>,
     pub sensors: Vec<SensorPoint>,
     /// Gravitational acceleration [SI: m/s²].
@@ -197,6 +200,15 @@ impl System {
             }
         }
         String::from("$")
+    }
+
+    /// Springs, torsion springs and the elastic part of the contacts: every
+    /// element with a potential.
+    pub fn elastic_elements(&self) -> impl Iterator<Item = &dyn ForceElement> {
+        self.force_elements
+            .iter()
+            .map(|f| f.as_ref())
+            .chain(self.contacts.iter().map(|c| c as &dyn ForceElement))
     }
 
     /// Total mass [SI: kg].

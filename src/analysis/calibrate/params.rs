@@ -98,6 +98,22 @@ impl ParamTarget {
         }
     }
 
+    /// The value's JSON path in the model file, elements by index
+    /// (`beams[0].section.height`); how `sweep --param` uses these names.
+    pub fn json_path(self) -> String {
+        match self {
+            ParamTarget::BeamHeight(i) => format!("beams[{i}].section.height"),
+            ParamTarget::BeamWidth(i) => format!("beams[{i}].section.width"),
+            ParamTarget::BeamYoung(i) => format!("beams[{i}].material.young"),
+            ParamTarget::BeamDensity(i) => format!("beams[{i}].material.density"),
+            ParamTarget::RigidMass(i) => format!("rigid_bodies[{i}].mass"),
+            ParamTarget::RigidInertia(i) => format!("rigid_bodies[{i}].inertia"),
+            ParamTarget::PointMass(i) => format!("point_masses[{i}].mass"),
+            ParamTarget::TorsionStiffness(i) => format!("joints[{i}].torsion_stiffness"),
+            ParamTarget::SpringStiffness(i) => format!("springs[{i}].stiffness"),
+        }
+    }
+
     /// The beam whose section this parameter changes (height or width).
     pub fn section_beam(self) -> Option<usize> {
         match self {

@@ -28,7 +28,18 @@
 //! can carry. A backtracking line search on ‖r‖ (plus the constraint
 //! violation) damps the steps; load stepping (continuation) with adaptive
 //! increments carries large deflections: gravity is ramped first, then the
-//! applied loads up to their factor.
+//! applied loads up to their factor; an assembly that only its loads hold
+//! (a pre-stressed mechanism, e.g. the switch-off's ON state) is ramped
+//! loads first when gravity alone finds no equilibrium.
+//!
+//! **Contacts** act as nonlinear springs (their elastic law). Their
+//! tangent nKδⁿ⁻¹ vanishes at δ = 0 and an open contact has none, so a
+//! body resting on a contact, or a small gap away from it, would make the
+//! Newton matrix singular: the Newton matrix (never the residual) gets a
+//! regularizing stiffness for each contact whose own tangent is below it
+//! ([`crate::contact::ContactElement::regularization`]), so the iteration
+//! closes the gap and converges to the exact equilibrium, where the
+//! regularization has dropped out of any loaded contact stiffer than it.
 //!
 //! **Failures.** A reduced tangent that is singular in a direction the load
 //! pushes means the assembly cannot carry the load: the error names the free
@@ -134,11 +145,31 @@ pub fn solve_equilibrium(
 ) -> Result<Equilibrium, AnalysisError> {
     let solver = Solver::new(system, settings);
     let mut state = solver.reference_state();
-    if solver.has_gravity {
-        solver.ramp(&mut state, Ramp::Gravity, 1.0)?;
+    let gravity_first = |state: &mut State| {
+        if solver.has_gravity {
+            solver.ramp(state, Ramp::Gravity, 1.0)?;
+        }
+        solver.ramp(state, Ramp::Loads, settings.load_scale)
+    };
+    match gravity_first(&mut state) {
+        Ok(()) => Ok(solver.finish(state)),
+        // An assembly that only the applied loads hold in place (a
+        // pre-stressed mechanism: springs and loads balance, gravity alone
+        // would move it) is found with the loads first.
+        Err(
+            e @ (AnalysisError::Mechanism { .. }
+            | AnalysisError::NoSupport
+            | AnalysisError::NotConverged { .. }),
+        ) if solver.has_gravity && settings.load_scale != 0.0 => {
+            let mut state = solver.reference_state();
+            solver
+                .ramp(&mut state, Ramp::Loads, settings.load_scale)
+                .and_then(|()| solver.ramp(&mut state, Ramp::Gravity, 1.0))
+                .map_err(|_| e)?;
+            Ok(solver.finish(state))
+        }
+        Err(e) => Err(e),
     }
-    solver.ramp(&mut state, Ramp::Loads, settings.load_scale)?;
-    Ok(solver.finish(state))
 }
 
 /// Continue an equilibrium to another applied-load factor (same time and
@@ -546,12 +577,14 @@ impl<'a> Solver<'a> {
         };
         let mut k = Triplets::new(n, n);
         sys.add_tangent_stiffness(&at, &mut k);
+        sys.add_contact_regularization(q, &mut k);
         let d = snap.ns.dim();
         let factor = if d == 0 {
             Factor::Empty
         } else if d > crate::analysis::modal::DENSE_MAX {
             let mut kr = Triplets::new(d, d);
             sys.add_tangent_stiffness(&at, &mut Projected::new(&snap.ns, &mut kr));
+            sys.add_contact_regularization(q, &mut Projected::new(&snap.ns, &mut kr));
             // Large: the reduced tangent stays sparse; Cholesky when it is
             // definite, LU past a loss of stability (the stability check
             // then finds the critical load), an error when it is singular
@@ -574,6 +607,7 @@ impl<'a> Solver<'a> {
         } else {
             let mut kr = Mat::zeros(d, d);
             sys.add_tangent_stiffness(&at, &mut Projected::new(&snap.ns, &mut kr));
+            sys.add_contact_regularization(q, &mut Projected::new(&snap.ns, &mut kr));
             symmetrize(&mut kr);
             if let Some(llt) = definite_factor(&kr) {
                 Factor::Cholesky(llt)

@@ -18,11 +18,12 @@
 //!
 //! It is the Hessian of the Lagrangian U − W + λᵀC of conservative forces,
 //! hence symmetric. The eigenproblem is then the one of [`super::modal`].
-//! A load sweep follows the equilibrium path over load factors and stops at
-//! the first loss of stability (where ω²₁ reaches zero).
+//! Load sweeps are parameter studies ([`crate::analysis::sweep`] with a
+//! `load_scale:` parameter): each factor's equilibrium is solved from the
+//! reference, and a factor past a loss of stability fails alone.
 
-use super::{continue_equilibrium, solve_equilibrium, Equilibrium, StaticSettings};
-use crate::analysis::modal::{modal, modal_at_reference, ModalResult, ModalSettings, ModeKind};
+use super::{solve_equilibrium, Equilibrium, StaticSettings};
+use crate::analysis::modal::{modal, modal_at_reference, ModalResult, ModalSettings};
 use crate::error::AnalysisError;
 use crate::system::System;
 
@@ -68,95 +69,5 @@ pub fn prestressed_modal(
         equilibrium,
         reference,
         prestressed,
-    })
-}
-
-/// One point of a load sweep.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct SweepPoint {
-    pub load_factor: f64,
-    /// Elastic (non-zero) modes' frequencies, ascending [SI: Hz].
-    pub frequencies_hz: Vec<f64>,
-    /// Their eigenvalues ω² [SI: rad²/s²].
-    pub eigenvalues: Vec<f64>,
-    /// Zero-frequency modes at this load.
-    pub rigid_modes: usize,
-}
-
-/// Frequencies over a range of load factors.
-#[derive(Debug, Clone)]
-pub struct LoadSweep {
-    pub points: Vec<SweepPoint>,
-    /// Why the sweep stopped early (e.g. loss of stability), if it did.
-    pub stopped: Option<AnalysisError>,
-}
-
-/// `n` load factors from `a` to `b` inclusive (one point: `a`).
-pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
-    match n {
-        0 => Vec::new(),
-        1 => vec![a],
-        _ => (0..n)
-            .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
-            .collect(),
-    }
-}
-
-/// The first `modes` elastic modes at each load factor, following the
-/// equilibrium path from one factor to the next. A failure of the statics
-/// at some factor ends the sweep there (recorded in `stopped`); a failure
-/// before the first point is returned as the error.
-pub fn load_sweep(
-    system: &System,
-    factors: &[f64],
-    modes: usize,
-    statics: &StaticSettings,
-    settings: &ModalSettings,
-) -> Result<LoadSweep, AnalysisError> {
-    let mut points = Vec::with_capacity(factors.len());
-    let mut current: Option<Equilibrium> = None;
-    let all = ModalSettings {
-        modes: None,
-        ..*settings
-    };
-    for &s in factors {
-        let eq = match &current {
-            None => solve_equilibrium(
-                system,
-                &StaticSettings {
-                    load_scale: s,
-                    ..*statics
-                },
-            ),
-            Some(prev) => continue_equilibrium(system, prev, s, statics),
-        };
-        let eq = match eq {
-            Ok(eq) => eq,
-            Err(e) if current.is_some() => {
-                return Ok(LoadSweep {
-                    points,
-                    stopped: Some(e),
-                })
-            }
-            Err(e) => return Err(e),
-        };
-        let r = modal_at_equilibrium(system, &eq, &all)?;
-        let elastic: Vec<_> = r
-            .modes
-            .iter()
-            .filter(|m| m.kind != ModeKind::Rigid)
-            .take(modes)
-            .collect();
-        points.push(SweepPoint {
-            load_factor: s,
-            frequencies_hz: elastic.iter().map(|m| m.frequency_hz).collect(),
-            eigenvalues: elastic.iter().map(|m| m.eigenvalue).collect(),
-            rigid_modes: r.rigid_modes,
-        });
-        current = Some(eq);
-    }
-    Ok(LoadSweep {
-        points,
-        stopped: None,
     })
 }

@@ -34,6 +34,7 @@
 //! compensation acts on the right-hand side and the correction only, so it
 //! serves both paths alike.
 
+pub mod contacts;
 pub mod dispersion;
 pub mod frame;
 pub mod solver;
@@ -41,6 +42,7 @@ pub mod solver;
 use crate::error::TransientError;
 use crate::linalg::Scatter;
 use crate::system::{Linearization, System};
+use contacts::{add_contact_dissipation, ContactTracker};
 use dispersion::GenAlpha;
 use frame::RotatingFrame;
 use solver::{DenseLu, FactorFailure, Factorization, Placed, Positions, Product, SparseLu};
@@ -192,8 +194,17 @@ pub struct Integrator<'s> {
     stale: bool,
     /// Steps taken since the last factorization.
     since_factor: usize,
+    /// The current step [SI: s]: the settings' step, shortened at contact
+    /// onsets and while impacts last.
+    h: f64,
+    /// Contact states, impact speeds and statistics.
+    pub contacts: ContactTracker,
     pub stats: RunStats,
 }
+
+/// Shortest step the contact control may take, as a fraction of the
+/// settings' step.
+const MIN_STEP_FRACTION: f64 = 1.0 / 4096.0;
 
 impl<'s> Integrator<'s> {
     pub fn new(sys: &'s System, settings: TransientSettings) -> Result<Self, TransientError> {
@@ -269,8 +280,28 @@ impl<'s> Integrator<'s> {
             eta: 1.0,
             stale: true,
             since_factor: 0,
+            h,
+            contacts: ContactTracker::new(sys, &sys.q0),
             stats: RunStats::default(),
         })
+    }
+
+    /// Change the step to h: new Newton scalings, refactor at the next
+    /// iteration.
+    fn set_step(&mut self, h: f64) {
+        if h == self.h {
+            return;
+        }
+        self.h = h;
+        self.beta_p =
+            (1.0 - self.coef.alpha_m) / ((1.0 - self.coef.alpha_f) * self.coef.beta * h * h);
+        self.gamma_p = self.coef.gamma / (self.coef.beta * h);
+        self.stale = true;
+    }
+
+    /// The step the integrator takes next [SI: s].
+    pub fn current_step(&self) -> f64 {
+        self.h
     }
 
     pub fn settings(&self) -> &TransientSettings {
@@ -337,6 +368,7 @@ impl<'s> Integrator<'s> {
             });
         }
         let a = rhs[..n].to_vec();
+        self.contacts = ContactTracker::new(self.sys, &q);
         Ok(State {
             t: 0.0,
             q,
@@ -363,6 +395,14 @@ impl<'s> Integrator<'s> {
         }
         self.sys
             .add_damping(&st.q, &st.v, dyn_part, None::<&mut Positions>);
+        add_contact_dissipation(
+            self.sys,
+            &st.q,
+            &st.v,
+            &self.contacts.impact,
+            dyn_part,
+            None::<(f64, f64, &mut Positions)>,
+        );
         self.sys.add_constraint_forces(&st.q, &st.lambda, dyn_part);
         let s = -1.0 / self.beta_p;
         dyn_part.iter_mut().for_each(|r| *r *= s);
@@ -391,6 +431,14 @@ impl<'s> Integrator<'s> {
             scratch,
             &mut self.lu,
         );
+        add_contact_dissipation(
+            self.sys,
+            &st.q,
+            &st.v,
+            &self.contacts.impact,
+            scratch,
+            Some((1.0 / self.beta_p, self.gamma_p / self.beta_p, &mut self.lu)),
+        );
         self.lu.factor().map_err(|f| factor_error(self.sys, f, t))?;
         self.frame.anchor(&self.next.q);
         self.stats.factorizations += 1;
@@ -414,7 +462,7 @@ impl<'s> Integrator<'s> {
     /// extrapolation of a does not reduce the iterations, because a carries
     /// the Newton error of q amplified by 1/(βh²).
     fn predict(&mut self, from: &State) {
-        let h = self.settings.step;
+        let h = self.h;
         let GenAlpha {
             alpha_m,
             beta,
@@ -440,8 +488,8 @@ impl<'s> Integrator<'s> {
     /// Advance `state` by one step.
     pub fn step(&mut self, state: &mut State) -> Result<(), TransientError> {
         let n = self.sys.ndof();
-        let t1 = state.t + self.settings.step;
-        let h = self.settings.step;
+        let h = self.h;
+        let t1 = state.t + h;
         let inv_bh2 = 1.0 / (self.coef.beta * h * h);
         let mut restarted = false;
         self.predict(state);
@@ -531,6 +579,53 @@ impl<'s> Integrator<'s> {
         Ok(())
     }
 
+    /// Advance `state` by one accepted step of at most the settings' step,
+    /// ending at `t_end` at the latest. Without contacts that is
+    /// [`Integrator::step`]; with contacts a step in which one closes too
+    /// deep, or whose Newton iteration fails, is repeated with a shorter
+    /// step (see [`contacts`]), and steps stay short while impacts last.
+    pub fn advance(&mut self, state: &mut State, t_end: f64) -> Result<(), TransientError> {
+        let nominal = self.settings.step;
+        let remaining = t_end - state.t;
+        let cap = nominal.min(self.contacts.step_limit);
+        // Grow back towards the nominal step by at most 2× per step.
+        let mut h = (2.0 * self.h).min(cap).min(remaining);
+        if remaining - h < 1e-9 * nominal {
+            h = remaining;
+        }
+        if self.sys.contacts.is_empty() {
+            self.set_step(h);
+            return self.step(state);
+        }
+        let min_step = nominal * MIN_STEP_FRACTION;
+        loop {
+            self.set_step(h);
+            self.contacts.begin_step(self.sys, &state.q, &state.v);
+            let saved = state.clone();
+            let result = self.step(state);
+            let retry = match &result {
+                Err(TransientError::NewtonFailure { .. }) => Some(0.5 * h),
+                Err(_) => None,
+                Ok(()) => self.contacts.onset_check(self.sys, &state.q, h),
+            };
+            match retry {
+                Some(shorter) if shorter >= min_step => {
+                    if result.is_ok() {
+                        self.stats.steps -= 1;
+                    }
+                    *state = saved;
+                    h = shorter;
+                }
+                _ => {
+                    result?;
+                    self.contacts
+                        .accept(self.sys, (state.t, &state.q, &state.v), h);
+                    return Ok(());
+                }
+            }
+        }
+    }
+
     /// Integrate from `state` to the end time, calling `observe` after every
     /// step (and once for the initial state).
     pub fn run(
@@ -539,9 +634,9 @@ impl<'s> Integrator<'s> {
         mut observe: impl FnMut(&State),
     ) -> Result<RunStats, TransientError> {
         observe(state);
-        let steps = self.settings.steps();
-        for _ in 0..steps {
-            self.step(state)?;
+        let t_end = state.t + self.settings.steps() as f64 * self.settings.step;
+        while t_end - state.t > 1e-9 * self.settings.step {
+            self.advance(state, t_end)?;
             observe(state);
         }
         Ok(self.stats)

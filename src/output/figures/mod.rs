@@ -13,11 +13,16 @@
 //!   pulse against time, and the amplitude spectrum with identified peaks,
 //!   eigenfrequency guides and the measured reference frequency.
 //!
+//! * [`sweep`] — a parameter study: tracked frequencies (Campbell style) or
+//!   the quantity against one parameter, a heat map over two.
+//!
 //! All data are SI (m, Hz); figures show lengths in millimetres.
 
 pub mod convergence;
 pub mod impulse;
 pub mod modal;
+pub mod sweep;
+pub mod switch_off;
 mod write;
 
 pub use convergence::convergence_figure;

@@ -21,6 +21,8 @@
 //!   masses, small circles for joints), the deformed geometry in colour, and
 //!   a title such as "Mode 1: 4577.3 Hz (bending)". x and y use one length
 //!   scale (equal aspect ratio). The caller scales the mode amplitude.
+//! * [`HeatMap`] — a value over a 2-D grid as coloured cells (viridis) with
+//!   a colour bar; missing values in light grey (e.g. a parameter study).
 //! * [`calibration_figure`] and [`convergence_figure`] build line figures
 //!   for a calibration (frequency against a parameter, target line, fitted
 //!   point, numbered iterates) and a log-log convergence study (relative
@@ -62,6 +64,7 @@ mod error;
 mod font;
 mod frame;
 mod geom;
+mod heatmap;
 mod line;
 mod modeshape;
 mod pngtext;
@@ -80,6 +83,7 @@ use super::files;
 
 pub use error::PlotError;
 pub use frame::PanelLayout;
+pub use heatmap::{colour_map, HeatMap};
 pub use line::{LineFigure, Panel};
 pub use modeshape::{Geometry, ModeShape, ModeShapeFigure};
 pub use presets::{calibration_figure, convergence_figure, Calibration, Convergence};
@@ -119,6 +123,13 @@ impl Format {
 pub enum Figure {
     Line(LineFigure),
     ModeShapes(ModeShapeFigure),
+    Heat(HeatMap),
+}
+
+impl From<HeatMap> for Figure {
+    fn from(f: HeatMap) -> Self {
+        Figure::Heat(f)
+    }
 }
 
 impl From<LineFigure> for Figure {
@@ -143,6 +154,7 @@ impl Figure {
         match self {
             Figure::Line(f) => f.draw(root, size),
             Figure::ModeShapes(f) => f.draw(root, size),
+            Figure::Heat(f) => f.draw(root, size),
         }
     }
 

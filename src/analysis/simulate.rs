@@ -1,0 +1,249 @@
+//! A general time simulation: optionally the static equilibrium first (the
+//! loads at t = 0, e.g. a pre-stress released later), then the
+//! generalized-α transient with contacts; sensors and tracked points
+//! recorded at every step and resampled at a uniform rate, contact
+//! statistics, and the energy balance.
+//!
+//! Energy balance [SI: J]: with T = ½q̇ᵀMq̇, U the strain energy of beams,
+//! springs and contacts, V = −f_gᵀq the gravity potential (the generalized
+//! gravity force f_g is constant), W = ∫Q_loadsᵀq̇ dt the work of the
+//! applied loads (trapezoidal rule over the steps) and D the energy the
+//! contacts dissipated, the balance error is
+//! (T + U + V)(t) − (T + U + V)(0) − W + D: what the integrator's numerical
+//! damping (ρ∞ < 1) and the Newton tolerance leave.
+
+use super::impulse::sensor::SensorProbe;
+use super::statics::{solve_equilibrium, StaticSettings};
+use super::transient::contacts::ContactStats;
+use super::transient::{Integrator, RunStats, State, TransientSettings};
+use crate::anchor::Anchor;
+use crate::error::SimulationError;
+use crate::linalg::vector::dot;
+use crate::system::System;
+
+/// Settings of a simulation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SimulationSettings {
+    pub transient: TransientSettings,
+    /// Start from the static equilibrium under the loads at t = 0 (else
+    /// from the reference configuration at rest).
+    pub from_equilibrium: bool,
+    /// Output sample rate [SI: Hz]; 0 keeps every step.
+    pub sample_rate: f64,
+}
+
+/// Energies at one time [SI: J].
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+pub struct Energies {
+    pub kinetic_j: f64,
+    /// Beam strain energy (axial + bending).
+    pub strain_j: f64,
+    /// Springs, torsion springs and contacts (elastic part).
+    pub spring_j: f64,
+    pub gravity_j: f64,
+}
+
+impl Energies {
+    pub fn total(&self) -> f64 {
+        self.kinetic_j + self.strain_j + self.spring_j + self.gravity_j
+    }
+}
+
+/// The energy balance of a run [SI: J].
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+pub struct EnergyBalance {
+    pub initial: Energies,
+    #[serde(rename = "final")]
+    pub end: Energies,
+    /// Work of the applied loads.
+    pub load_work_j: f64,
+    /// Dissipated by the contacts (damping and friction).
+    pub contact_dissipation_j: f64,
+    /// (T + U + V)(end) − (T + U + V)(0) − W + D.
+    pub error_j: f64,
+    /// The elastic energy stored at the start, U(0) (beams, springs,
+    /// contacts): the scale of the error.
+    pub stored_j: f64,
+}
+
+/// A recorded run.
+#[derive(Debug, Clone)]
+pub struct Simulation {
+    /// Sample times [SI: s].
+    pub time: Vec<f64>,
+    /// Sensor id and its samples [SI: m, m/s or m/s²].
+    pub sensors: Vec<(String, Vec<f64>)>,
+    /// What each sensor measures.
+    pub quantities: Vec<crate::model::SensorQuantity>,
+    /// Tracked points: x and y samples [SI: m].
+    pub points: Vec<[Vec<f64>; 2]>,
+    /// Every step: time and tracked points (for event times).
+    pub step_time: Vec<f64>,
+    pub step_points: Vec<[Vec<f64>; 2]>,
+    pub contacts: Vec<ContactStats>,
+    pub energy: EnergyBalance,
+    pub stats: RunStats,
+    /// Shortest step taken [SI: s].
+    pub min_step: f64,
+    /// Static iterations spent on the initial equilibrium.
+    pub static_iterations: usize,
+}
+
+fn energies(sys: &System, gravity: &[f64], st: &State) -> Energies {
+    let u = sys.strain_energy(&st.q);
+    Energies {
+        kinetic_j: 0.5 * sys.mass().quadratic_form(&st.v),
+        strain_j: u.axial + u.bending,
+        spring_j: u.springs,
+        gravity_j: -dot(gravity, &st.q),
+    }
+}
+
+/// Power of the applied loads Q_loads(q, t)ᵀq̇ [SI: W].
+fn load_power(sys: &System, st: &State, scratch: &mut [f64]) -> f64 {
+    scratch.fill(0.0);
+    for l in &sys.loads {
+        l.add_generalized_force(&st.q, st.t, 1.0, scratch);
+    }
+    dot(scratch, &st.v)
+}
+
+/// Linear interpolation of (t, y) at the sample times.
+fn resample(t: &[f64], y: &[f64], at: &[f64]) -> Vec<f64> {
+    let mut k = 0;
+    at.iter()
+        .map(|&s| {
+            while k + 2 < t.len() && t[k + 1] < s {
+                k += 1;
+            }
+            let (t0, t1) = (t[k], t[(k + 1).min(t.len() - 1)]);
+            if t1 <= t0 {
+                return y[k];
+            }
+            let w = ((s - t0) / (t1 - t0)).clamp(0.0, 1.0);
+            y[k] + w * (y[(k + 1).min(y.len() - 1)] - y[k])
+        })
+        .collect()
+}
+
+/// Run a simulation of `sys`, tracking the material points `points`.
+pub fn simulate(
+    sys: &System,
+    points: &[Anchor],
+    settings: &SimulationSettings,
+) -> Result<Simulation, SimulationError> {
+    let n = sys.ndof();
+    if !(settings.sample_rate >= 0.0 && settings.sample_rate.is_finite()) {
+        return Err(SimulationError::InvalidSetting {
+            flag: "--sample-rate",
+            value: settings.sample_rate,
+        });
+    }
+    let mut integ = Integrator::new(sys, settings.transient)?;
+    let (mut state, static_iterations) = if settings.from_equilibrium {
+        let eq = solve_equilibrium(sys, &StaticSettings::default())?;
+        (integ.state_at(eq.q, vec![0.0; n])?, eq.iterations)
+    } else {
+        (integ.initial_state()?, 0)
+    };
+    let probes: Vec<SensorProbe> = sys
+        .sensors
+        .iter()
+        .map(|s| SensorProbe::new(sys, s))
+        .collect();
+    let mut gravity = vec![0.0; n];
+    sys.add_gravity(&mut gravity);
+    let mut scratch = vec![0.0; n];
+    let initial = energies(sys, &gravity, &state);
+    let mut step_time = Vec::new();
+    let mut readings: Vec<Vec<f64>> = vec![Vec::new(); probes.len()];
+    let mut tracks: Vec<[Vec<f64>; 2]> = vec![[Vec::new(), Vec::new()]; points.len()];
+    let mut work = 0.0;
+    let mut last: Option<(f64, f64)> = None;
+    let mut min_step = f64::INFINITY;
+    let stats = integ.run(&mut state, |st| {
+        let p = load_power(sys, st, &mut scratch);
+        if let Some((t0, p0)) = last {
+            work += 0.5 * (st.t - t0) * (p + p0);
+            min_step = min_step.min(st.t - t0);
+        }
+        last = Some((st.t, p));
+        step_time.push(st.t);
+        for (r, probe) in readings.iter_mut().zip(&probes) {
+            r.push(probe.read(st));
+        }
+        for (track, a) in tracks.iter_mut().zip(points) {
+            let r = a.position(&st.q);
+            track[0].push(r.x);
+            track[1].push(r.y);
+        }
+    })?;
+    let end = energies(sys, &gravity, &state);
+    let dissipated: f64 = integ.contacts.stats.iter().map(|c| c.dissipated).sum();
+    let energy = EnergyBalance {
+        initial,
+        end,
+        load_work_j: work,
+        contact_dissipation_j: dissipated,
+        error_j: end.total() - initial.total() - work + dissipated,
+        stored_j: initial.strain_j + initial.spring_j,
+    };
+    let t_end = *step_time.last().expect("at least the initial state");
+    let time: Vec<f64> = if settings.sample_rate > 0.0 {
+        let count = (t_end * settings.sample_rate * (1.0 + 1e-12)).floor() as usize + 1;
+        (0..count)
+            .map(|k| k as f64 / settings.sample_rate)
+            .collect()
+    } else {
+        step_time.clone()
+    };
+    let sensors = probes
+        .iter()
+        .zip(&readings)
+        .map(|(p, r)| (p.id().to_string(), resample(&step_time, r, &time)))
+        .collect();
+    let sampled = tracks
+        .iter()
+        .map(|[x, y]| {
+            [
+                resample(&step_time, x, &time),
+                resample(&step_time, y, &time),
+            ]
+        })
+        .collect();
+    Ok(Simulation {
+        time,
+        sensors,
+        quantities: probes.iter().map(|p| p.point.quantity).collect(),
+        points: sampled,
+        step_time,
+        step_points: tracks,
+        contacts: integ.contacts.stats.clone(),
+        energy,
+        stats,
+        min_step,
+        static_iterations,
+    })
+}
+
+/// The first time the displacement of a tracked point (x, y samples at
+/// `time`) along the unit direction `dir` reaches `distance`, by linear
+/// interpolation; `None` if it never does.
+pub fn time_to_distance(
+    time: &[f64],
+    [x, y]: &[Vec<f64>; 2],
+    dir: [f64; 2],
+    distance: f64,
+) -> Option<f64> {
+    let s: Vec<f64> = x
+        .iter()
+        .zip(y)
+        .map(|(a, b)| (a - x[0]) * dir[0] + (b - y[0]) * dir[1])
+        .collect();
+    let k = s.iter().position(|&v| v >= distance)?;
+    if k == 0 {
+        return Some(time[0]);
+    }
+    let w = (distance - s[k - 1]) / (s[k] - s[k - 1]);
+    Some(time[k - 1] + w * (time[k] - time[k - 1]))
+}

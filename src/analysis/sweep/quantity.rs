@@ -1,0 +1,201 @@
+//! What a sweep computes at each point, and the one function that computes
+//! it on a model ([`evaluate`]).
+//!
+//! * `first_bending_hz` — the lowest mode whose strain energy is mostly
+//!   bending ([`crate::analysis::ModeKind::Bending`]) [Hz];
+//! * `frequency:K` — the K-th elastic mode [Hz] (zero-frequency rigid-body
+//!   or mechanism modes not counted), *tracked*: K is the mode's place at
+//!   the sweep's first point, and at every other point the mode is the one
+//!   whose shape matches (MAC, [`super::tracking`]), so a mode keeps its
+//!   identity where it crosses another.
+//!
+//! Modes are computed at the reference configuration, or at the static
+//! equilibrium under the model's constant loads and gravity when the sweep
+//! is pre-stressed (the linearization of `modal --prestress`).
+//!
+//! New quantities are new variants of [`Quantity`], parsed in
+//! [`Quantity::parse`] and computed in [`evaluate`].
+
+use super::error::{PointError, SweepError};
+use crate::analysis::modal::{modal, ModalResult, ModalSettings, ModeKind};
+use crate::analysis::statics::{solve_equilibrium, StaticSettings};
+use crate::analysis::EigenMethod;
+use crate::model::Model;
+use crate::system::System;
+use serde::{Deserialize, Serialize};
+
+/// A quantity a sweep computes at each point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// First bending frequency [Hz].
+    FirstBendingHz,
+    /// The tracked K-th elastic mode's frequency [Hz] (K ≥ 1).
+    Frequency { mode: usize },
+}
+
+/// The quantity names [`Quantity::parse`] accepts.
+pub const AVAILABLE: [&str; 2] = ["first_bending_hz", "frequency:K"];
+
+impl Quantity {
+    /// Parses a name of [`AVAILABLE`].
+    pub fn parse(text: &str) -> Result<Quantity, SweepError> {
+        let unknown = || SweepError::UnknownQuantity {
+            given: text.to_string(),
+            available: AVAILABLE.to_vec(),
+        };
+        let t = text.trim();
+        if t == "first_bending_hz" {
+            return Ok(Quantity::FirstBendingHz);
+        }
+        if let Some(k) = t.strip_prefix("frequency:") {
+            let mode = k.trim().parse::<usize>().ok().filter(|&k| k >= 1);
+            return mode
+                .map(|mode| Quantity::Frequency { mode })
+                .ok_or_else(unknown);
+        }
+        Err(unknown())
+    }
+
+    /// The mode number a tracked quantity follows.
+    pub fn tracked_mode(&self) -> Option<usize> {
+        match self {
+            Quantity::Frequency { mode } => Some(*mode),
+            Quantity::FirstBendingHz => None,
+        }
+    }
+
+    /// Label for plots and tables.
+    pub fn label(&self) -> String {
+        match self {
+            Quantity::FirstBendingHz => "First bending frequency".into(),
+            Quantity::Frequency { mode } => format!("Frequency of mode {mode}"),
+        }
+    }
+
+    /// SI unit of the value.
+    pub fn unit(&self) -> &'static str {
+        "Hz"
+    }
+}
+
+impl std::fmt::Display for Quantity {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Quantity::FirstBendingHz => f.write_str("first_bending_hz"),
+            Quantity::Frequency { mode } => write!(f, "frequency:{mode}"),
+        }
+    }
+}
+
+/// An elastic mode of one point, as tracking needs it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RawMode {
+    /// [SI: Hz]
+    pub frequency_hz: f64,
+    /// Mass-normalized shape in the global coordinates.
+    pub shape: Vec<f64>,
+}
+
+/// What [`evaluate`] gives for one point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Evaluation {
+    /// The quantity, when it does not need the other points (`None` for a
+    /// tracked quantity, which [`super::tracking`] assigns).
+    pub value: Option<f64>,
+    /// Elastic modes, ascending (tracked quantities only).
+    pub modes: Vec<RawMode>,
+}
+
+/// How the points are computed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EvalSettings {
+    /// Linearize at the static equilibrium instead of the reference.
+    pub prestress: bool,
+    pub method: EigenMethod,
+    /// Elastic modes computed for tracking.
+    pub modes: usize,
+}
+
+/// Computes `quantity` on `model`.
+pub fn evaluate(
+    quantity: &Quantity,
+    model: &Model,
+    settings: &EvalSettings,
+) -> Result<Evaluation, PointError> {
+    let system = System::new(model);
+    match quantity {
+        Quantity::FirstBendingHz => {
+            let r = elastic_modes(&system, settings, 6, |r| r.first_bending().is_some())?;
+            let computed = r.modes.len() - r.rigid_modes.min(r.modes.len());
+            let f = r
+                .first_bending()
+                .ok_or(PointError::NoBendingMode { computed })?;
+            Ok(Evaluation {
+                value: Some(f.frequency_hz),
+                modes: Vec::new(),
+            })
+        }
+        Quantity::Frequency { mode } => {
+            let wanted = settings.modes.max(*mode);
+            let r = elastic_modes(&system, settings, wanted, |_| true)?;
+            let modes: Vec<RawMode> = r
+                .modes
+                .into_iter()
+                .filter(|m| m.kind != ModeKind::Rigid)
+                .map(|m| RawMode {
+                    frequency_hz: m.frequency_hz,
+                    shape: m.shape,
+                })
+                .collect();
+            if modes.len() < *mode {
+                return Err(PointError::TooFewModes {
+                    wanted: *mode,
+                    available: modes.len(),
+                });
+            }
+            Ok(Evaluation { value: None, modes })
+        }
+    }
+}
+
+/// At least `wanted` elastic modes (fewer if the model has fewer); when
+/// `enough` rejects them, all modes.
+fn elastic_modes(
+    system: &System,
+    settings: &EvalSettings,
+    wanted: usize,
+    enough: impl Fn(&ModalResult) -> bool,
+) -> Result<ModalResult, PointError> {
+    let equilibrium = if settings.prestress {
+        Some(solve_equilibrium(system, &StaticSettings::default())?)
+    } else {
+        None
+    };
+    let reference = system.reference();
+    let at = equilibrium
+        .as_ref()
+        .map_or(reference, |e| e.linearization());
+    let run = |count: usize| {
+        modal(
+            system,
+            &at,
+            &ModalSettings {
+                modes: Some(count),
+                method: settings.method,
+            },
+        )
+    };
+    // Three rigid modes of a free planar assembly, then the elastic ones.
+    let r = run(wanted + 3)?;
+    let elastic = r.modes.len() - r.rigid_modes.min(r.modes.len());
+    let more = r.reduced_dofs > r.modes.len();
+    if more && (elastic < wanted || !enough(&r)) {
+        let count = if elastic < wanted {
+            wanted + r.rigid_modes
+        } else {
+            r.reduced_dofs
+        };
+        return Ok(run(count)?);
+    }
+    Ok(r)
+}

@@ -1,0 +1,235 @@
+//! The paper's switch-off experiment (Section 4, Figs. 7–9): the
+//! pre-stressed ON state as a static equilibrium, the release of the
+//! pre-stress loads (`{"until": 0}`), and the transient; a tracked point
+//! (node 0 of the first beam by default) and the time it takes to travel
+//! `distance` along `direction` (2 mm along x, as Fig. 7), optionally beside
+//! the same model with every beam rigid (Fig. 8) and the same run at half
+//! the step (the discretization check).
+//!
+//! Departure of the rigid model: the first time the displacements (from
+//! each run's own ON state) of the flexible and the rigid tracked point
+//! differ by more than
+//! [`DEPARTURE_FRACTION`] × `distance` (the paper reads ~1.26 ms off
+//! Fig. 8).
+
+use super::simulate::{simulate, time_to_distance, EnergyBalance, SimulationSettings};
+use super::transient::contacts::ContactStats;
+use super::transient::TransientSettings;
+use crate::error::SimulationError;
+use crate::model::{Model, PointSpec};
+use crate::system::System;
+
+/// Rigid and flexible runs "depart" once their tracked points are this
+/// fraction of the travel distance apart.
+pub const DEPARTURE_FRACTION: f64 = 0.05;
+
+/// Settings of a switch-off run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SwitchOffSettings {
+    /// Time step [SI: s].
+    pub step: f64,
+    /// End time [SI: s].
+    pub end_time: f64,
+    /// Output sample rate [SI: Hz] (the paper's camera: 67.2 kHz).
+    pub sample_rate: f64,
+    /// Travel distance [SI: m].
+    pub distance: f64,
+    /// Travel direction (any length).
+    pub direction: [f64; 2],
+    /// The tracked point; `None`: node 0 of the first beam.
+    pub point: Option<PointSpec>,
+    /// Also run the model with every beam rigid.
+    pub compare_rigid: bool,
+    /// Also run at half the step.
+    pub halve_step: bool,
+    /// Spectral radius at infinity of the integrator.
+    pub spectral_radius: f64,
+}
+
+impl Default for SwitchOffSettings {
+    fn default() -> Self {
+        SwitchOffSettings {
+            step: 1e-6,
+            end_time: 3e-3,
+            sample_rate: 67.2e3,
+            distance: 2e-3,
+            direction: [1.0, 0.0],
+            point: None,
+            compare_rigid: false,
+            halve_step: false,
+            spectral_radius: 0.9,
+        }
+    }
+}
+
+/// One run: the tracked point's samples and what the run saw.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SwitchOffRun {
+    pub time_to_distance_s: Option<f64>,
+    pub time_s: Vec<f64>,
+    /// Absolute coordinates of the tracked point [SI: m].
+    pub x_m: Vec<f64>,
+    pub y_m: Vec<f64>,
+    pub max_penetration_m: f64,
+    pub contacts: Vec<ContactStats>,
+    pub energy: EnergyBalance,
+    pub steps: usize,
+    pub newton_iterations: usize,
+    pub min_step_s: f64,
+}
+
+/// The experiment's result.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SwitchOffResult {
+    pub model: String,
+    pub settings: SwitchOffSettings,
+    pub flexible: SwitchOffRun,
+    pub rigid: Option<SwitchOffRun>,
+    /// Time to the distance at half the step.
+    pub half_step_time_s: Option<f64>,
+    /// First time rigid and flexible tracked points are
+    /// [`DEPARTURE_FRACTION`] × distance apart.
+    pub departure_s: Option<f64>,
+}
+
+impl SwitchOffSettings {
+    fn validate(&self) -> Result<(), SimulationError> {
+        for (flag, value) in [
+            ("--step", self.step),
+            ("--end-time", self.end_time),
+            ("--distance", self.distance),
+        ] {
+            if !(value > 0.0 && value.is_finite()) {
+                return Err(SimulationError::InvalidSetting { flag, value });
+            }
+        }
+        let [dx, dy] = self.direction;
+        if !(dx.is_finite() && dy.is_finite()) || dx.hypot(dy) == 0.0 {
+            return Err(SimulationError::InvalidSetting {
+                flag: "--direction",
+                value: dx.hypot(dy),
+            });
+        }
+        Ok(())
+    }
+
+    fn simulation(&self, step: f64) -> SimulationSettings {
+        SimulationSettings {
+            transient: TransientSettings {
+                step,
+                end_time: self.end_time,
+                spectral_radius: self.spectral_radius,
+                ..TransientSettings::default()
+            },
+            from_equilibrium: true,
+            sample_rate: self.sample_rate,
+        }
+    }
+}
+
+/// The tracked point: `settings.point`, else node 0 of the first beam.
+fn tracked(model: &Model, settings: &SwitchOffSettings) -> Result<PointSpec, SimulationError> {
+    let spec = match &settings.point {
+        Some(p) => p.clone(),
+        None => {
+            let beam = model
+                .beams
+                .first()
+                .ok_or_else(|| SimulationError::InvalidPoint {
+                    why: String::from(
+                        "the model has no beam, so there is no node 0 to track; give --point",
+                    ),
+                })?;
+            PointSpec {
+                beam: Some(beam.id.clone()),
+                s: Some(0.0),
+                ..PointSpec::default()
+            }
+        }
+    };
+    model
+        .resolve(&spec, "point")
+        .map_err(|(path, problem)| SimulationError::InvalidPoint {
+            why: format!("{path}: {problem}"),
+        })?;
+    Ok(spec)
+}
+
+fn run_one(
+    model: &Model,
+    point: &PointSpec,
+    settings: &SwitchOffSettings,
+    step: f64,
+) -> Result<SwitchOffRun, SimulationError> {
+    let spec = model.rigid_point(point);
+    let model = model.with_rigid_beams();
+    let point = model.resolve(&spec, "point").expect("resolved above");
+    let sys = System::new(&model);
+    let anchor = sys.anchor_of(&point);
+    let sim = simulate(&sys, &[anchor], &settings.simulation(step))?;
+    let [x, y] = &sim.step_points[0];
+    let n = settings.direction[0].hypot(settings.direction[1]);
+    let dir = [settings.direction[0] / n, settings.direction[1] / n];
+    let time_to = time_to_distance(
+        &sim.step_time,
+        &[x.clone(), y.clone()],
+        dir,
+        settings.distance,
+    );
+    let [xs, ys] = sim.points.into_iter().next().expect("one tracked point");
+    Ok(SwitchOffRun {
+        time_to_distance_s: time_to,
+        time_s: sim.time,
+        x_m: xs,
+        y_m: ys,
+        max_penetration_m: sim
+            .contacts
+            .iter()
+            .map(|c| c.max_penetration)
+            .fold(0.0, f64::max),
+        contacts: sim.contacts,
+        energy: sim.energy,
+        steps: sim.stats.steps,
+        newton_iterations: sim.stats.newton_iterations,
+        min_step_s: sim.min_step,
+    })
+}
+
+/// Run the switch-off experiment on `model`.
+pub fn run_switch_off(
+    model: &Model,
+    settings: &SwitchOffSettings,
+) -> Result<SwitchOffResult, SimulationError> {
+    settings.validate()?;
+    let point = tracked(model, settings)?;
+    let flexible = run_one(model, &point, settings, settings.step)?;
+    let rigid_model = model.all_beams_rigid();
+    let rigid = if settings.compare_rigid {
+        Some(run_one(&rigid_model, &point, settings, settings.step)?)
+    } else {
+        None
+    };
+    let half_step_time_s = if settings.halve_step {
+        run_one(model, &point, settings, 0.5 * settings.step)?.time_to_distance_s
+    } else {
+        None
+    };
+    let departure_s = rigid.as_ref().and_then(|r| {
+        let limit = DEPARTURE_FRACTION * settings.distance;
+        (0..flexible.time_s.len().min(r.time_s.len()))
+            .find(|&k| {
+                let dx = (flexible.x_m[k] - flexible.x_m[0]) - (r.x_m[k] - r.x_m[0]);
+                let dy = (flexible.y_m[k] - flexible.y_m[0]) - (r.y_m[k] - r.y_m[0]);
+                dx.hypot(dy) > limit
+            })
+            .map(|k| flexible.time_s[k])
+    });
+    Ok(SwitchOffResult {
+        model: model.name.clone(),
+        settings: settings.clone(),
+        flexible,
+        rigid,
+        half_step_time_s,
+        departure_s,
+    })
+}

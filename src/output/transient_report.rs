@@ -1,0 +1,108 @@
+//! Text, JSON, CSV and figure of a general `transient` run
+//! ([`crate::analysis::simulate`]). JSON keys (DESIGN §7): `model`,
+//! `step_s`, `end_time_s`, `steps`, `time_s`, `sensors` {id: samples},
+//! `contacts` [{`id`, `max_penetration_m`, `max_force_n`, `impacts`}],
+//! `energy`.
+
+use crate::analysis::simulate::{Simulation, SimulationSettings};
+use crate::model::SensorQuantity;
+use crate::output::plot::{Legend, LineFigure, Panel, Scale, Series};
+use serde_json::{json, Map, Value};
+use std::fmt::Write;
+
+pub fn transient_json(model: &str, settings: &SimulationSettings, sim: &Simulation) -> Value {
+    let sensors: Map<String, Value> = sim
+        .sensors
+        .iter()
+        .map(|(id, v)| (id.clone(), json!(v)))
+        .collect();
+    json!({
+        "model": model,
+        "step_s": settings.transient.step,
+        "end_time_s": settings.transient.end_time,
+        "from_equilibrium": settings.from_equilibrium,
+        "sample_rate_hz": settings.sample_rate,
+        "steps": sim.stats.steps,
+        "newton_iterations": sim.stats.newton_iterations,
+        "min_step_s": sim.min_step,
+        "time_s": sim.time,
+        "sensors": sensors,
+        "contacts": sim.contacts,
+        "energy": sim.energy,
+    })
+}
+
+pub fn transient_table(model: &str, settings: &SimulationSettings, sim: &Simulation) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "model {model}: {} steps to {:.4e} s (step {:.2e} s, shortest {:.2e} s), {:.2} Newton iterations/step{}",
+        sim.stats.steps,
+        settings.transient.end_time,
+        settings.transient.step,
+        sim.min_step,
+        sim.stats.newton_iterations as f64 / sim.stats.steps.max(1) as f64,
+        if settings.from_equilibrium { ", from the static equilibrium" } else { "" }
+    );
+    for (id, v) in &sim.sensors {
+        let (lo, hi) = v
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
+        let last = v.last().copied().unwrap_or(f64::NAN);
+        let _ = writeln!(
+            s,
+            "sensor {id}: min {lo:.6e}, max {hi:.6e}, final {last:.6e}"
+        );
+    }
+    for c in &sim.contacts {
+        let _ = writeln!(
+            s,
+            "contact {}: max penetration {:.3e} m, max force {:.4} N, {} impacts, dissipated {:.3e} J",
+            c.id, c.max_penetration, c.max_force, c.impacts, c.dissipated
+        );
+    }
+    let e = &sim.energy;
+    let _ = writeln!(
+        s,
+        "energy balance: error {:.3e} J against {:.4e} J stored (load work {:.4e} J, contact dissipation {:.4e} J)",
+        e.error_j, e.stored_j, e.load_work_j, e.contact_dissipation_j
+    );
+    s
+}
+
+pub fn transient_csv(sim: &Simulation) -> String {
+    let mut s = String::from("time_s");
+    for (id, _) in &sim.sensors {
+        let _ = write!(s, ",{id}");
+    }
+    s.push('\n');
+    for (k, t) in sim.time.iter().enumerate() {
+        let _ = write!(s, "{t:.9e}");
+        for (_, v) in &sim.sensors {
+            let _ = write!(s, ",{:.9e}", v[k]);
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// One panel per sensor against time in ms.
+pub fn transient_figure(model: &str, sim: &Simulation) -> LineFigure {
+    let mut fig = LineFigure::new(format!("Transient: {model}"), "Time", Scale::ms());
+    for ((id, v), q) in sim.sensors.iter().zip(&sim.quantities) {
+        let max = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let unit = match q {
+            SensorQuantity::Displacement => "m",
+            SensorQuantity::Velocity => "m/s",
+            SensorQuantity::Acceleration => "m/s²",
+        };
+        let mut p = Panel::new(id.clone(), Scale::si(unit, max));
+        p.series
+            .push(Series::line(id.clone(), sim.time.clone(), v.clone()));
+        p.legend = Legend::None;
+        fig.panels.push(p);
+    }
+    fig
+}

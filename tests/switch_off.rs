@@ -1,0 +1,214 @@
+//! The switch-off experiment: the calibrated built-in run against the
+//! paper, its discretization and energy balance, rigid beams against the
+//! flexible ones (mass, centre, inertia, and the E → ∞ limit), and the
+//! `switch-off` / `transient` command lines.
+
+mod common;
+use ancf_modal::analysis::switch_off::{run_switch_off, SwitchOffSettings};
+use ancf_modal::model::Model;
+use ancf_modal::System;
+use assert_cmd::Command;
+use common::model;
+use serde_json::{json, Value};
+
+#[test]
+fn builtin_switch_off_reaches_2_mm_at_the_papers_time_with_a_converged_step() {
+    let settings = SwitchOffSettings {
+        halve_step: true,
+        ..SwitchOffSettings::default()
+    };
+    let r = run_switch_off(&Model::switch_off_builtin(), &settings).unwrap();
+    let t = r.flexible.time_to_distance_s.expect("node 0 reaches 2 mm");
+    assert!(
+        (t - 1.75e-3).abs() <= 0.1 * 1.75e-3,
+        "time to 2 mm {t:.4e} s vs the paper's 1.75 ms ± 10 %"
+    );
+    let half = r.half_step_time_s.expect("reached at half the step too");
+    assert!(
+        ((half - t) / t).abs() < 0.01,
+        "time to 2 mm at half the step {half:.6e} vs {t:.6e}: not converged to 1 %"
+    );
+    let e = &r.flexible.energy;
+    assert!(
+        e.error_j.abs() < 0.01 * e.stored_j,
+        "energy balance error {:.3e} J vs 1 % of the stored {:.3e} J",
+        e.error_j,
+        e.stored_j
+    );
+    // The released spring does work: kinetic energy appears.
+    assert!(e.end.kinetic_j > 0.0);
+}
+
+/// A beam hanging from a pin with a torsion spring, held turned by a tip
+/// load that is released at t = 0.
+fn pendulum(rigid: bool, young: f64) -> Model {
+    model(json!({
+        "name": "pendulum",
+        "beams": [{"id": "b", "start": [0.0, 0.0], "angle_deg": -90.0, "length": 0.05,
+                   "elements": 6, "rigid": rigid,
+                   "section": {"height": 1e-3, "width": 4e-3},
+                   "material": {"young": young, "density": 7800.0}}],
+        "joints": [{"type": "pin", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "b", "s": 0.0},
+                    "torsion_stiffness": 1.0}],
+        "loads": [{"at": {"beam": "b", "s": 0.05}, "force": [2.0, 0.0], "time": {"until": 0.0}}]
+    }))
+}
+
+/// q̇ of a rigid rotation at rate ω about the origin.
+fn spin(sys: &System, omega: f64) -> Vec<f64> {
+    let q = &sys.q0;
+    let mut v = vec![0.0; sys.ndof()];
+    for b in &sys.beams {
+        for k in 0..b.node_count() {
+            let i = b.dof0 + 4 * k;
+            for j in [i, i + 2] {
+                v[j] = -omega * q[j + 1];
+                v[j + 1] = omega * q[j];
+            }
+        }
+    }
+    for r in &sys.rigid_bodies {
+        let i = r.dof0;
+        v[i] = -omega * q[i + 1];
+        v[i + 1] = omega * q[i];
+        v[i + 2] = omega;
+    }
+    v
+}
+
+#[test]
+fn a_rigid_beam_has_the_mass_centre_and_inertia_of_the_flexible_one() {
+    let flexible = System::new(&pendulum(false, 2e11));
+    let rigid = System::new(&pendulum(true, 2e11));
+    let m_f = flexible.total_mass();
+    let m_r = rigid.total_mass();
+    assert!(((m_r - m_f) / m_f).abs() < 1e-14, "mass {m_r} vs {m_f}");
+    // A rigid rotation ω about the origin: p = m ω × c gives the centre,
+    // L = I_O ω the inertia.
+    let (p_f, l_f) = flexible.momentum(&flexible.q0, &spin(&flexible, 2.0));
+    let (p_r, l_r) = rigid.momentum(&rigid.q0, &spin(&rigid, 2.0));
+    assert!(p_f.norm() > 0.0);
+    assert!(
+        (p_r - p_f).norm() <= 1e-12 * p_f.norm(),
+        "momentum {p_r} vs {p_f}: the centres differ"
+    );
+    assert!(
+        ((l_r - l_f) / l_f).abs() < 1e-12,
+        "angular momentum {l_r} vs {l_f}: the inertias differ"
+    );
+}
+
+#[test]
+fn a_stiffening_flexible_release_converges_to_the_rigid_one() {
+    let settings = SwitchOffSettings {
+        end_time: 3e-3,
+        step: 1e-6,
+        distance: 4e-3,
+        direction: [-1.0, 0.0],
+        point: Some(ancf_modal::model::PointSpec {
+            beam: Some("b".into()),
+            s: Some(0.05),
+            ..Default::default()
+        }),
+        ..SwitchOffSettings::default()
+    };
+    let time = |m: &Model| {
+        run_switch_off(m, &settings)
+            .unwrap()
+            .flexible
+            .time_to_distance_s
+            .expect("the tip travels 4 mm back")
+    };
+    let rigid = time(&pendulum(true, 2e11));
+    let errors: Vec<f64> = [2e11, 2e12, 2e13]
+        .iter()
+        .map(|&e| ((time(&pendulum(false, e)) - rigid) / rigid).abs())
+        .collect();
+    assert!(
+        errors[1] < errors[0] && errors[2] < errors[1],
+        "the flexible time approaches the rigid one as E grows: {errors:?}"
+    );
+    assert!(
+        errors[2] < 1e-2,
+        "E = 2e13 Pa: {:.2e} from the rigid time",
+        errors[2]
+    );
+}
+
+fn bin() -> Command {
+    Command::cargo_bin("ancf-modal").unwrap()
+}
+
+#[test]
+fn switch_off_json_has_the_designed_keys() {
+    let out = bin()
+        .args(["switch-off", "--compare-rigid", "--no-step-check", "--json"])
+        .assert()
+        .success();
+    let doc: Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
+    for key in [
+        "model",
+        "distance_m",
+        "time_to_distance_s",
+        "node0",
+        "max_penetration_m",
+        "energy",
+        "rigid",
+    ] {
+        assert!(doc.get(key).is_some(), "key `{key}` missing");
+    }
+    let n = doc["node0"]["time_s"].as_array().unwrap().len();
+    assert_eq!(doc["node0"]["x_m"].as_array().unwrap().len(), n);
+    // 3 ms at the camera's 67.2 kHz.
+    assert_eq!(n, (3e-3f64 * 67.2e3).floor() as usize + 1);
+    assert!(doc["rigid"]["time_to_distance_s"].is_number());
+}
+
+#[test]
+fn transient_json_reports_sensors_and_contacts() {
+    let out = bin()
+        .args([
+            "transient",
+            "models/rcbo_switch_off.json",
+            "--from-equilibrium",
+            "--end-time",
+            "5e-4",
+            "--json",
+        ])
+        .assert()
+        .success();
+    let doc: Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
+    let n = doc["time_s"].as_array().unwrap().len();
+    assert_eq!(doc["sensors"]["node0_x"].as_array().unwrap().len(), n);
+    let c = &doc["contacts"][0];
+    assert_eq!(c["id"], "pin_in_slot");
+    assert!(
+        c["max_penetration_m"].as_f64().unwrap() > 0.0,
+        "the ON state presses the pin"
+    );
+    assert!(c["impacts"].is_number() && c["max_force_n"].is_number());
+}
+
+#[test]
+fn bad_switch_off_settings_are_one_line_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("x.csv");
+    let out = bin()
+        .args(["switch-off", "--distance", "0", "--csv"])
+        .arg(&csv)
+        .assert()
+        .code(1);
+    let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(
+        err.starts_with("Error: ") && err.contains("--distance"),
+        "{err}"
+    );
+    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
+    assert!(!csv.exists(), "no output file on error");
+    let out = bin()
+        .args(["switch-off", "--point", "nope:0.0"])
+        .assert()
+        .code(1);
+    let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(err.contains("--point") && err.contains("nope"), "{err}");
+}
