@@ -18,6 +18,7 @@ pub mod error;
 pub mod joint;
 pub mod linalg;
 pub mod load;
+pub mod measured;
 pub mod model;
 pub mod output;
 pub mod pair;

@@ -25,6 +25,14 @@ pub struct ModalArgs {
     /// Also draw the first six elastic mode shapes (of those reported) to this file (.svg or .png).
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
+    /// Also write the elastic modes as UFF 15 (nodes) and 55 (normal modes,
+    /// mass-normalised translations at beam nodes and body points).
+    #[arg(long, value_name = "FILE")]
+    pub uff: Option<PathBuf>,
+    /// Also print the MAC matrix against another mode set: a model file
+    /// (.json) or a UFF file with datasets 55, matched by node number.
+    #[arg(long, value_name = "OTHER")]
+    pub mac: Option<PathBuf>,
     /// Linearize at the static equilibrium under the model's constant loads
     /// and gravity (pre-stress) and show the unstressed frequencies beside.
     #[arg(long)]

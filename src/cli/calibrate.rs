@@ -59,6 +59,10 @@ pub struct CalibrateArgs {
         allow_negative_numbers = true
     )]
     pub target: Vec<f64>,
+    /// Take the targets from the `peaks` of an `frf --json` result (in
+    /// order of frequency; as many as --mode lists, or all).
+    #[arg(long, value_name = "RESULT.json", conflicts_with = "target")]
+    pub target_from: Option<PathBuf>,
     /// Parameter to fit, repeatable: height, width, young, density,
     /// ID.mass, ID.inertia, ID.torsion_stiffness, ID.stiffness (or
     /// BEAM.height, …), optionally with bounds in SI units: NAME=LO:HI.
@@ -125,9 +129,60 @@ fn parse_param(s: &str) -> Result<ParameterSpec, String> {
     })
 }
 
+/// Frequencies of the `peaks` of an `frf --json` document, ascending; the
+/// first `count` of them (all when `count` is 0).
+fn targets_from(path: &std::path::Path, count: usize) -> Result<Vec<f64>> {
+    use anyhow::Context;
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("{}: cannot read the file", path.display()))?;
+    let doc: serde_json::Value = serde_json::from_str(&text)
+        .with_context(|| format!("{}: not a JSON document", path.display()))?;
+    let peaks = doc["peaks"].as_array().with_context(|| {
+        format!(
+            "{}: no `peaks` array (write it with `ancf-modal frf --json`)",
+            path.display()
+        )
+    })?;
+    let mut f = peaks
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            p["frequency_hz"]
+                .as_f64()
+                .filter(|f| f.is_finite() && *f > 0.0)
+                .with_context(|| {
+                    format!(
+                        "{}: peaks[{i}].frequency_hz is not a positive number",
+                        path.display()
+                    )
+                })
+        })
+        .collect::<Result<Vec<f64>>>()?;
+    if f.is_empty() {
+        anyhow::bail!(
+            "{}: the frf result holds no peak to calibrate to",
+            path.display()
+        );
+    }
+    f.sort_by(f64::total_cmp);
+    if count > 0 {
+        if f.len() < count {
+            anyhow::bail!(
+                "{}: {} peak(s), but --mode lists {count} modes",
+                path.display(),
+                f.len()
+            );
+        }
+        f.truncate(count);
+    }
+    Ok(f)
+}
+
 /// The request from the flags and the model.
 pub fn request(args: &CalibrateArgs, model: &Model) -> Result<CalibrationRequest> {
-    let targets_hz = if args.target.is_empty() {
+    let targets_hz = if let Some(path) = &args.target_from {
+        targets_from(path, args.mode.len())?
+    } else if args.target.is_empty() {
         match &model.reference {
             Some(r) => vec![r.first_bending_hz],
             None => return Err(CalibrationError::NoTargets.into()),

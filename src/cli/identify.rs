@@ -40,6 +40,53 @@ pub struct IdentifyArgs {
     /// --out-dir the calibrated model is written as calibrated.json.
     #[arg(long)]
     pub calibrate: bool,
+    /// Measured hammer records (CSV or UFF 58, as for `frf`): their fitted
+    /// mode nearest the model's first bending frequency replaces the
+    /// model's `reference` as the experiment.
+    #[arg(long, value_name = "FILE", num_args = 1..)]
+    pub measured: Vec<PathBuf>,
+    /// Window of the measured records (see `frf --window`).
+    #[arg(long, value_name = "W", default_value = "rect", requires = "measured", value_parser = |s: &str| s.parse::<ancf_modal::measured::window::Window>())]
+    pub measured_window: ancf_modal::measured::window::Window,
+    /// Fit band of the measured records, LO:HI in Hz (see `frf --band`).
+    #[arg(long, value_name = "LO:HI", requires = "measured", value_parser = super::frf::parse_band)]
+    pub measured_band: Option<(f64, f64)>,
+}
+
+/// How the model is held: "free-free", or the kinds of its ground
+/// connections ("clamped", "pinned", "roller", "spring-supported").
+fn supports(model: &Model) -> String {
+    let mut kinds: Vec<&str> = Vec::new();
+    let grounded = |a: &ancf_modal::model::PointSpec, b: &ancf_modal::model::PointSpec| {
+        a.ground.is_some() || b.ground.is_some()
+    };
+    for j in &model.joints {
+        if grounded(&j.a, &j.b) {
+            kinds.push(match j.kind {
+                ancf_modal::model::JointType::Weld => "clamped",
+                ancf_modal::model::JointType::Pin => "pinned",
+                ancf_modal::model::JointType::Slider => "roller",
+            });
+        }
+    }
+    if model.springs.iter().any(|s| grounded(&s.a, &s.b)) {
+        kinds.push("spring-supported");
+    }
+    kinds.dedup();
+    if kinds.is_empty() {
+        "free-free".into()
+    } else {
+        kinds.join(", ")
+    }
+}
+
+/// Whether the model's reference is the paper's Table 3 (then the paper's
+/// own model rows belong in the comparison).
+fn names_the_paper(model: &Model) -> bool {
+    model
+        .reference
+        .as_ref()
+        .is_some_and(|r| r.source.to_ascii_lowercase().contains("paper"))
 }
 
 /// Figures `--out-dir` holds, each as .svg and .png.
@@ -87,40 +134,91 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
     .with_context(|| source_label(args.model.as_deref()))?;
     let impulse = experiment(&model, args.model.as_deref(), &args.experiment)?;
     let table3 = reference::table3();
-    let experiment_hz = model
-        .reference
-        .as_ref()
-        .map_or(table3.experiment_hz, |r| r.first_bending_hz);
-    let calibration = if args.calibrate {
-        Some(super::calibrate::equivalent_height(&model, experiment_hz)?)
-    } else {
-        None
-    };
     let eigen = modal.first_bending().map(|m| m.frequency_hz);
-    let fft = impulse.first_bending.map(|f| f.corrected_hz);
-    let rows: Vec<(&str, Option<f64>)> = vec![
-        ("experiment (paper Table 3)", Some(experiment_hz)),
-        ("this tool, eigenvalue", eigen),
-        ("this tool, impulse + FFT (corrected)", fft),
-        (
-            "this tool, impulse + FFT (raw)",
-            impulse.first_bending.map(|f| f.raw_hz),
+    let measured = if args.measured.is_empty() {
+        None
+    } else {
+        let m = super::frf::MeasuredArgs {
+            force: None,
+            response: None,
+            response_quantity: super::frf::Quantity::Velocity,
+            window: args.measured_window,
+            estimator: super::frf::EstimatorArg::H1,
+            band: args.measured_band,
+            max_order: 40,
+        };
+        Some(m.analyse(&args.measured)?)
+    };
+    let paper = names_the_paper(&model) && measured.is_none();
+    // The experiment: the measured mode nearest the model's first bending
+    // frequency, or the model's reference; none without either.
+    let experiment: Option<(String, f64)> = match (&measured, &model.reference) {
+        (Some(a), _) => {
+            let near = eigen.unwrap_or(0.0);
+            a.fit
+                .modes
+                .iter()
+                .min_by(|x, y| {
+                    (x.frequency_hz - near)
+                        .abs()
+                        .total_cmp(&(y.frequency_hz - near).abs())
+                })
+                .map(|m| ("measured (frf fit)".to_string(), m.frequency_hz))
+        }
+        (None, Some(r)) if paper => Some(("experiment (paper Table 3)".into(), r.first_bending_hz)),
+        (None, Some(r)) if !r.source.trim().is_empty() => Some((
+            format!("experiment ({})", r.source.trim()),
+            r.first_bending_hz,
+        )),
+        (None, Some(r)) => Some(("experiment (model reference)".into(), r.first_bending_hz)),
+        (None, None) => None,
+    };
+    let experiment_hz = experiment.as_ref().map(|e| e.1);
+    let calibration = match (args.calibrate, experiment_hz) {
+        (true, Some(f)) => Some(super::calibrate::equivalent_height(&model, f)?),
+        (true, None) => anyhow::bail!(
+            "--calibrate needs an experiment: the model has no `reference` and no --measured records were given"
         ),
-        ("paper, ANCF", Some(table3.ancf_hz)),
-        ("paper, ANSYS BEAM188", Some(table3.ansys_hz)),
-    ];
+        _ => None,
+    };
+    let fft = impulse.first_bending.map(|f| f.corrected_hz);
+    let mut rows: Vec<(String, Option<f64>)> = Vec::new();
+    if let Some((label, f)) = &experiment {
+        rows.push((label.clone(), Some(*f)));
+    }
+    rows.push(("this tool, eigenvalue".into(), eigen));
+    rows.push(("this tool, impulse + FFT (corrected)".into(), fft));
+    rows.push((
+        "this tool, impulse + FFT (raw)".into(),
+        impulse.first_bending.map(|f| f.raw_hz),
+    ));
+    if paper {
+        rows.push(("paper, ANCF".into(), Some(table3.ancf_hz)));
+        rows.push(("paper, ANSYS BEAM188".into(), Some(table3.ansys_hz)));
+    }
+    let errors = |f: &Option<f64>| f.zip(experiment_hz).map(|(f, e)| Errors::new(f, e));
     let summary = json!({
         "model": model.name,
+        "supports": supports(&model),
         "experiment_hz": experiment_hz,
         "table": rows.iter().map(|(name, f)| json!({
             "source": name,
             "first_bending_hz": f,
-            "error_percent": f.map(|f| Errors::new(f, experiment_hz).error_percent),
-            "paper_error_percent": f.map(|f| Errors::new(f, experiment_hz).paper_error_percent),
+            "error_percent": errors(f).map(|e| e.error_percent),
+            "paper_error_percent": errors(f).map(|e| e.paper_error_percent),
         })).collect::<Vec<_>>(),
-        "reference_source": reference::source(),
+        "reference_source": if paper { Some(reference::source()) } else { model.reference.as_ref().map(|r| r.source.clone()) },
+        "measured": measured.as_ref().map(|a| json!({
+            "files": a.files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
+            "band_hz": [a.band.0, a.band.1],
+            "peaks": a.fit.modes.iter().map(|m| json!({
+                "frequency_hz": m.frequency_hz,
+                "damping_ratio": m.damping_ratio,
+                "magnitude": m.magnitude,
+            })).collect::<Vec<_>>(),
+        })),
         "modal": modal_json(&model.name, &modal),
-        "impulse": impulse_json(&model.name, &impulse, Some(experiment_hz)),
+        "impulse": impulse_json(&model.name, &impulse, experiment_hz),
         "calibration": calibration.as_ref().map(|c| calibrate_json(&model.name, c)),
     });
     if let Some(dir) = &args.out_dir {
@@ -148,8 +246,10 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "model {}: first bending frequency, free-free (paper Table 3)",
-        model.name
+        "model {}: first bending frequency, {}{}",
+        model.name,
+        supports(&model),
+        if paper { " (paper Table 3)" } else { "" }
     );
     let _ = writeln!(
         s,
@@ -157,19 +257,46 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         "", "f [Hz]", "(f−exp)/exp", "paper: (exp−f)/f"
     );
     for (name, f) in &rows {
-        match f {
-            Some(f) => {
-                let e = Errors::new(*f, experiment_hz);
+        match (f, errors(f)) {
+            (Some(f), Some(e)) => {
                 let _ = writeln!(
                     s,
                     "{name:<40} {f:>12.2} {:>13.2}% {:>15.2}%",
                     e.error_percent, e.paper_error_percent
                 );
             }
-            None => {
+            (Some(f), None) => {
+                let _ = writeln!(s, "{name:<40} {f:>12.2}");
+            }
+            (None, _) => {
                 let _ = writeln!(s, "{name:<40} {:>12}", "–");
             }
         }
+    }
+    if experiment.is_none() {
+        let _ = writeln!(
+            s,
+            "no experiment to compare with: give the model a `reference` or measured records with --measured"
+        );
+    }
+    if let Some(a) = &measured {
+        let _ = writeln!(
+            s,
+            "measured modes ({} over {:.0}–{:.0} Hz): {}",
+            a.files.len(),
+            a.band.0,
+            a.band.1,
+            a.fit
+                .modes
+                .iter()
+                .map(|m| format!(
+                    "{:.1} Hz (ζ {:.3} %)",
+                    m.frequency_hz,
+                    100.0 * m.damping_ratio
+                ))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
     }
     if let Some(fb) = impulse.first_bending {
         let _ = writeln!(

@@ -74,6 +74,10 @@ pub struct ImpulseArgs {
     /// stem + `.response.<ext>` beside it (x.png → x.response.png).
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
+    /// Write the force and the sensor records as UFF 58 time data (read
+    /// back by `frf` and pyuff).
+    #[arg(long, value_name = "FILE")]
+    pub uff: Option<PathBuf>,
 }
 
 /// Run the experiment with a progress line on a terminal.
@@ -118,6 +122,22 @@ pub fn run(args: ImpulseArgs) -> Result<()> {
     if let Some(path) = &args.csv {
         write_output(path, &signal_csv(&result))?;
         write_output(&spectrum_path(path), &spectrum_csv(&result))?;
+    }
+    if let Some(path) = &args.uff {
+        let provenance = format!(
+            "ancf-modal {} model {}",
+            ancf_modal::output::provenance::tool_version(),
+            model.name
+        );
+        let text = ancf_modal::output::records_uff::time_records_uff(
+            &result.time,
+            &result.force,
+            &result.signal,
+            &result.sensor,
+            result.quantity,
+            &provenance,
+        );
+        write_output(path, &text)?;
     }
     if let Some(path) = &args.plot {
         let response = response_path(path);

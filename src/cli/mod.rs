@@ -5,6 +5,7 @@ mod args;
 mod calibrate;
 mod common;
 mod convergence;
+mod frf;
 mod identify;
 mod impulse;
 mod modal;
@@ -50,6 +51,9 @@ pub enum Command {
     SwitchOff(switch_off::SwitchOffArgs),
     /// Print the JSON Schema of the model file.
     Schema,
+    /// Measured hammer records (CSV, UFF 58) in: H1, H2, coherence, and the
+    /// modes' frequencies and damping ratios (LSCF fit).
+    Frf(frf::FrfArgs),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -71,5 +75,6 @@ pub fn run(cli: Cli) -> Result<()> {
             );
             Ok(())
         }
+        Command::Frf(a) => frf::run(a),
     }
 }

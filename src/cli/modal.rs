@@ -2,10 +2,15 @@
 
 use super::args::ModalArgs;
 use super::common::{load_model, source_label, write_output};
-use ancf_modal::analysis::{modal_at_reference, ModalSettings};
+use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings, Mode, ModeKind};
+use ancf_modal::measured::mac::mac;
+use ancf_modal::measured::uff::d55::read_modes;
+use ancf_modal::model::Model;
 use ancf_modal::output::modal_report::{modal_csv, modal_json, modal_table};
+use ancf_modal::output::modal_uff::{export_nodes, modal_uff, translations};
 use ancf_modal::System;
 use anyhow::{Context, Result};
+use std::path::Path;
 
 pub fn run(args: ModalArgs) -> Result<()> {
     if let Some(range) = args.sweep_load {
@@ -22,19 +27,158 @@ pub fn run(args: ModalArgs) -> Result<()> {
     }
     let result = modal_at_reference(&system, &settings)
         .with_context(|| source_label(args.model.as_deref()))?;
+    let mac = match &args.mac {
+        Some(other) => Some(mac_against(&system, &result, other, &settings)?),
+        None => None,
+    };
     if let Some(path) = &args.csv {
         write_output(path, &modal_csv(&result))?;
+    }
+    if let Some(path) = &args.uff {
+        let provenance = format!(
+            "ancf-modal {}",
+            ancf_modal::output::provenance::tool_version()
+        );
+        write_output(path, &modal_uff(&system, &result, &provenance))?;
     }
     if let Some(path) = &args.plot {
         ancf_modal::output::figures::write_mode_shapes(&system, &system.q0, &result, path)?;
     }
+    let ratio = |m: &Mode| -> Option<f64> {
+        (m.kind != ModeKind::Rigid).then(|| {
+            model.damping.map_or(0.0, |d| {
+                d.ratio(2.0 * std::f64::consts::PI * m.frequency_hz)
+            })
+        })
+    };
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&modal_json(&model.name, &result))?
-        );
+        let mut doc = modal_json(&model.name, &result);
+        if let Some(modes) = doc["modes"].as_array_mut() {
+            for (entry, m) in modes.iter_mut().zip(&result.modes) {
+                entry["damping_ratio"] = serde_json::json!(ratio(m));
+            }
+        }
+        if let Some((rows, cols, m)) = &mac {
+            doc["mac"] = serde_json::json!({
+                "rows_hz": rows, "columns_hz": cols,
+                "matrix": m.row_iter().map(|r| r.iter().copied().collect::<Vec<f64>>()).collect::<Vec<_>>(),
+            });
+        }
+        println!("{}", serde_json::to_string_pretty(&doc)?);
     } else {
         print!("{}", modal_table(&model.name, &result));
+        if let Some(d) = model.damping {
+            let ratios: Vec<String> = result
+                .modes
+                .iter()
+                .filter_map(|m| ratio(m).map(|z| format!("mode {}: {:.4} %", m.index, 100.0 * z)))
+                .collect();
+            println!(
+                "Rayleigh damping (α = {} 1/s, β = {:e} s), ζ = α/(2ω) + βω/2: {}",
+                d.alpha,
+                d.beta,
+                ratios.join(", ")
+            );
+        }
+        if let Some((rows, cols, m)) = &mac {
+            print!("{}", mac_table(rows, cols, m));
+        }
     }
     Ok(())
+}
+
+type Mac = (Vec<f64>, Vec<f64>, nalgebra::DMatrix<f64>);
+
+fn elastic(r: &ModalResult) -> Vec<&Mode> {
+    r.modes
+        .iter()
+        .filter(|m| m.kind != ModeKind::Rigid)
+        .collect()
+}
+
+/// The MAC of this model's elastic modes (rows) against `other`'s
+/// (columns), on the translations at the export nodes.
+fn mac_against(
+    system: &System,
+    result: &ModalResult,
+    other: &Path,
+    settings: &ModalSettings,
+) -> Result<Mac> {
+    let nodes = export_nodes(system);
+    let mine: Vec<Vec<f64>> = elastic(result)
+        .iter()
+        .map(|m| translations(&nodes, &m.shape))
+        .collect();
+    let rows: Vec<f64> = elastic(result).iter().map(|m| m.frequency_hz).collect();
+    let is_json = other
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+    let (cols, theirs): (Vec<f64>, Vec<Vec<f64>>) = if is_json {
+        let model = Model::from_file(other)?;
+        let sys = System::new(&model);
+        let r = modal_at_reference(&sys, settings).with_context(|| other.display().to_string())?;
+        let their_nodes = export_nodes(&sys);
+        if their_nodes.len() != nodes.len() {
+            anyhow::bail!(
+                "{}: {} export nodes, this model has {}: the MAC needs the same nodes",
+                other.display(),
+                their_nodes.len(),
+                nodes.len()
+            );
+        }
+        let e = elastic(&r);
+        (
+            e.iter().map(|m| m.frequency_hz).collect(),
+            e.iter()
+                .map(|m| translations(&their_nodes, &m.shape))
+                .collect(),
+        )
+    } else {
+        let text = std::fs::read_to_string(other)
+            .with_context(|| format!("{}: cannot read the file", other.display()))?;
+        let (_, modes) = read_modes(other, &text)?;
+        if modes.is_empty() {
+            anyhow::bail!(
+                "{}: no UFF dataset 55 (normal modes) in the file",
+                other.display()
+            );
+        }
+        let mut shapes = Vec::new();
+        for m in &modes {
+            let mut v = Vec::with_capacity(2 * nodes.len());
+            for n in &nodes {
+                let (_, t) = m.nodes.iter().find(|(l, _)| *l == n.label).ok_or_else(|| {
+                    anyhow::anyhow!(
+                        "{}: mode {} has no node {} ({})",
+                        other.display(),
+                        m.mode_number,
+                        n.label,
+                        n.name
+                    )
+                })?;
+                v.extend([t[0], t[1]]);
+            }
+            shapes.push(v);
+        }
+        (modes.iter().map(|m| m.frequency_hz).collect(), shapes)
+    };
+    Ok((rows, cols, mac(&mine, &theirs)))
+}
+
+fn mac_table(rows: &[f64], cols: &[f64], m: &nalgebra::DMatrix<f64>) -> String {
+    use std::fmt::Write;
+    let mut s = String::from("MAC (rows: this model, columns: the other set) [Hz]\n");
+    let _ = write!(s, "{:>10}", "");
+    for c in cols {
+        let _ = write!(s, " {c:>9.1}");
+    }
+    s.push('\n');
+    for (i, r) in rows.iter().enumerate() {
+        let _ = write!(s, "{r:>10.1}");
+        for j in 0..cols.len() {
+            let _ = write!(s, " {:>9.3}", m[(i, j)]);
+        }
+        s.push('\n');
+    }
+    s
 }

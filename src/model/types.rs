@@ -39,6 +39,9 @@ pub struct Model {
     pub contacts: Vec<super::contact::Contact>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reference: Option<Reference>,
+    /// Rayleigh damping C = αM + βK of the whole assembly.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping: Option<RayleighDamping>,
 }
 
 /// A straight, stress-free ANCF cable beam in its reference configuration.
@@ -273,6 +276,32 @@ pub struct Sensor {
     /// Measuring direction (any length): global for `global`, the beam's
     /// initial tangent/normal frame for `corotated`.
     pub direction: [f64; 2],
+}
+
+/// Rayleigh (proportional) damping C = αM + βK. α acts on absolute
+/// coordinates, so it also slows a free assembly's rigid drift.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RayleighDamping {
+    /// Mass-proportional factor α [SI: 1/s].
+    #[serde(default)]
+    pub alpha: f64,
+    /// Stiffness-proportional factor β [SI: s].
+    #[serde(default)]
+    pub beta: f64,
+}
+
+impl RayleighDamping {
+    /// Damping ratio of an undamped mode of angular frequency ω [rad/s]:
+    /// ζ = α/(2ω) + βω/2 (infinite at ω = 0 when α > 0).
+    pub fn ratio(&self, omega: f64) -> f64 {
+        let a = if self.alpha == 0.0 {
+            0.0
+        } else {
+            self.alpha / (2.0 * omega)
+        };
+        a + 0.5 * self.beta * omega
+    }
 }
 
 /// Measured data the model is compared with.

@@ -288,6 +288,10 @@ impl Model {
         if let Some(r) = &self.reference {
             check_positive(r.first_bending_hz, "reference.first_bending_hz")?;
         }
+        if let Some(d) = &self.damping {
+            check_non_negative(d.alpha, "damping.alpha")?;
+            check_non_negative(d.beta, "damping.beta")?;
+        }
         Ok(())
     }
 

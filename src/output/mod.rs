@@ -3,9 +3,13 @@
 pub mod calibrate_report;
 pub mod figures;
 pub mod files;
+pub mod frf_report;
 pub mod impulse_report;
 pub mod modal_report;
+pub mod modal_uff;
 pub mod plot;
+pub mod provenance;
+pub mod records_uff;
 pub mod static_report;
 pub mod sweep_report;
 pub mod switch_off_report;

@@ -196,26 +196,37 @@ pub fn static_table(r: &StaticReport) -> String {
         "model {}: static equilibrium at load factor {}: {} load steps, {} Newton iterations, unbalanced force {:.2e} N, constraint violation {:.2e}",
         r.model, r.load_scale, r.load_steps, r.iterations, r.residual, r.constraint_violation
     );
-    let _ = writeln!(s, "\nnodes");
-    let _ = writeln!(
-        s,
-        "{:<10} {:>4} {:>8} {:>10} {:>10} {:>11} {:>11} {:>9} {:>11}",
-        "beam", "node", "s [mm]", "x [mm]", "y [mm]", "ux [mm]", "uy [mm]", "slope [°]", "strain"
-    );
-    for n in &r.nodes {
+    // A model without beams has no nodes: no empty table.
+    if !r.nodes.is_empty() {
+        let _ = writeln!(s, "\nnodes");
         let _ = writeln!(
             s,
-            "{:<10} {:>4} {:>8.3} {:>10.4} {:>10.4} {:>11.4e} {:>11.4e} {:>9.3} {:>11.3e}",
-            n.beam,
-            n.node,
-            1e3 * n.s,
-            1e3 * n.position[0],
-            1e3 * n.position[1],
-            1e3 * n.displacement[0],
-            1e3 * n.displacement[1],
-            n.slope_deg,
-            n.strain
+            "{:<10} {:>4} {:>8} {:>10} {:>10} {:>11} {:>11} {:>9} {:>11}",
+            "beam",
+            "node",
+            "s [mm]",
+            "x [mm]",
+            "y [mm]",
+            "ux [mm]",
+            "uy [mm]",
+            "slope [°]",
+            "strain"
         );
+        for n in &r.nodes {
+            let _ = writeln!(
+                s,
+                "{:<10} {:>4} {:>8.3} {:>10.4} {:>10.4} {:>11.4e} {:>11.4e} {:>9.3} {:>11.3e}",
+                n.beam,
+                n.node,
+                1e3 * n.s,
+                1e3 * n.position[0],
+                1e3 * n.position[1],
+                1e3 * n.displacement[0],
+                1e3 * n.displacement[1],
+                n.slope_deg,
+                n.strain
+            );
+        }
     }
     if !r.bodies.is_empty() {
         let _ = writeln!(s, "\nbodies");

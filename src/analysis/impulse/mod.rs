@@ -11,9 +11,11 @@
 //! ([`super::dispersion::GenAlpha::true_frequency_from_observed`]); both
 //! the raw and the corrected values are reported.
 //!
-//! Between steps the sensor signal is interpolated with cubic Hermite
-//! polynomials (value and rate at both ends), so sampling adds no error of
-//! its own at the step sizes used.
+//! The sensor is read at every step and, with a sample rate, resampled
+//! behind an anti-aliasing low-pass (band-limited interpolation,
+//! [`crate::measured::decimate`]), as an acquisition system filters before
+//! it samples: the modes above the Nyquist frequency (29.3 and 30.6 kHz of
+//! the paper's assembly at 51.2 kHz) do not fold into the spectrum.
 
 pub mod sensor;
 pub mod spectrum;
@@ -22,6 +24,7 @@ use super::modal::{modal_at_reference, ModalResult, ModalSettings, ModeKind};
 use super::transient::dispersion::{DispersionError, GenAlpha};
 use super::transient::{Integrator, RunStats, State, TransientSettings};
 use crate::error::{AnalysisError, TransientError};
+use crate::measured::decimate::{resample, AntiAlias};
 use crate::model::{Model, SensorQuantity, TimeFunction};
 use crate::system::System;
 use sensor::SensorProbe;
@@ -219,22 +222,17 @@ pub fn run_impulse(
             progress(done as f64 / total as f64);
         }
     })?;
-    let force: Vec<f64> = recorder
-        .time
-        .iter()
-        .map(|&t| pulse_magnitude(&system, t))
-        .collect();
+    let (time, signal, force) = recorder.finish(|t| pulse_magnitude(&system, t));
     let sample_rate_hz = settings.sample_rate.unwrap_or(1.0 / h);
-    let spectrum =
-        spectrum::amplitude_spectrum(&recorder.signal, sample_rate_hz, &settings.spectrum)?;
+    let spectrum = spectrum::amplitude_spectrum(&signal, sample_rate_hz, &settings.spectrum)?;
     let peaks = spectrum::find_peaks(&spectrum, &settings.peaks);
     let first_bending = identify_first_bending(&modal, &spectrum, settings)?;
-    let frf = spectrum::frf_h1(&force, &recorder.signal, sample_rate_hz, &settings.spectrum).ok();
+    let frf = spectrum::frf_h1(&force, &signal, sample_rate_hz, &settings.spectrum).ok();
     Ok(ImpulseResult {
         sensor: probe.id().to_string(),
         quantity: probe.point.quantity,
-        time: recorder.time,
-        signal: recorder.signal,
+        time,
+        signal,
         force,
         sample_rate_hz,
         spectrum,
@@ -299,100 +297,50 @@ fn identify_first_bending(
     }))
 }
 
-/// Samples a sensor on a uniform grid by cubic Hermite interpolation between
-/// integrator steps (or at every step). The sensor is read only at the two
-/// ends of the steps that contain a sample time.
+/// The sensor read at every integrator step; with a sample rate, resampled
+/// at the end behind the anti-aliasing low-pass of
+/// [`crate::measured::decimate`] (pass band to 0.4 f_s, −90 dB from the
+/// new Nyquist frequency f_s/2), as acquisition hardware filters before it
+/// samples: modes above f_s/2 leave no folded peak below it. The force
+/// passes the same filter.
 struct Recorder<'p> {
     probe: &'p SensorProbe,
     rate: Option<f64>,
-    end: f64,
     /// Integrator time step [SI: s].
     step: f64,
-    rate_quantity: Option<SensorQuantity>,
-    previous: Option<(f64, f64, f64)>,
-    next_sample: usize,
     time: Vec<f64>,
     signal: Vec<f64>,
 }
 
 impl<'p> Recorder<'p> {
     fn new(probe: &'p SensorProbe, rate: Option<f64>, transient: &TransientSettings) -> Self {
-        let end = transient.end_time;
-        let rate_quantity = match probe.point.quantity {
-            SensorQuantity::Displacement => Some(SensorQuantity::Velocity),
-            SensorQuantity::Velocity => Some(SensorQuantity::Acceleration),
-            SensorQuantity::Acceleration => None,
-        };
-        let capacity = rate.map_or(0, |r| (end * r) as usize + 2);
+        let capacity = (transient.end_time / transient.step) as usize + 2;
         Recorder {
             probe,
             rate,
-            end,
             step: transient.step,
-            rate_quantity,
-            previous: None,
-            next_sample: 0,
             time: Vec::with_capacity(capacity),
             signal: Vec::with_capacity(capacity),
         }
     }
 
     fn record(&mut self, st: &State) {
-        let Some(rate) = self.rate else {
-            self.time.push(st.t);
-            self.signal.push(self.probe.read(st));
-            return;
-        };
-        let next = self.next_sample as f64 / rate;
-        if self.next_sample > 0 && next > st.t + 1.5 * self.step {
-            // No sample in this step nor in the next one.
-            self.previous = None;
-            return;
-        }
-        let value = self.probe.read(st);
-        let slope = self.rate_quantity.map(|q| self.probe.read_as(st, q));
-        let current = (st.t, value, slope.unwrap_or(f64::NAN));
-        let Some((t0, y0, d0)) = self.previous else {
-            if self.next_sample > 0 {
-                // A sample follows within one step: this state starts it.
-                self.previous = Some(current);
-                return;
-            }
-            self.time.push(0.0);
-            self.signal.push(value);
-            self.next_sample = 1;
-            self.previous = Some(current);
-            return;
-        };
-        let (t1, y1, d1) = current;
-        loop {
-            let ts = self.next_sample as f64 / rate;
-            if ts > t1 + 1e-12 * t1.max(1.0) || ts > self.end * (1.0 + 1e-12) {
-                break;
-            }
-            let dt = t1 - t0;
-            let x = ((ts - t0) / dt).clamp(0.0, 1.0);
-            let y = if slope.is_some() {
-                let (h00, h10, h01, h11) = hermite(x);
-                h00 * y0 + h10 * dt * d0 + h01 * y1 + h11 * dt * d1
-            } else {
-                y0 + x * (y1 - y0)
-            };
-            self.time.push(ts);
-            self.signal.push(y);
-            self.next_sample += 1;
-        }
-        self.previous = Some(current);
+        self.time.push(st.t);
+        self.signal.push(self.probe.read(st));
     }
-}
 
-/// Cubic Hermite basis at x ∈ [0, 1].
-fn hermite(x: f64) -> (f64, f64, f64, f64) {
-    let (x2, x3) = (x * x, x * x * x);
-    (
-        2.0 * x3 - 3.0 * x2 + 1.0,
-        x3 - 2.0 * x2 + x,
-        -2.0 * x3 + 3.0 * x2,
-        x3 - x2,
-    )
+    /// Sample times, the (filtered, resampled) sensor signal and force.
+    fn finish(self, force: impl Fn(f64) -> f64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let raw_force: Vec<f64> = self.time.iter().map(|&t| force(t)).collect();
+        let Some(rate) = self.rate else {
+            return (self.time, self.signal, raw_force);
+        };
+        let design = AntiAlias::default();
+        let f_in = 1.0 / self.step;
+        let t0 = self.time.first().copied().unwrap_or(0.0);
+        let signal = resample(&self.signal, f_in, rate, &design);
+        let force = resample(&raw_force, f_in, rate, &design);
+        let time = (0..signal.len()).map(|m| t0 + m as f64 / rate).collect();
+        (time, signal, force)
+    }
 }

@@ -1,0 +1,241 @@
+//! `ancf-modal frf`: measured hammer records (CSV or UFF 58) or a measured
+//! FRF in, H1/H2/coherence and the identified modes out.
+
+use super::common::write_output;
+use ancf_modal::measured::analysis::{analyse, AnalysisSettings, Estimator, FrfAnalysis};
+use ancf_modal::measured::window::Window;
+use ancf_modal::measured::{read_measurement, Channel, Channels};
+use ancf_modal::output::frf_report::{
+    frf_csv, frf_figure, frf_json, frf_table, frf_uff, ResponseQuantity,
+};
+use ancf_modal::output::plot::{render, Figure, Format, PlotSize};
+use anyhow::Result;
+use clap::Args;
+use std::path::PathBuf;
+
+#[derive(Debug, Args)]
+pub struct FrfArgs {
+    /// Measurement files: CSV (header row; time in the first column) or UFF
+    /// 58 (time records, or an FRF). Several hits are averaged.
+    #[arg(required = true, value_name = "SIGNALS")]
+    pub files: Vec<PathBuf>,
+    #[command(flatten)]
+    pub measured: MeasuredArgs,
+    /// Print one JSON document instead of the table.
+    #[arg(long)]
+    pub json: bool,
+    /// Also write frequency, H1, H2, coherence and the fitted FRF as CSV.
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+    /// Also draw the FRF with the fitted modes, the coherence and the
+    /// stabilization diagram (.svg or .png).
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
+    /// Also write H1 and the coherence as UFF 58 (complex double).
+    #[arg(long, value_name = "FILE")]
+    pub uff: Option<PathBuf>,
+    /// Overlay this model's FRF (modal superposition, its Rayleigh damping
+    /// or 0.5 % if it has none) at the sensor --at, per newton of its first
+    /// load.
+    #[arg(long, value_name = "MODEL.json", requires = "at")]
+    pub model: Option<PathBuf>,
+    /// The model's sensor for --model.
+    #[arg(long, value_name = "SENSOR", requires = "model")]
+    pub at: Option<String>,
+}
+
+/// Damping ratio assumed for a model without `damping`.
+const DEFAULT_MODEL_ZETA: f64 = 0.005;
+
+/// The model's FRF on the measured frequencies, its label and the model
+/// file's SHA-256.
+fn model_overlay(
+    path: &std::path::Path,
+    sensor: &str,
+    q: ResponseQuantity,
+    f: &[f64],
+) -> Result<(
+    String,
+    Vec<realfft::num_complex::Complex64>,
+    String,
+    serde_json::Value,
+)> {
+    use anyhow::Context;
+    let bytes =
+        std::fs::read(path).with_context(|| format!("{}: cannot read the file", path.display()))?;
+    let sha = ancf_modal::output::provenance::sha256_hex(&bytes);
+    let model = ancf_modal::Model::from_file(path)?;
+    let system = ancf_modal::System::new(&model);
+    let modal = ancf_modal::analysis::modal_at_reference(
+        &system,
+        &ancf_modal::analysis::ModalSettings {
+            modes: Some(30),
+            ..Default::default()
+        },
+    )
+    .with_context(|| path.display().to_string())?;
+    let damping = model.damping;
+    let zeta = |w: f64| damping.map_or(DEFAULT_MODEL_ZETA, |d| d.ratio(w));
+    let power = match q {
+        ResponseQuantity::Displacement => 0,
+        ResponseQuantity::Velocity => 1,
+        ResponseQuantity::Acceleration => 2,
+    };
+    let h = ancf_modal::measured::model_frf::model_frf(&system, &modal, sensor, zeta, power, f)
+        .with_context(|| path.display().to_string())?;
+    let label = match damping {
+        Some(_) => format!("model {} at {sensor}", model.name),
+        None => format!("model {} at {sensor} (ζ = 0.5 % assumed)", model.name),
+    };
+    let info = serde_json::json!({
+        "model": model.name,
+        "sensor": sensor,
+        "damping": damping.map(|d| serde_json::json!({"alpha": d.alpha, "beta": d.beta})),
+        "assumed_damping_ratio": if damping.is_none() { Some(DEFAULT_MODEL_ZETA) } else { None },
+        "h": h.iter().map(|c| serde_json::json!([c.re, c.im])).collect::<Vec<_>>(),
+    });
+    Ok((label, h, sha, info))
+}
+
+/// How measurement files are read and analysed (shared with `identify
+/// --measured`).
+#[derive(Debug, Args, Clone)]
+pub struct MeasuredArgs {
+    /// Force channel: CSV column name or 1-based index (default 2), UFF
+    /// record label or index (default the force record).
+    #[arg(long, value_name = "COL")]
+    pub force: Option<Channel>,
+    /// Response channel: CSV column name or 1-based index (default 3).
+    #[arg(long, value_name = "COL")]
+    pub response: Option<Channel>,
+    /// What the response measures (the FRF's unit).
+    #[arg(long, value_enum, default_value_t = Quantity::Velocity)]
+    pub response_quantity: Quantity,
+    /// rect, hann, force:P (keep the first fraction P of the force record),
+    /// exponential:P (decay to P at the end; its damping is removed).
+    #[arg(long, default_value = "rect", value_parser = parse_window)]
+    pub window: Window,
+    /// FRF estimator the modal fit uses.
+    #[arg(long, value_enum, default_value_t = EstimatorArg::H1)]
+    pub estimator: EstimatorArg,
+    /// Fit band LO:HI in Hz (default: where the hammer excited the
+    /// structure, up to 0.8 × Nyquist).
+    #[arg(long, value_name = "LO:HI", value_parser = parse_band)]
+    pub band: Option<(f64, f64)>,
+    /// Highest model order of the stabilization diagram.
+    #[arg(long, default_value_t = 40, value_parser = clap::value_parser!(u64).range(2..=200))]
+    pub max_order: u64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Quantity {
+    Displacement,
+    Velocity,
+    Acceleration,
+}
+
+impl From<Quantity> for ResponseQuantity {
+    fn from(q: Quantity) -> Self {
+        match q {
+            Quantity::Displacement => ResponseQuantity::Displacement,
+            Quantity::Velocity => ResponseQuantity::Velocity,
+            Quantity::Acceleration => ResponseQuantity::Acceleration,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum EstimatorArg {
+    H1,
+    H2,
+}
+
+fn parse_window(s: &str) -> Result<Window, String> {
+    s.parse()
+}
+
+pub fn parse_band(s: &str) -> Result<(f64, f64), String> {
+    let (a, b) = s
+        .split_once(':')
+        .ok_or_else(|| format!("`{s}` is not LO:HI (Hz)"))?;
+    let lo = super::args::finite(a)?;
+    let hi = super::args::finite(b)?;
+    if lo >= 0.0 && hi > lo {
+        Ok((lo, hi))
+    } else {
+        Err(format!("the band needs 0 ≤ LO < HI, got {lo}:{hi}"))
+    }
+}
+
+impl MeasuredArgs {
+    /// Reads the files and runs the analysis.
+    pub fn analyse(&self, files: &[PathBuf]) -> Result<FrfAnalysis> {
+        let channels = Channels {
+            force: self.force.clone(),
+            response: self.response.clone(),
+        };
+        let measurements = files
+            .iter()
+            .map(|f| read_measurement(f, &channels))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(analyse(
+            measurements,
+            AnalysisSettings {
+                window: self.window,
+                estimator: match self.estimator {
+                    EstimatorArg::H1 => Estimator::H1,
+                    EstimatorArg::H2 => Estimator::H2,
+                },
+                band: self.band,
+                max_order: self.max_order as usize,
+            },
+        )?)
+    }
+}
+
+pub fn run(args: FrfArgs) -> Result<()> {
+    let a = args.measured.analyse(&args.files)?;
+    let q: ResponseQuantity = args.measured.response_quantity.into();
+    let overlay = match (&args.model, &args.at) {
+        (Some(m), Some(at)) => Some(model_overlay(m, at, q, &a.frequency_hz)?),
+        _ => None,
+    };
+    let sha = overlay.as_ref().map(|o| o.2.as_str());
+    // Everything is rendered before anything is written: an error leaves
+    // no output file behind.
+    let plot = match &args.plot {
+        Some(p) => {
+            let ov = overlay
+                .as_ref()
+                .map(|(label, h, _, _)| (label.as_str(), a.frequency_hz.as_slice(), h.as_slice()));
+            let fig: Figure = frf_figure(&a, q, ov).into();
+            let size = PlotSize {
+                height: 1100,
+                ..PlotSize::default()
+            };
+            Some((p, render(&fig, Format::from_path(p)?, size)?))
+        }
+        None => None,
+    };
+    let csv = args.csv.as_ref().map(|p| (p, frf_csv(&a)));
+    let uff = args.uff.as_ref().map(|p| (p, frf_uff(&a, q, sha)));
+    if let Some((p, bytes)) = plot {
+        ancf_modal::output::files::write_atomic(p, &bytes)?;
+    }
+    if let Some((p, text)) = csv {
+        write_output(p, &text)?;
+    }
+    if let Some((p, text)) = uff {
+        write_output(p, &text)?;
+    }
+    if args.json {
+        let mut doc = frf_json(&a, q, sha);
+        if let Some((_, _, _, info)) = &overlay {
+            doc["model_frf"] = info.clone();
+        }
+        println!("{}", serde_json::to_string_pretty(&doc)?);
+    } else {
+        print!("{}", frf_table(&a, q));
+    }
+    Ok(())
+}

@@ -1,0 +1,525 @@
+//! Modal parameters from an FRF: the least-squares complex-frequency method
+//! (LSCF, Guillaume et al. 2003; the single-reference core of PolyMAX) with a
+//! stabilization diagram, then residues by least squares (LSFD).
+//!
+//! **Why LSCF.** Half-power bandwidths read damping from the width of a
+//! single peak: they fail when two modes' half-power bands overlap and when
+//! the resolution Δf is not small against 2ζf (0.1 % damping). A
+//! common-denominator rational fraction fitted over a band models every
+//! mode in it at once, overlapping or not, and its z-domain basis keeps the
+//! normal equations well conditioned at the high orders a stabilization
+//! diagram needs (a power-of-iω basis does not).
+//!
+//! **Model.** With Ω_k = e^(−iω_kΔt), Δt = 1/(2 f_hi) over the band
+//! [f_lo, f_hi], H(ω_k) ≈ B(Ω_k)/A(Ω_k), A and B real polynomials of degree
+//! n. The linearised error W(B − H A) is minimised in least squares; with
+//! B eliminated, the normal equations of the denominator are
+//! M = 2 (T − Sᵀ R⁻¹ S), where R = Re Σ XᴴX, S = Re Σ XᴴY, T = Re Σ YᴴY,
+//! X_k = [Ω_k^j], Y_k = −H_k X_k. The three are Toeplitz (entry (i, j)
+//! depends on j − i only), so all orders come from one pass over the data,
+//! and the order-n system is the leading (n+1) block. Fixing a_n = 1 gives
+//! a; the roots z_r of A give the poles s_r = −ln(z_r)/Δt, f_r = |s_r|/2π,
+//! ζ_r = −Re s_r/|s_r|.
+//!
+//! **Stabilization.** Poles of orders 2, 4, …, n_max are compared with the
+//! previous order's: a pole is *stable* when one there lies within 0.5 % in
+//! frequency and 5 % in damping. A physical mode is a pole of the highest
+//! order with positive damping below 30 %, stable there, and found (within
+//! 0.5 % and 10 %) in at least a third of the orders; its residue R_r
+//! then comes from a linear least-squares fit of
+//! H(ω) = Σ_r [R_r/(iω − s_r) + R̄_r/(iω − s̄_r)] + U + L/(iω)² (LSFD, with
+//! residual terms for the modes outside the band). Poles whose modal peak
+//! |R_r|/|Re s_r| is under 1 % of the band's largest |H| are noise and
+//! left out.
+//!
+//! **Exponential window.** Its decay σ_w (see [`super::window`]) is added
+//! back to every pole, Re s_r += σ_w, before f and ζ are computed.
+
+use nalgebra::{DMatrix, DVector};
+use realfft::num_complex::Complex64;
+
+/// Settings of [`fit`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitSettings {
+    /// Band, Hz.
+    pub f_lo: f64,
+    pub f_hi: f64,
+    /// Highest model order (even), the number of poles of the last fit.
+    pub max_order: usize,
+    /// Decay rate to remove from the poles, 1/s (exponential window).
+    pub window_decay_rate: f64,
+}
+
+/// A stability label of the diagram.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Stability {
+    /// No pole of the previous order close by.
+    New,
+    /// Frequency within 0.5 %, damping not within 5 %.
+    Frequency,
+    /// Frequency and damping stable.
+    Stable,
+}
+
+/// One pole of one order in the diagram.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct DiagramPole {
+    pub order: usize,
+    pub frequency_hz: f64,
+    pub damping_ratio: f64,
+    pub stability: Stability,
+}
+
+/// An identified mode.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FittedMode {
+    /// Undamped natural frequency |s|/2π, Hz.
+    pub frequency_hz: f64,
+    pub damping_ratio: f64,
+    /// The pole s (after the window correction), 1/s.
+    pub pole: Complex64,
+    /// Residue R of the pole in the measured (windowed) FRF, FRF unit × 1/s.
+    pub residue: Complex64,
+    /// |H| of the fitted model at the damped frequency.
+    pub magnitude: f64,
+}
+
+/// Result of [`fit`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModalFit {
+    pub modes: Vec<FittedMode>,
+    pub diagram: Vec<DiagramPole>,
+    /// Residual terms U (FRF unit) and L (FRF unit × 1/s²).
+    pub upper_residual: f64,
+    pub lower_residual: f64,
+    pub settings: FitSettings,
+}
+
+impl ModalFit {
+    /// The fitted FRF at `f_hz` (modes and residual terms), as measured:
+    /// with the window's decay on the poles.
+    pub fn evaluate(&self, f_hz: f64) -> Complex64 {
+        let iw = Complex64::new(0.0, 2.0 * std::f64::consts::PI * f_hz);
+        let mut h = Complex64::new(self.upper_residual, 0.0);
+        if iw.im != 0.0 {
+            h += self.lower_residual / (iw * iw);
+        }
+        for m in &self.modes {
+            let p = m.pole - self.settings.window_decay_rate;
+            h += m.residue / (iw - p) + m.residue.conj() / (iw - p.conj());
+        }
+        h
+    }
+}
+
+/// Frequency tolerance of the stability checks (relative).
+pub const STABLE_FREQUENCY: f64 = 0.005;
+/// Damping tolerance of the stability label (relative).
+pub const STABLE_DAMPING: f64 = 0.05;
+/// Damping tolerance (relative) of the poles that seed a mode: LSCF's
+/// damping wanders with noise more than its frequency, and the refinement
+/// settles it.
+pub const CLUSTER_DAMPING: f64 = 0.2;
+/// Largest damping ratio taken as physical.
+pub const MAX_DAMPING: f64 = 0.3;
+/// Smallest modal peak kept, relative to the band's largest |H|.
+pub const MIN_PEAK: f64 = 0.01;
+
+/// Poles (f Hz, ζ, s) of one LSCF order from the Toeplitz lag sums.
+fn poles_of_order(
+    n: usize,
+    r: &DMatrix<f64>,
+    s: &DMatrix<f64>,
+    t: &DMatrix<f64>,
+    dt: f64,
+    settings: &FitSettings,
+) -> Vec<(f64, f64, Complex64)> {
+    let m = n + 1;
+    let rr = r.view((0, 0), (m, m)).into_owned();
+    let ss = s.view((0, 0), (m, m)).into_owned();
+    let tt = t.view((0, 0), (m, m)).into_owned();
+    let Some(rinv_s) = rr.cholesky().map(|c| c.solve(&ss)) else {
+        return Vec::new();
+    };
+    let mm = tt - ss.transpose() * rinv_s;
+    let a00 = mm.view((0, 0), (n, n)).into_owned();
+    let rhs = -mm.view((0, n), (n, 1)).into_owned();
+    let Some(a) = a00.lu().solve(&rhs) else {
+        return Vec::new();
+    };
+    // Companion matrix of z^n + a_{n-1} z^{n-1} + … + a_0.
+    let mut c = DMatrix::<f64>::zeros(n, n);
+    for i in 0..n - 1 {
+        c[(i, i + 1)] = 1.0;
+    }
+    for j in 0..n {
+        c[(n - 1, j)] = -a[j];
+    }
+    c.complex_eigenvalues()
+        .iter()
+        .filter_map(|z| {
+            let z = Complex64::new(z.re, z.im);
+            if z.norm() == 0.0 {
+                return None;
+            }
+            let sp = -z.ln() / dt;
+            let w = sp.norm();
+            let f = w / (2.0 * std::f64::consts::PI);
+            let zeta = -sp.re / w;
+            (sp.im > 0.0
+                && zeta > 0.0
+                && zeta < MAX_DAMPING
+                && f >= settings.f_lo
+                && f <= settings.f_hi)
+                .then_some((f, zeta, sp))
+        })
+        .collect()
+}
+
+fn close(a: (f64, f64), b: (f64, f64), zeta_tol: f64) -> (bool, bool) {
+    let df = (a.0 - b.0).abs() / a.0;
+    let dz = (a.1 - b.1).abs() / a.1;
+    (df < STABLE_FREQUENCY, dz < zeta_tol)
+}
+
+/// Fits the FRF `h` at `frequency_hz` over the settings' band (non-finite
+/// bins are skipped). Returns no modes when the band holds fewer than four
+/// usable bins.
+pub fn fit(frequency_hz: &[f64], h: &[Complex64], settings: &FitSettings) -> ModalFit {
+    let band: Vec<(f64, Complex64)> = frequency_hz
+        .iter()
+        .zip(h)
+        .filter(|(f, h)| {
+            **f >= settings.f_lo && **f <= settings.f_hi && h.re.is_finite() && h.im.is_finite()
+        })
+        .map(|(f, h)| (*f, *h))
+        .collect();
+    let mut result = ModalFit {
+        modes: Vec::new(),
+        diagram: Vec::new(),
+        upper_residual: 0.0,
+        lower_residual: 0.0,
+        settings: *settings,
+    };
+    let n_max = (settings.max_order.max(2) / 2 * 2).min(2 * (band.len() / 2).saturating_sub(1));
+    if band.len() < 4 || n_max < 2 {
+        return result;
+    }
+    let scale = band.iter().map(|(_, h)| h.norm()).fold(0.0, f64::max);
+    if scale == 0.0 {
+        return result;
+    }
+    let dt = 0.5 / settings.f_hi;
+    // Lag sums Σ Ω^l, Σ H Ω^l, Σ |H|² Ω^l for l = 0..=n_max (Ω^(−l) is the
+    // conjugate for the real parts taken below).
+    let mut p0 = vec![Complex64::new(0.0, 0.0); n_max + 1];
+    let mut p1 = vec![Complex64::new(0.0, 0.0); 2 * n_max + 1];
+    let mut p2 = vec![Complex64::new(0.0, 0.0); n_max + 1];
+    for (f, hk) in &band {
+        let hk = hk / scale;
+        let omega = Complex64::from_polar(1.0, -2.0 * std::f64::consts::PI * f * dt);
+        let mut pw = Complex64::new(1.0, 0.0);
+        let mut pw_inv = Complex64::new(1.0, 0.0);
+        for l in 0..=n_max {
+            p0[l] += pw;
+            p2[l] += hk.norm_sqr() * pw;
+            p1[n_max + l] += hk * pw;
+            if l > 0 {
+                p1[n_max - l] += hk * pw_inv;
+            }
+            pw *= omega;
+            pw_inv *= omega.conj();
+        }
+    }
+    let m = n_max + 1;
+    // R_ij = Re Σ Ω^(j−i); S_ij = −Re Σ H Ω^(j−i); T_ij = Re Σ |H|² Ω^(j−i).
+    let lag = |v: &[Complex64], i: usize, j: usize| -> f64 {
+        if j >= i {
+            v[j - i].re
+        } else {
+            v[i - j].re
+        }
+    };
+    let r = DMatrix::from_fn(m, m, |i, j| lag(&p0, i, j));
+    let t = DMatrix::from_fn(m, m, |i, j| lag(&p2, i, j));
+    let s = DMatrix::from_fn(m, m, |i, j| {
+        -p1[(n_max as isize + j as isize - i as isize) as usize].re
+    });
+    let orders: Vec<usize> = (2..=n_max).step_by(2).collect();
+    let all: Vec<Vec<(f64, f64, Complex64)>> = orders
+        .iter()
+        .map(|&n| poles_of_order(n, &r, &s, &t, dt, settings))
+        .collect();
+    for (k, poles) in all.iter().enumerate() {
+        for &(f, z, _) in poles {
+            let stability = if k == 0 {
+                Stability::New
+            } else {
+                let best = all[k - 1]
+                    .iter()
+                    .map(|&(f2, z2, _)| close((f, z), (f2, z2), STABLE_DAMPING))
+                    .max_by_key(|(a, b)| (*a as u8) * 2 + *b as u8);
+                match best {
+                    Some((true, true)) => Stability::Stable,
+                    Some((true, false)) => Stability::Frequency,
+                    _ => Stability::New,
+                }
+            };
+            result.diagram.push(DiagramPole {
+                order: orders[k],
+                frequency_hz: f,
+                damping_ratio: z,
+                stability,
+            });
+        }
+    }
+    let sigma_w = settings.window_decay_rate;
+    let physical = |sp: Complex64| {
+        let sp = sp + sigma_w;
+        (sp.norm() / (2.0 * std::f64::consts::PI), -sp.re / sp.norm())
+    };
+    for d in result.diagram.iter_mut() {
+        let w = 2.0 * std::f64::consts::PI * d.frequency_hz;
+        let (f, z) = physical(Complex64::new(
+            -d.damping_ratio * w,
+            w * (1.0 - d.damping_ratio.powi(2)).sqrt(),
+        ));
+        d.frequency_hz = f;
+        d.damping_ratio = z;
+    }
+    let needed = all.len().div_ceil(3).max(2).min(all.len());
+    let mut chosen = clusters(&all, needed);
+    refine(&band, &mut chosen);
+    chosen.retain(|p| p.re < 0.0 && p.im > 0.0);
+    let (res, _, _) = residues(&band, &chosen);
+    let kept: Vec<Complex64> = chosen
+        .iter()
+        .zip(&res)
+        .filter(|(p, r)| r.norm() / (-p.re) >= MIN_PEAK * scale)
+        .map(|(p, _)| *p)
+        .collect();
+    let (res, u, l) = residues(&band, &kept);
+    result.upper_residual = u;
+    result.lower_residual = l;
+    result.modes = kept
+        .iter()
+        .zip(&res)
+        .map(|(&raw, &residue)| {
+            let (frequency_hz, damping_ratio) = physical(raw);
+            FittedMode {
+                frequency_hz,
+                damping_ratio,
+                pole: raw + sigma_w,
+                residue,
+                magnitude: 0.0,
+            }
+        })
+        .collect();
+    let magnitudes: Vec<f64> = result
+        .modes
+        .iter()
+        .map(|m| {
+            result
+                .evaluate(m.pole.im / (2.0 * std::f64::consts::PI))
+                .norm()
+        })
+        .collect();
+    for (m, a) in result.modes.iter_mut().zip(magnitudes) {
+        m.magnitude = a;
+    }
+    result
+}
+
+/// Residues R_r and residual terms U, L by linear least squares (LSFD).
+fn residues(band: &[(f64, Complex64)], poles: &[Complex64]) -> (Vec<Complex64>, f64, f64) {
+    let cols = 2 * poles.len() + 2;
+    let rows = 2 * band.len();
+    let mut a = DMatrix::<f64>::zeros(rows, cols);
+    let mut b = DVector::<f64>::zeros(rows);
+    for (k, (f, h)) in band.iter().enumerate() {
+        let iw = Complex64::new(0.0, 2.0 * std::f64::consts::PI * f);
+        for (r, p) in poles.iter().enumerate() {
+            // R = x + iy: R/(iw−p) + R̄/(iw−p̄) = x·(g1+g2) + y·i(g1−g2).
+            let g1 = 1.0 / (iw - p);
+            let g2 = 1.0 / (iw - p.conj());
+            let cx = g1 + g2;
+            let cy = Complex64::new(0.0, 1.0) * (g1 - g2);
+            a[(2 * k, 2 * r)] = cx.re;
+            a[(2 * k + 1, 2 * r)] = cx.im;
+            a[(2 * k, 2 * r + 1)] = cy.re;
+            a[(2 * k + 1, 2 * r + 1)] = cy.im;
+        }
+        a[(2 * k, cols - 2)] = 1.0;
+        let low = if iw.im != 0.0 {
+            1.0 / (iw * iw)
+        } else {
+            Complex64::new(0.0, 0.0)
+        };
+        a[(2 * k, cols - 1)] = low.re;
+        a[(2 * k + 1, cols - 1)] = low.im;
+        b[2 * k] = h.re;
+        b[2 * k + 1] = h.im;
+    }
+    // Column scaling for conditioning.
+    let norms: Vec<f64> = (0..cols)
+        .map(|j| a.column(j).norm().max(f64::MIN_POSITIVE))
+        .collect();
+    for (j, nj) in norms.iter().enumerate() {
+        a.column_mut(j).scale_mut(1.0 / nj);
+    }
+    let x = a
+        .svd(true, true)
+        .solve(&b, 1e-12)
+        .unwrap_or_else(|_| DVector::zeros(cols));
+    let x: Vec<f64> = x.iter().zip(&norms).map(|(v, n)| v / n).collect();
+    let res = (0..poles.len())
+        .map(|r| Complex64::new(x[2 * r], x[2 * r + 1]))
+        .collect();
+    (res, x[cols - 2], x[cols - 1])
+}
+
+/// Initial poles: groups of poles stable against the previous order (0.5 %
+/// in frequency, 20 % in damping) within ±0.25 % in frequency found
+/// in at least `needed` orders, densest first; each gives the median of its
+/// poles.
+fn clusters(all: &[Vec<(f64, f64, Complex64)>], needed: usize) -> Vec<Complex64> {
+    let mut stable: Vec<(usize, f64, f64, Complex64)> = Vec::new();
+    for k in 1..all.len() {
+        for &(f, z, sp) in &all[k] {
+            let ok = all[k - 1].iter().any(|&(f2, z2, _)| {
+                let (a, b) = close((f, z), (f2, z2), CLUSTER_DAMPING);
+                a && b
+            });
+            if ok {
+                stable.push((k, f, z, sp));
+            }
+        }
+    }
+    // Densest group first: the stable pole with the most orders within
+    // ±0.25 % in frequency, its group removed, repeated.
+    let near = |a: f64, b: f64| (a - b).abs() <= 0.5 * STABLE_FREQUENCY * a;
+    let mut out = Vec::new();
+    loop {
+        let count = |f: f64| {
+            let mut orders: Vec<usize> = stable
+                .iter()
+                .filter(|g| near(f, g.1))
+                .map(|g| g.0)
+                .collect();
+            orders.sort_unstable();
+            orders.dedup();
+            orders.len()
+        };
+        let Some((best, n)) = stable
+            .iter()
+            .map(|g| (g.1, count(g.1)))
+            .max_by_key(|&(_, n)| n)
+        else {
+            break;
+        };
+        if n < needed {
+            break;
+        }
+        let (group, rest): (Vec<_>, Vec<_>) = stable.into_iter().partition(|g| near(best, g.1));
+        stable = rest;
+        let mut re: Vec<f64> = group.iter().map(|g| g.3.re).collect();
+        let mut im: Vec<f64> = group.iter().map(|g| g.3.im).collect();
+        re.sort_by(f64::total_cmp);
+        im.sort_by(f64::total_cmp);
+        out.push(Complex64::new(re[re.len() / 2], im[im.len() / 2]));
+    }
+    out.sort_by(|a, b| a.im.total_cmp(&b.im));
+    out
+}
+
+/// Squared misfit of the modal model with `poles` (residues and residual
+/// terms by linear least squares) to the band.
+fn misfit(band: &[(f64, Complex64)], poles: &[Complex64]) -> f64 {
+    let (res, u, l) = residues(band, poles);
+    band.iter()
+        .map(|(f, h)| {
+            let iw = Complex64::new(0.0, 2.0 * std::f64::consts::PI * f);
+            let mut m = Complex64::new(u, 0.0) + l / (iw * iw);
+            for (p, r) in poles.iter().zip(&res) {
+                m += r / (iw - p) + r.conj() / (iw - p.conj());
+            }
+            (m - h).norm_sqr()
+        })
+        .sum()
+}
+
+/// Nonlinear least-squares refinement of the poles (variable projection:
+/// residues eliminated linearly; Levenberg–Marquardt on the poles' real and
+/// imaginary parts with a forward-difference Jacobian). LSCF's linearised
+/// equation error is biased by noise; the output error minimised here is
+/// not (for noise of equal variance across the band).
+fn refine(band: &[(f64, Complex64)], poles: &mut [Complex64]) {
+    if poles.is_empty() {
+        return;
+    }
+    let residual = |p: &[Complex64]| -> DVector<f64> {
+        let (res, u, l) = residues(band, p);
+        let mut r = DVector::zeros(2 * band.len());
+        for (k, (f, h)) in band.iter().enumerate() {
+            let iw = Complex64::new(0.0, 2.0 * std::f64::consts::PI * f);
+            let mut m = Complex64::new(u, 0.0) + l / (iw * iw);
+            for (pp, rr) in p.iter().zip(&res) {
+                m += rr / (iw - pp) + rr.conj() / (iw - pp.conj());
+            }
+            r[2 * k] = m.re - h.re;
+            r[2 * k + 1] = m.im - h.im;
+        }
+        r
+    };
+    let np = 2 * poles.len();
+    let mut mu = 1e-3;
+    let mut r0 = residual(poles);
+    let mut cost = r0.norm_squared();
+    for _ in 0..50 {
+        let mut jac = DMatrix::<f64>::zeros(r0.len(), np);
+        for j in 0..np {
+            let mut p = poles.to_vec();
+            let step = 1e-7 * p[j / 2].norm();
+            if j % 2 == 0 {
+                p[j / 2].re += step;
+            } else {
+                p[j / 2].im += step;
+            }
+            let rj = residual(&p);
+            jac.set_column(j, &((rj - &r0) / step));
+        }
+        let jtj = jac.transpose() * &jac;
+        let jtr = jac.transpose() * &r0;
+        let mut improved = false;
+        for _ in 0..10 {
+            let mut a = jtj.clone();
+            for i in 0..np {
+                a[(i, i)] += mu * jtj[(i, i)].max(f64::MIN_POSITIVE);
+            }
+            let Some(delta) = a.lu().solve(&(-&jtr)) else {
+                mu *= 4.0;
+                continue;
+            };
+            let trial: Vec<Complex64> = poles
+                .iter()
+                .enumerate()
+                .map(|(i, p)| p + Complex64::new(delta[2 * i], delta[2 * i + 1]))
+                .collect();
+            let c = misfit(band, &trial);
+            if c < cost {
+                let gain = (cost - c) / cost;
+                poles.copy_from_slice(&trial);
+                cost = c;
+                r0 = residual(poles);
+                mu = (mu / 3.0).max(1e-12);
+                improved = gain > 1e-12;
+                break;
+            }
+            mu *= 4.0;
+        }
+        if !improved {
+            break;
+        }
+    }
+}

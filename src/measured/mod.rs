@@ -1,0 +1,197 @@
+//! Measured data in, modal data out: hammer-test records, frequency-response
+//! estimates, modal parameters and the files that carry them between this
+//! tool and the usual experimental-modal-analysis tools (pyFRF,
+//! sdypy-EMA, pyuff).
+//!
+//! The flow is one way:
+//!
+//! * [`csv`] and [`uff`] read *records*: a force and a response sampled
+//!   together at a uniform rate (time data, [`TimeRecord`]), or an FRF
+//!   already estimated elsewhere ([`MeasuredFrf`]). Bad files are typed
+//!   errors naming the file and line ([`MeasuredError`]).
+//! * [`window`] weights each record before the FFT (rectangular, Hann, the
+//!   force window and the exponential window of impact testing);
+//! * [`frf`] averages the auto and cross spectra of several hits into the
+//!   estimators H1 = G_fx/G_ff and H2 = G_xx/G_xf and the coherence
+//!   γ² = |G_fx|²/(G_ff G_xx);
+//! * [`fit`] identifies natural frequencies and damping ratios from an FRF
+//!   with the least-squares complex-frequency method (LSCF) over a band, a
+//!   stabilization diagram over model orders, and residues by least squares;
+//! * [`decimate`] resamples a record to a lower rate behind a steep
+//!   anti-aliasing low-pass, as acquisition hardware does;
+//! * [`mac`] compares two mode sets.
+//!
+//! Units: time in s, frequency in Hz, force in N, response in the unit of
+//! its quantity (m, m/s or m/s²); an FRF is response per newton.
+
+pub mod analysis;
+pub mod csv;
+pub mod decimate;
+pub mod error;
+pub mod fit;
+pub mod frf;
+pub mod mac;
+pub mod model_frf;
+pub mod uff;
+pub mod window;
+
+pub use error::MeasuredError;
+
+use std::path::{Path, PathBuf};
+
+use realfft::num_complex::Complex64;
+
+/// Fewest samples a time record must have.
+pub const MIN_SAMPLES: usize = 16;
+
+/// One hit: force and response sampled together at a uniform rate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimeRecord {
+    /// The file it came from, for messages.
+    pub file: PathBuf,
+    /// Samples per second, Hz.
+    pub sample_rate_hz: f64,
+    /// Force, N.
+    pub force: Vec<f64>,
+    /// Response, in the unit of its quantity.
+    pub response: Vec<f64>,
+    /// Names of the two channels (header or UFF labels).
+    pub force_label: String,
+    pub response_label: String,
+    /// The file line (1-based) of each sample, for messages.
+    pub lines: Vec<usize>,
+}
+
+impl TimeRecord {
+    /// Record length n/fs, s.
+    pub fn duration(&self) -> f64 {
+        self.force.len() as f64 / self.sample_rate_hz
+    }
+}
+
+/// An FRF read from a file (UFF 58 function type 4), with its coherence if
+/// the file holds one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredFrf {
+    pub file: PathBuf,
+    pub frequency_hz: Vec<f64>,
+    pub h: Vec<Complex64>,
+    pub coherence: Option<Vec<f64>>,
+}
+
+/// What a measurement file holds.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Measurement {
+    Time(TimeRecord),
+    Frf(MeasuredFrf),
+}
+
+/// A channel chosen by header name (or UFF label) or by 1-based index.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Channel {
+    Name(String),
+    Index(usize),
+}
+
+impl std::str::FromStr for Channel {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let s = s.trim();
+        if s.is_empty() {
+            return Err("a channel is a column name or a 1-based index".into());
+        }
+        match s.parse::<usize>() {
+            Ok(0) => Err("channel indices start at 1".into()),
+            Ok(i) => Ok(Channel::Index(i)),
+            Err(_) => Ok(Channel::Name(s.to_string())),
+        }
+    }
+}
+
+impl std::fmt::Display for Channel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Channel::Name(n) => write!(f, "{n}"),
+            Channel::Index(i) => write!(f, "{i}"),
+        }
+    }
+}
+
+/// Which channels hold the force and the response. CSV: columns (default
+/// the 2nd and 3rd, the 1st being time). UFF: records (default the first
+/// force record and the first other record).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Channels {
+    pub force: Option<Channel>,
+    pub response: Option<Channel>,
+}
+
+/// Reads one measurement file: UFF when its first non-blank line is `-1`,
+/// CSV otherwise. Time records are checked for a usable force (not all
+/// zero, a single impact).
+pub fn read_measurement(path: &Path, channels: &Channels) -> Result<Measurement, MeasuredError> {
+    let bytes = std::fs::read(path).map_err(|io| MeasuredError::Read {
+        file: path.to_path_buf(),
+        io,
+    })?;
+    let text = String::from_utf8_lossy(&bytes);
+    let first = text.lines().map(str::trim).find(|l| !l.is_empty());
+    let m = match first {
+        None => {
+            return Err(MeasuredError::Empty {
+                file: path.to_path_buf(),
+            })
+        }
+        Some("-1") => uff::measurement_from_uff(path, &text, channels)?,
+        Some(_) => Measurement::Time(csv::parse_csv(path, &text, channels)?),
+    };
+    if let Measurement::Time(r) = &m {
+        check_force(r)?;
+    }
+    Ok(m)
+}
+
+/// Force fraction of the peak below which an impact has ended.
+pub const IMPACT_END_FRACTION: f64 = 0.05;
+/// Force fraction of the peak that, after the impact ended, is a second hit.
+pub const DOUBLE_IMPACT_FRACTION: f64 = 0.2;
+
+/// The force must not be all zero, and must hold one impact: after the
+/// force falls below 5 % of its peak it must not rise again above 20 %.
+/// (For random or sine excitation this check does not apply; it is only
+/// called on records that look like impacts, i.e. whose force peak is at
+/// least ten times its RMS.)
+pub fn check_force(r: &TimeRecord) -> Result<(), MeasuredError> {
+    let (peak_i, peak) = r
+        .force
+        .iter()
+        .map(|v| v.abs())
+        .enumerate()
+        .fold((0, 0.0), |acc, (i, v)| if v > acc.1 { (i, v) } else { acc });
+    if peak == 0.0 {
+        return Err(MeasuredError::ZeroForce {
+            file: r.file.clone(),
+            channel: r.force_label.clone(),
+        });
+    }
+    let rms = (r.force.iter().map(|v| v * v).sum::<f64>() / r.force.len() as f64).sqrt();
+    if peak < 10.0 * rms {
+        return Ok(());
+    }
+    let Some(end) =
+        (peak_i..r.force.len()).find(|&i| r.force[i].abs() < IMPACT_END_FRACTION * peak)
+    else {
+        return Ok(());
+    };
+    if let Some(j) =
+        (end..r.force.len()).find(|&i| r.force[i].abs() > DOUBLE_IMPACT_FRACTION * peak)
+    {
+        return Err(MeasuredError::DoubleImpact {
+            file: r.file.clone(),
+            line: r.lines[j],
+            end_line: r.lines[end],
+            percent: 100.0 * r.force[j].abs() / peak,
+        });
+    }
+    Ok(())
+}
