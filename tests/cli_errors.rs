@@ -1050,3 +1050,29 @@ fn modal_solver_flag_gives_the_same_modes_and_their_error_bounds() {
         );
     }
 }
+
+/// A reader that closes the pipe early (`| head`) ends the program
+/// quietly: exit 0, no panic message.
+#[test]
+fn a_closed_output_pipe_is_not_a_panic() {
+    use std::io::Read;
+    use std::process::{Command, Stdio};
+    // ~130 kB of JSON: more than a pipe buffers, so the writer sees the close.
+    let mut child = Command::new(assert_cmd::cargo::cargo_bin("ancf-modal"))
+        .args([
+            "transient",
+            "models/rcbo_switch_off.json",
+            "--from-equilibrium",
+        ])
+        .args(["--end-time", "3e-3", "--sample-rate", "0", "--json"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut head = [0u8; 100];
+    child.stdout.take().unwrap().read_exact(&mut head).unwrap();
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(out.status.success(), "exit {:?}: {err}", out.status.code());
+}

@@ -246,14 +246,14 @@ pub fn run(args: CalibrateArgs) -> Result<()> {
         write_atomic(path, &bytes)?;
     }
     if args.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&calibrate_json(&model.name, &result))?
         );
     } else {
-        print!("{}", calibrate_table(&model.name, &result));
+        out!("{}", calibrate_table(&model.name, &result));
         if let Some(path) = &args.out {
-            println!("calibrated model written to {}", path.display());
+            outln!("calibrated model written to {}", path.display());
         }
     }
     Ok(())

@@ -26,3 +26,18 @@ pub fn write_output(path: &Path, text: &str) -> Result<()> {
     ancf_modal::output::files::write_atomic(path, text.as_bytes())?;
     Ok(())
 }
+
+/// Writes `text` to standard output. A reader that closed the pipe (`| head`)
+/// has all it wants: the program ends quietly with success, as Unix tools
+/// do, instead of panicking in `print!`.
+pub fn emit(text: &str) -> Result<()> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    match stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())
+    {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => std::process::exit(0),
+        other => Ok(other?),
+    }
+}

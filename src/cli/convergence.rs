@@ -74,9 +74,9 @@ pub fn run(args: ConvergenceArgs) -> Result<()> {
         write_figure(&convergence_figure(&data).into(), path, PlotSize::default())?;
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&document(&data))?);
+        outln!("{}", serde_json::to_string_pretty(&document(&data))?);
     } else {
-        print!("{}", table(&data));
+        out!("{}", table(&data));
     }
     Ok(())
 }

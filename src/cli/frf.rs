@@ -233,9 +233,9 @@ pub fn run(args: FrfArgs) -> Result<()> {
         if let Some((_, _, _, info)) = &overlay {
             doc["model_frf"] = info.clone();
         }
-        println!("{}", serde_json::to_string_pretty(&doc)?);
+        outln!("{}", serde_json::to_string_pretty(&doc)?);
     } else {
-        print!("{}", frf_table(&a, q));
+        out!("{}", frf_table(&a, q));
     }
     Ok(())
 }

@@ -240,7 +240,7 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         write_figures(dir, &model, &system, &modal, &impulse)?;
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        outln!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());
     }
     let mut s = String::new();
@@ -341,6 +341,6 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
             FIGURES.map(|f| format!("{f}.svg/.png")).join(", ")
         );
     }
-    print!("{s}");
+    out!("{s}");
     Ok(())
 }

@@ -144,12 +144,12 @@ pub fn run(args: ImpulseArgs) -> Result<()> {
         write_impulse_figures(&model, &result, path, &response, PlotSize::default())?;
     }
     if args.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&impulse_json(&model.name, &result, reference))?
         );
     } else {
-        print!("{}", impulse_table(&model.name, &result, reference));
+        out!("{}", impulse_table(&model.name, &result, reference));
     }
     Ok(())
 }

@@ -1,6 +1,22 @@
 //! Subcommands. Each file parses its flags, validates them, calls the
 //! library and prints; nothing numerical lives here.
 
+/// `print!` to standard output through [`common::emit`] (a closed pipe,
+/// as in `| head`, ends the program quietly instead of panicking); in a
+/// function returning `anyhow::Result`.
+macro_rules! out {
+    ($($arg:tt)*) => {
+        $crate::cli::common::emit(&format!($($arg)*))?
+    };
+}
+
+/// `println!` through [`common::emit`], as [`out!`].
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::cli::common::emit(&format!("{}\n", format_args!($($arg)*)))?
+    };
+}
+
 mod args;
 mod calibrate;
 mod common;
@@ -69,7 +85,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Transient(a) => transient::run(a),
         Command::SwitchOff(a) => switch_off::run(a),
         Command::Schema => {
-            println!(
+            outln!(
                 "{}",
                 serde_json::to_string_pretty(&ancf_modal::Model::json_schema())?
             );

@@ -64,16 +64,16 @@ pub fn run(args: ModalArgs) -> Result<()> {
                 "matrix": m.row_iter().map(|r| r.iter().copied().collect::<Vec<f64>>()).collect::<Vec<_>>(),
             });
         }
-        println!("{}", serde_json::to_string_pretty(&doc)?);
+        outln!("{}", serde_json::to_string_pretty(&doc)?);
     } else {
-        print!("{}", modal_table(&model.name, &result));
+        out!("{}", modal_table(&model.name, &result));
         if let Some(d) = model.damping {
             let ratios: Vec<String> = result
                 .modes
                 .iter()
                 .filter_map(|m| ratio(m).map(|z| format!("mode {}: {:.4} %", m.index, 100.0 * z)))
                 .collect();
-            println!(
+            outln!(
                 "Rayleigh damping (α = {} 1/s, β = {:e} s), ζ = α/(2ω) + βω/2: {}",
                 d.alpha,
                 d.beta,
@@ -81,7 +81,7 @@ pub fn run(args: ModalArgs) -> Result<()> {
             );
         }
         if let Some((rows, cols, m)) = &mac {
-            print!("{}", mac_table(rows, cols, m));
+            out!("{}", mac_table(rows, cols, m));
         }
     }
     Ok(())

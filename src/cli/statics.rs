@@ -57,9 +57,9 @@ pub fn run(args: StaticArgs) -> Result<()> {
     }
     let report = static_report(&model, &system, &eq);
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        outln!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        print!("{}", static_table(&report));
+        out!("{}", static_table(&report));
     }
     Ok(())
 }
@@ -84,12 +84,12 @@ pub fn run_prestress(
         write_mode_shapes(system, &result.equilibrium.q, &result.prestressed, path)?;
     }
     if args.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&prestress_json(&model.name, &result))?
         );
     } else {
-        print!("{}", prestress_table(&model.name, &result));
+        out!("{}", prestress_table(&model.name, &result));
     }
     Ok(())
 }

@@ -171,9 +171,9 @@ pub fn emit(doc: &SweepDocument, out: &OutputArgs) -> Result<()> {
         write_sweep_figure(doc, path)?;
     }
     if out.json {
-        println!("{}", serde_json::to_string_pretty(doc)?);
+        outln!("{}", serde_json::to_string_pretty(doc)?);
     } else {
-        print!("{}", sweep_table(doc));
+        out!("{}", sweep_table(doc));
     }
     if doc.failed_points > 0 {
         let first = doc

@@ -115,12 +115,12 @@ pub fn run(args: SwitchOffArgs) -> Result<()> {
         write_switch_off_figures(&result, path, PlotSize::default())?;
     }
     if args.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&switch_off_json(&result))?
         );
     } else {
-        print!("{}", switch_off_table(&result));
+        out!("{}", switch_off_table(&result));
     }
     Ok(())
 }

@@ -81,12 +81,12 @@ pub fn run(args: TransientArgs) -> Result<()> {
         )?;
     }
     if args.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&transient_json(&model.name, &settings, &sim))?
         );
     } else {
-        print!("{}", transient_table(&model.name, &settings, &sim));
+        out!("{}", transient_table(&model.name, &settings, &sim));
     }
     Ok(())
 }
