@@ -22,6 +22,7 @@
 use crate::contact::Dissipation;
 use crate::linalg::Scatter;
 use crate::pair::PairGrad;
+use crate::spring::ForceElement;
 use crate::system::System;
 
 /// Largest first penetration, as a fraction of the expected δ_max.
@@ -166,8 +167,6 @@ impl ContactTracker {
         }
     }
 }
-
-use crate::spring::ForceElement;
 
 fn local_velocity(dofs: impl Iterator<Item = usize>, v: &[f64]) -> PairGrad {
     let mut local = PairGrad::zeros();
