@@ -13,6 +13,7 @@
 //! damping (ρ∞ < 1) and the Newton tolerance leave.
 
 use super::impulse::sensor::SensorProbe;
+use super::impulse::spectrum::resample_uniform;
 use super::statics::{solve_equilibrium, StaticSettings};
 use super::transient::contacts::ContactStats;
 use super::transient::{Integrator, RunStats, State, TransientSettings};
@@ -108,24 +109,6 @@ fn load_power(sys: &System, st: &State, scratch: &mut [f64]) -> f64 {
     dot(scratch, &st.v)
 }
 
-/// Linear interpolation of (t, y) at the sample times.
-fn resample(t: &[f64], y: &[f64], at: &[f64]) -> Vec<f64> {
-    let mut k = 0;
-    at.iter()
-        .map(|&s| {
-            while k + 2 < t.len() && t[k + 1] < s {
-                k += 1;
-            }
-            let (t0, t1) = (t[k], t[(k + 1).min(t.len() - 1)]);
-            if t1 <= t0 {
-                return y[k];
-            }
-            let w = ((s - t0) / (t1 - t0)).clamp(0.0, 1.0);
-            y[k] + w * (y[(k + 1).min(y.len() - 1)] - y[k])
-        })
-        .collect()
-}
-
 /// Run a simulation of `sys`, tracking the material points `points`.
 pub fn simulate(
     sys: &System,
@@ -188,29 +171,32 @@ pub fn simulate(
         error_j: end.total() - initial.total() - work + dissipated,
         stored_j: initial.strain_j + initial.spring_j,
     };
-    let t_end = *step_time.last().expect("at least the initial state");
-    let time: Vec<f64> = if settings.sample_rate > 0.0 {
-        let count = (t_end * settings.sample_rate * (1.0 + 1e-12)).floor() as usize + 1;
+    // Samples: linear interpolation between the steps at the sample rate,
+    // or every step. The step times increase strictly (every step is
+    // longer than 0) and the readings are finite (Newton rejects a
+    // non-finite iterate), as the resampler requires.
+    let sample = |y: &[f64]| -> Vec<f64> {
+        if settings.sample_rate > 0.0 && step_time.len() > 1 {
+            resample_uniform(&step_time, y, settings.sample_rate)
+                .expect("increasing step times and finite readings")
+        } else {
+            y.to_vec()
+        }
+    };
+    let sensors: Vec<(String, Vec<f64>)> = probes
+        .iter()
+        .zip(&readings)
+        .map(|(p, r)| (p.id().to_string(), sample(r)))
+        .collect();
+    let sampled: Vec<[Vec<f64>; 2]> = tracks.iter().map(|[x, y]| [sample(x), sample(y)]).collect();
+    let count = sample(&step_time).len();
+    let time: Vec<f64> = if settings.sample_rate > 0.0 && step_time.len() > 1 {
         (0..count)
             .map(|k| k as f64 / settings.sample_rate)
             .collect()
     } else {
         step_time.clone()
     };
-    let sensors = probes
-        .iter()
-        .zip(&readings)
-        .map(|(p, r)| (p.id().to_string(), resample(&step_time, r, &time)))
-        .collect();
-    let sampled = tracks
-        .iter()
-        .map(|[x, y]| {
-            [
-                resample(&step_time, x, &time),
-                resample(&step_time, y, &time),
-            ]
-        })
-        .collect();
     Ok(Simulation {
         time,
         sensors,

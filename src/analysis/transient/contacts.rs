@@ -192,13 +192,13 @@ pub fn add_contact_dissipation<S: Scatter>(
         if !c.dissipation(q, &local, w, &mut d) {
             continue;
         }
-        let dofs: Vec<usize> = c.pair().dofs().collect();
-        for (i, &gi) in dofs.iter().enumerate() {
+        let dofs = || c.pair().dofs().enumerate();
+        for (i, gi) in dofs() {
             out[gi] += d.force[i];
         }
         if let Some((sq, sv, m)) = matrix.as_mut() {
-            for (i, &gi) in dofs.iter().enumerate() {
-                for (j, &gj) in dofs.iter().enumerate() {
+            for (i, gi) in dofs() {
+                for (j, gj) in dofs() {
                     m.add(gi, gj, *sq * d.dq[(i, j)] + *sv * d.dv[(i, j)]);
                 }
             }

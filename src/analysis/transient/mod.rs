@@ -199,6 +199,8 @@ pub struct Integrator<'s> {
     h: f64,
     /// Contact states, impact speeds and statistics.
     pub contacts: ContactTracker,
+    /// The state before a step that contact step control may repeat.
+    saved: State,
     pub stats: RunStats,
 }
 
@@ -276,6 +278,7 @@ impl<'s> Integrator<'s> {
             rhs: vec![0.0; n + m],
             work: vec![0.0; n + m],
             force: vec![0.0; n],
+            saved: empty.clone(),
             next: empty,
             eta: 1.0,
             stale: true,
@@ -601,7 +604,7 @@ impl<'s> Integrator<'s> {
         loop {
             self.set_step(h);
             self.contacts.begin_step(self.sys, &state.q, &state.v);
-            let saved = state.clone();
+            self.saved.clone_from(state);
             let result = self.step(state);
             let retry = match &result {
                 Err(TransientError::NewtonFailure { .. }) => Some(0.5 * h),
@@ -613,7 +616,7 @@ impl<'s> Integrator<'s> {
                     if result.is_ok() {
                         self.stats.steps -= 1;
                     }
-                    *state = saved;
+                    state.clone_from(&self.saved);
                     h = shorter;
                 }
                 _ => {
