@@ -44,6 +44,10 @@ pub trait Constraint: std::fmt::Debug + Send + Sync {
     fn jacobian(&self, q: &[f64], out: &mut ConstraintJac);
     /// Adds Σᵢ λᵢ ∂²Cᵢ/∂q² (local) into `out`.
     fn hessian_dot(&self, q: &[f64], lambda: &[f64], out: &mut PairHess);
+    /// The force the joint exerts on its point b [SI: N] at (q, λ), when
+    /// its whole reaction is that force and its opposite on a (pins,
+    /// sliders); `None` when it also carries a moment (welds).
+    fn point_reaction(&self, q: &[f64], lambda: &[f64]) -> Option<Vector2<f64>>;
 }
 
 /// Revolute joint.
@@ -85,6 +89,9 @@ impl Constraint for Pin {
     fn hessian_dot(&self, q: &[f64], lambda: &[f64], out: &mut PairHess) {
         self.pair
             .separation_hessian_dot(q, Vector2::new(lambda[0], lambda[1]), out);
+    }
+    fn point_reaction(&self, _q: &[f64], lambda: &[f64]) -> Option<Vector2<f64>> {
+        Some(-Vector2::new(lambda[0], lambda[1]))
     }
 }
 
@@ -137,6 +144,9 @@ impl Constraint for Weld {
         self.pair
             .relative_angle_derivatives(q, &mut g, Some(&mut h));
         *out += h * lambda[2];
+    }
+    fn point_reaction(&self, _q: &[f64], _lambda: &[f64]) -> Option<Vector2<f64>> {
+        None
     }
 }
 
@@ -211,5 +221,8 @@ impl Constraint for Slider {
             + jn * g.transpose())
             * l;
         self.pair.separation_hessian_dot(q, n * l, out);
+    }
+    fn point_reaction(&self, q: &[f64], lambda: &[f64]) -> Option<Vector2<f64>> {
+        Some(-self.normal(q) * lambda[0])
     }
 }

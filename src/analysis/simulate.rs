@@ -109,9 +109,12 @@ fn load_power(sys: &System, st: &State, scratch: &mut [f64]) -> f64 {
     dot(scratch, &st.v)
 }
 
-/// Run a simulation of `sys`, tracking the material points `points`.
+/// Run a simulation of `sys`, tracking the material points `points`
+/// (anchors of `sys`). From the equilibrium, released supports
+/// ([`System::release_supports`]) let go; without it a model with released
+/// supports is refused (there is no hold to release).
 pub fn simulate(
-    sys: &System,
+    sys: System,
     points: &[Anchor],
     settings: &SimulationSettings,
 ) -> Result<Simulation, SimulationError> {
@@ -122,12 +125,22 @@ pub fn simulate(
             value: settings.sample_rate,
         });
     }
-    let mut integ = Integrator::new(sys, settings.transient)?;
-    let (mut state, static_iterations) = if settings.from_equilibrium {
-        let eq = solve_equilibrium(sys, &StaticSettings::default())?;
-        (integ.state_at(eq.q, vec![0.0; n])?, eq.iterations)
+    let (sys, start) = if settings.from_equilibrium {
+        let eq = solve_equilibrium(&sys, &StaticSettings::default())?;
+        let released = sys.release_supports(&eq.q, &eq.lambda);
+        (released, Some(eq))
+    } else if let Some(r) = sys.released.first() {
+        return Err(SimulationError::ReleaseNeedsEquilibrium {
+            joint: sys.constraints[r.constraint].label().to_string(),
+        });
     } else {
-        (integ.initial_state()?, 0)
+        (sys, None)
+    };
+    let sys = &sys;
+    let mut integ = Integrator::new(sys, settings.transient)?;
+    let (mut state, static_iterations) = match start {
+        Some(eq) => (integ.state_at(eq.q, vec![0.0; n])?, eq.iterations),
+        None => (integ.initial_state()?, 0),
     };
     let probes: Vec<SensorProbe> = sys
         .sensors

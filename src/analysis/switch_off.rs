@@ -166,7 +166,7 @@ fn run_one(
     let point = model.resolve(&spec, "point").expect("resolved above");
     let sys = System::new(&model);
     let anchor = sys.anchor_of(&point);
-    let sim = simulate(&sys, &[anchor], &settings.simulation(step))?;
+    let sim = simulate(sys, &[anchor], &settings.simulation(step))?;
     let [x, y] = &sim.step_points[0];
     let n = settings.direction[0].hypot(settings.direction[1]);
     let dir = [settings.direction[0] / n, settings.direction[1] / n];

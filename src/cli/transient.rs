@@ -69,7 +69,7 @@ pub fn run(args: TransientArgs) -> Result<()> {
     settings.transient.validate()?;
     let system = System::new(&model);
     let sim =
-        simulate(&system, &[], &settings).with_context(|| source_label(args.model.as_deref()))?;
+        simulate(system, &[], &settings).with_context(|| source_label(args.model.as_deref()))?;
     if let Some(path) = &args.csv {
         write_output(path, &transient_csv(&sim))?;
     }

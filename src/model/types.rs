@@ -170,6 +170,13 @@ pub struct Joint {
     /// Slider axis, global frame at the initial configuration (any length).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub axis: Option<[f64; 2]>,
+    /// A released support (pins and sliders): the joint holds in every
+    /// static equilibrium and modal analysis (the ON state); a transient
+    /// started from the equilibrium replaces it by its reaction force
+    /// there, as a dead load on each of its points falling with this time
+    /// function (`until` or `ramp_down`) — a latch that lets go.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub release: Option<TimeFunction>,
 }
 
 /// A translational spring-damper along the line of its two points.

@@ -424,6 +424,9 @@ impl Model {
             }
             (_, None) => {}
         }
+        if let Some(release) = &j.release {
+            validate_release(j, release, a.is_ground(), p)?;
+        }
         let (pa, pb) = match (a.explicit_position(), b.explicit_position()) {
             (Some(pa), Some(pb)) => (pa, pb),
             (None, None) => return Err((format!("{p}.b"), Problem::MissingKey { key: "local" })),
@@ -510,20 +513,57 @@ impl Model {
                 Problem::KeyNotAllowed { key: "ground", why },
             ));
         }
-        match l.time {
-            TimeFunction::Constant => Ok(()),
-            TimeFunction::HalfSine { duration } => {
-                check_positive(duration, &format!("{p}.time.half_sine.duration"))
-            }
-            TimeFunction::Step { start } => {
-                check_non_negative(start, &format!("{p}.time.step.start"))
-            }
-            TimeFunction::Until(until) => check_non_negative(until, &format!("{p}.time.until")),
-            TimeFunction::RampDown { start, duration } => {
-                check_non_negative(start, &format!("{p}.time.ramp_down.start"))?;
-                check_positive(duration, &format!("{p}.time.ramp_down.duration"))
-            }
+        validate_time(&l.time, &format!("{p}.time"))
+    }
+}
+
+/// A time function's numbers, `path` naming it (e.g. `loads[0].time`).
+fn validate_time(f: &TimeFunction, path: &str) -> Result<(), Failure> {
+    match *f {
+        TimeFunction::Constant => Ok(()),
+        TimeFunction::HalfSine { duration } => {
+            check_positive(duration, &format!("{path}.half_sine.duration"))
         }
+        TimeFunction::Step { start } => check_non_negative(start, &format!("{path}.step.start")),
+        TimeFunction::Until(until) => check_non_negative(until, &format!("{path}.until")),
+        TimeFunction::RampDown { start, duration } => {
+            check_non_negative(start, &format!("{path}.ramp_down.start"))?;
+            check_positive(duration, &format!("{path}.ramp_down.duration"))
+        }
+    }
+}
+
+/// A released support: a pin or a slider (their reaction is a force), no
+/// torsion spring or damper, released by `until` or `ramp_down`.
+fn validate_release(
+    j: &Joint,
+    release: &TimeFunction,
+    a_on_ground: bool,
+    p: &str,
+) -> Result<(), Failure> {
+    let path = format!("{p}.release");
+    let why = match (j.kind, release) {
+        (JointType::Weld, _) => {
+            Some("a weld's reaction includes a moment; only pins and sliders can be released")
+        }
+        (JointType::Slider, _) if !a_on_ground => {
+            Some("a released slider needs its rail (point `a`) on the ground")
+        }
+        _ if j.torsion_stiffness.is_some() || j.torsion_damping.is_some() => {
+            Some("a released pin cannot carry a torsion spring or damper")
+        }
+        (_, TimeFunction::Until(_) | TimeFunction::RampDown { .. }) => None,
+        _ => Some("a support is released by `until` or `ramp_down` (it holds in full at t = 0)"),
+    };
+    match why {
+        Some(why) => Err((
+            path,
+            Problem::KeyNotAllowed {
+                key: "release",
+                why,
+            },
+        )),
+        None => validate_time(release, &path),
     }
 }
 

@@ -1,6 +1,6 @@
 //! Construction of a [`System`] from a validated [`Model`].
 
-use super::{BeamMesh, PointMassDofs, RigidDofs, SensorPoint, System};
+use super::{BeamMesh, PointMassDofs, ReleasedSupport, RigidDofs, SensorPoint, System};
 use crate::anchor::{perp, Anchor};
 use crate::contact::law::NormalLaw;
 use crate::contact::{ContactElement, ContactKind};
@@ -128,6 +128,7 @@ impl System {
             gravity: v2(model.gravity),
             q0,
             constraint_rows: Vec::new(),
+            released: Vec::new(),
             ndof: dof,
             nrows: 0,
             mass: std::sync::OnceLock::new(),
@@ -280,6 +281,12 @@ impl System {
                     })
                 }
             };
+            if let Some(time) = j.release {
+                self.released.push(ReleasedSupport {
+                    constraint: self.constraints.len(),
+                    time,
+                });
+            }
             self.constraint_rows.push(self.nrows);
             self.nrows += c.rows();
             self.constraints.push(c);

@@ -14,10 +14,12 @@ mod assemble;
 mod build;
 mod energy;
 mod mass;
+mod release;
 mod rigid_motion;
 
 pub use assemble::{EnergyBreakdown, Linearization};
 pub use mass::MassMatrix;
+pub use release::ReleasedSupport;
 pub use rigid_motion::{RigidMotions, SparseColumn};
 
 use crate::anchor::Anchor;
@@ -129,6 +131,8 @@ pub struct System {
     pub q0: Vec<f64>,
     /// First row of each constraint in the stacked C.
     pub constraint_rows: Vec<usize>,
+    /// Joints that hold until a transient releases them (in constraint order).
+    pub released: Vec<ReleasedSupport>,
     ndof: usize,
     nrows: usize,
     /// M, assembled on first use (the masses are fixed once built).

@@ -155,11 +155,13 @@ pub fn solve_equilibrium(
         Ok(()) => Ok(solver.finish(state)),
         // An assembly that only the applied loads hold in place (a
         // pre-stressed mechanism: springs and loads balance, gravity alone
-        // would move it) is found with the loads first.
+        // would move it, or a compressed spring without its balancing
+        // loads would buckle it) is found with the loads first.
         Err(
             e @ (AnalysisError::Mechanism { .. }
             | AnalysisError::NoSupport
-            | AnalysisError::NotConverged { .. }),
+            | AnalysisError::NotConverged { .. }
+            | AnalysisError::UnstableUnderGravity { .. }),
         ) if solver.has_gravity && settings.load_scale != 0.0 => {
             let mut state = solver.reference_state();
             solver

@@ -143,6 +143,22 @@ pub struct Evaluation {
     pub value: Option<f64>,
     /// Elastic modes, ascending (tracked quantities only).
     pub modes: Vec<RawMode>,
+    /// The switch-off's tracked point over time (`time_to_distance_s`,
+    /// when [`EvalSettings::keep_trace`]).
+    pub trace: Option<Trace>,
+}
+
+/// The tracked point of a switch-off run (node 0 by default): absolute
+/// coordinates at the output samples, as `switch-off --json`'s `node0`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Trace {
+    /// [SI: s]
+    pub time_s: Vec<f64>,
+    /// [SI: m]
+    pub x_m: Vec<f64>,
+    /// [SI: m]
+    pub y_m: Vec<f64>,
 }
 
 /// How the points are computed.
@@ -157,6 +173,8 @@ pub struct EvalSettings {
     /// switch-off's 1 µs and 3 ms).
     pub step: Option<f64>,
     pub end_time: Option<f64>,
+    /// Keep each switch-off's trace (a one-parameter sweep draws them).
+    pub keep_trace: bool,
 }
 
 /// Computes `quantity` on `model`.
@@ -176,6 +194,7 @@ pub fn evaluate(
             Ok(Evaluation {
                 value: Some(f.frequency_hz),
                 modes: Vec::new(),
+                trace: None,
             })
         }
         Quantity::Frequency { mode } => {
@@ -196,7 +215,11 @@ pub fn evaluate(
                     available: modes.len(),
                 });
             }
-            Ok(Evaluation { value: None, modes })
+            Ok(Evaluation {
+                value: None,
+                modes,
+                trace: None,
+            })
         }
         Quantity::TimeToDistance => {
             let defaults = SwitchOffSettings::default();
@@ -213,9 +236,15 @@ pub fn evaluate(
                     distance: so.distance,
                     end_time: so.end_time,
                 })?;
+            let run = r.flexible;
             Ok(Evaluation {
                 value: Some(t),
                 modes: Vec::new(),
+                trace: settings.keep_trace.then_some(Trace {
+                    time_s: run.time_s,
+                    x_m: run.x_m,
+                    y_m: run.y_m,
+                }),
             })
         }
         Quantity::Peak { sensor } => {
@@ -226,7 +255,7 @@ pub fn evaluate(
                 .ok_or_else(|| PointError::UnknownSensor { id: sensor.clone() })?;
             let defaults = SwitchOffSettings::default();
             let sim = simulate(
-                &system,
+                System::new(model),
                 &[],
                 &SimulationSettings {
                     transient: TransientSettings {
@@ -245,6 +274,7 @@ pub fn evaluate(
             Ok(Evaluation {
                 value: Some(peak),
                 modes: Vec::new(),
+                trace: None,
             })
         }
     }

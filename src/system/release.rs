@@ -1,0 +1,62 @@
+//! Released supports: a joint with `release` (a latch) holds in the
+//! static equilibrium — the ON state of a pre-stressed mechanism — and lets
+//! go in the transient that starts there.
+//!
+//! At the equilibrium (q*, λ*) the joint exerts the force R = −∂C/∂r_b ᵀλ*
+//! [SI: N] on its point b and −R on its point a (a pin: R = −(λ₀, λ₁); a
+//! slider on a ground rail: R = −λ n). The released system drops the
+//! joint's equations and applies R f(t) at b and −R f(t) at a as dead loads
+//! (fixed direction), f the joint's `release` time function (1 at t = 0).
+//! At t = 0 the loads equal the reactions, so q* is an equilibrium of the
+//! released system too and the transient starts at rest without a jump;
+//! then the hold fades as f does. The coordinates (and so every anchor)
+//! are those of the holding system: only constraints and loads change.
+
+use super::System;
+use crate::load::PointLoad;
+use crate::model::TimeFunction;
+
+/// A joint that holds until a transient releases it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReleasedSupport {
+    /// Index of its constraint in [`System::constraints`].
+    pub constraint: usize,
+    /// How its hold falls after t = 0.
+    pub time: TimeFunction,
+}
+
+impl System {
+    /// The system after the release of every released support, given the
+    /// equilibrium `q` and multipliers `lambda` of this (holding) system;
+    /// `self` unchanged when it has none.
+    pub fn release_supports(mut self, q: &[f64], lambda: &[f64]) -> System {
+        let released = std::mem::take(&mut self.released);
+        for r in released.iter().rev() {
+            let c = self.constraints.remove(r.constraint);
+            let row = self.constraint_rows[r.constraint];
+            let force = c
+                .point_reaction(q, &lambda[row..row + c.rows()])
+                .expect("validated: only pins and sliders are released");
+            let pair = c.pair();
+            for (side, anchor, f) in [("b", &pair.b, force), ("a", &pair.a, -force)] {
+                if anchor.dofs().is_empty() {
+                    continue;
+                }
+                self.loads.push(PointLoad {
+                    label: format!("{} (released, on {side})", c.label()),
+                    anchor: anchor.clone(),
+                    force: f,
+                    time: r.time,
+                });
+            }
+        }
+        self.constraint_rows.clear();
+        let mut rows = 0;
+        for c in &self.constraints {
+            self.constraint_rows.push(rows);
+            rows += c.rows();
+        }
+        self.nrows = rows;
+        self
+    }
+}
