@@ -458,3 +458,72 @@ fn switch_off_time_falls_with_rising_prestress() {
         "time to 2 mm falls with the pre-stress: {t:?}"
     );
 }
+
+/// A one-parameter switch-off sweep carries node 0's x(t) per point
+/// (Fig. 10's panels): each trace crosses the 2 mm line at the point's
+/// time to distance, the merge of shards keeps the traces, and the plot
+/// draws one line per point; a two-parameter grid carries none.
+#[test]
+fn switch_off_sweeps_carry_node0_traces_that_cross_2_mm_at_their_time() {
+    let m = Model::switch_off_builtin();
+    let s = sweep(
+        &m,
+        &["joints[hybrid].torsion_stiffness=2:8:3"],
+        "time_to_distance_s",
+        1,
+    );
+    let d = complete(&s);
+    for p in &d.points {
+        let trace = p
+            .node0
+            .as_ref()
+            .expect("a 1-D switch-off sweep keeps node 0");
+        let t = p.result.expect("2 mm reached");
+        assert_eq!(trace.time_s.len(), trace.x_m.len());
+        // Linear interpolation of the 67.2 kHz samples at the reported time.
+        let k = trace.time_s.iter().position(|&s| s > t).unwrap();
+        let (t0, t1) = (trace.time_s[k - 1], trace.time_s[k]);
+        let x = trace.x_m[k - 1] + (t - t0) / (t1 - t0) * (trace.x_m[k] - trace.x_m[k - 1]);
+        let travel = x - trace.x_m[0];
+        // Between samples 15 µs apart x(t) is nearly linear: the
+        // interpolation's error is ~ẍ Δt²/8 ≈ 1e-7 m.
+        assert!(
+            (travel - 2e-3).abs() < 1e-6,
+            "point {}: node 0 travelled {travel:.6e} m at its time {t:.6e} s, not 2 mm",
+            p.index
+        );
+    }
+    let shards: Vec<(String, SweepDocument)> = (1..=2)
+        .map(|k| {
+            let shard = Shard::parse(&format!("{k}/2")).unwrap();
+            let doc = s.run(Some(shard), Execution::Parallel, &|| {}).document();
+            (format!("shard {k}"), doc)
+        })
+        .collect();
+    assert_eq!(merge(&shards).unwrap().document(), d, "merged = single run");
+    let svg = ancf_modal::output::plot::render(
+        &ancf_modal::output::figures::sweep::sweep_figure(&d).unwrap(),
+        ancf_modal::output::plot::Format::Svg,
+        ancf_modal::output::plot::PlotSize::default(),
+    )
+    .unwrap();
+    let svg = String::from_utf8(svg).unwrap();
+    for p in &d.points {
+        let label = format!("{:.3} ms", p.result.unwrap() * 1e3);
+        assert!(svg.contains(&label), "legend entry `{label}` missing");
+    }
+    let grid = sweep(
+        &m,
+        &[
+            "joints[hybrid].torsion_stiffness=2:8:2",
+            "load_scale:F_x2,F_c,helical_spring=1:1.5:2",
+        ],
+        "time_to_distance_s",
+        1,
+    );
+    let g = complete(&grid);
+    assert!(g
+        .points
+        .iter()
+        .all(|p| p.node0.is_none() && p.result.is_some()));
+}

@@ -5,7 +5,7 @@
 
 mod common;
 use ancf_modal::analysis::switch_off::{run_switch_off, SwitchOffSettings};
-use ancf_modal::model::Model;
+use ancf_modal::model::{Contact, Model};
 use ancf_modal::System;
 use assert_cmd::Command;
 use common::model;
@@ -211,4 +211,60 @@ fn bad_switch_off_settings_are_one_line_errors() {
         .code(1);
     let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
     assert!(err.contains("--point") && err.contains("nope"), "{err}");
+}
+
+/// The ON-state moment about the contact pin of the helical spring's force
+/// on the blade [N m, counter-clockwise = opening], from the model's
+/// geometry with the spring's ground point moved by `dy`: the spring's
+/// tension k (L − L_f) along the line to the ground point, L_f from the
+/// preload at the reference length.
+fn spring_opening_moment(m: &Model, dy: f64) -> f64 {
+    let blade = &m.beams[0];
+    let spring = &m.springs[0];
+    let s = spring.b.s.unwrap();
+    let (sin, cos) = blade.angle_deg.to_radians().sin_cos();
+    let b = [blade.start[0] + s * cos, blade.start[1] + s * sin];
+    let g0 = spring.a.ground.unwrap();
+    let pin = match &m.contacts[0] {
+        Contact::PinSlot { pin, .. } => pin.ground.unwrap(),
+        other => panic!("the built-in contact is a pin in a slot, not {other:?}"),
+    };
+    let len = |g: [f64; 2]| (b[0] - g[0]).hypot(b[1] - g[1]);
+    let free = len(g0) - spring.preload.unwrap() / spring.stiffness;
+    let g = [g0[0], g0[1] + dy];
+    let l = len(g);
+    let tension = spring.stiffness * (l - free);
+    let f = [tension * (g[0] - b[0]) / l, tension * (g[1] - b[1]) / l];
+    (b[0] - pin[0]) * f[1] - (b[1] - pin[1]) * f[0]
+}
+
+#[test]
+fn moving_the_spring_attachment_moves_the_switch_off_time_against_its_opening_moment() {
+    // Fig. 10's third panel: the spring's ground point 0 → ±1 mm in y. The
+    // latch keeps each ON state balanced; the spring's opening moment about
+    // the pin, computed here from the geometry alone, orders the times.
+    let base = Model::switch_off_builtin();
+    let mut runs = Vec::new();
+    for dy in [-1e-3, 0.0, 1e-3] {
+        let mut m = base.clone();
+        let g = m.springs[0].a.ground.as_mut().unwrap();
+        g[1] += dy;
+        let t = run_switch_off(&m, &SwitchOffSettings::default())
+            .unwrap()
+            .flexible
+            .time_to_distance_s
+            .expect("2 mm reached");
+        runs.push((dy, spring_opening_moment(&base, dy), t));
+    }
+    for w in runs.windows(2) {
+        let ((dy0, m0, t0), (dy1, m1, t1)) = (w[0], w[1]);
+        assert!(
+            m0 > 0.0 && m1 > 0.0,
+            "the spring opens: {m0:.4e}, {m1:.4e} N m"
+        );
+        assert!(
+            (m1 - m0) * (t1 - t0) < 0.0,
+            "attachment {dy0:+.0e} → {dy1:+.0e} m: opening moment {m0:.5e} → {m1:.5e} N m but time to 2 mm {t0:.6e} → {t1:.6e} s"
+        );
+    }
 }

@@ -1,7 +1,7 @@
 //! A sweep document ([`crate::analysis::sweep::SweepDocument`]) as a table
 //! and as CSV.
 
-use crate::analysis::sweep::SweepDocument;
+use crate::analysis::sweep::{Quantity, SweepDocument};
 use std::fmt::Write;
 
 /// Readable table: one row per point, parameter values, the quantity or
@@ -30,16 +30,17 @@ pub fn sweep_table(d: &SweepDocument) -> String {
             d.points.len()
         );
     }
-    let _ = writeln!(
-        s,
-        "; linearized at the {}; sweep_id {}",
-        if d.prestress {
-            "static equilibrium"
-        } else {
-            "reference"
-        },
-        d.sweep_id
-    );
+    // Where each point starts: the modal quantities linearize, the
+    // switch-off always starts from its ON-state equilibrium, a sensor peak
+    // from the equilibrium with --prestress.
+    let start = match Quantity::parse(&d.quantity) {
+        Ok(Quantity::TimeToDistance) => "from the static equilibrium (ON state)",
+        Ok(Quantity::Peak { .. }) if d.prestress => "from the static equilibrium",
+        Ok(Quantity::Peak { .. }) => "from the reference at rest",
+        _ if d.prestress => "linearized at the static equilibrium",
+        _ => "linearized at the reference",
+    };
+    let _ = writeln!(s, "; {start}; sweep_id {}", d.sweep_id);
     let mut header = format!("{:>7}", "point");
     for p in &d.parameters {
         let _ = write!(header, "  {:>16}", truncate(&p.name, 16));
@@ -150,6 +151,7 @@ mod tests {
             frequencies_hz: None,
             mac: None,
             modes: None,
+            node0: None,
         };
         let d = SweepDocument {
             model: "m".into(),

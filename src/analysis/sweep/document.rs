@@ -11,7 +11,7 @@
 
 use super::error::SweepError;
 use super::grid::{coordinates, Shard};
-use super::quantity::{Evaluation, Quantity, RawMode};
+use super::quantity::{Evaluation, Quantity, RawMode, Trace};
 use super::tracking::{track, TrackedMode};
 use serde::{Deserialize, Serialize};
 
@@ -86,6 +86,10 @@ pub struct PointRecord {
     /// Computed elastic modes (shard documents of tracked quantities).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub modes: Option<Vec<RawMode>>,
+    /// The switch-off's tracked point (`time_to_distance_s` over one
+    /// parameter).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub node0: Option<Trace>,
 }
 
 /// What every point of a sweep shares.
@@ -205,6 +209,7 @@ fn record(p: &RawPoint, tracked: Option<&[Option<TrackedMode>]>) -> PointRecord 
         frequencies_hz: tracked.map(freq),
         mac: tracked.map(mac),
         modes: None,
+        node0: p.outcome.as_ref().ok().and_then(|e| e.trace.clone()),
     }
 }
 
@@ -294,6 +299,7 @@ pub fn merge(shards: &[(String, SweepDocument)]) -> Result<SweepRun, SweepError>
                 None => Ok(Evaluation {
                     value: r.result,
                     modes: r.modes.clone().unwrap_or_default(),
+                    trace: r.node0.clone(),
                 }),
             };
             let point = RawPoint {

@@ -32,7 +32,7 @@ pub use document::{
 pub use error::{PointError, SweepError};
 pub use grid::{Axis, Grid, Shard};
 pub use param::Parameter;
-pub use quantity::{evaluate, EvalSettings, Evaluation, Quantity, RawMode};
+pub use quantity::{evaluate, EvalSettings, Evaluation, Quantity, RawMode, Trace};
 
 use crate::analysis::EigenMethod;
 use crate::model::Model;
@@ -181,6 +181,7 @@ impl Sweep {
             modes: self.settings.tracked_modes + margin(self.settings.tracked_modes),
             step: self.settings.step,
             end_time: self.settings.end_time,
+            keep_trace: self.grid.shape().len() == 1,
         };
         let outcome = self
             .model_at(&values)

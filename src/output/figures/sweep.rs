@@ -6,15 +6,20 @@
 //!   frequencies);
 //! * one parameter, another quantity: the quantity against the parameter;
 //! * two parameters: a heat map of the quantity over the grid (the second
-//!   parameter along x, the first along y).
+//!   parameter along x, the first along y);
+//! * one parameter, `time_to_distance_s`: the tracked point's (node 0's)
+//!   x displacement from its ON state against time for every point
+//!   overlaid, with the travel distance as a reference line — the paper's
+//!   Fig. 10 panels; each legend entry gives the value and its time.
 //!
 //! Failed points leave gaps (lines) or grey cells (heat map). Parameters
 //! are shown in the model file's SI units; frequencies with an SI prefix.
 
 use crate::analysis::sweep::{ParameterValues, Quantity, SweepDocument};
+use crate::analysis::switch_off::SwitchOffSettings;
 use crate::output::plot::{
-    render, write_atomic, Figure, Format, HeatMap, LineFigure, Panel, PlotError, PlotSize, Scale,
-    Series, SeriesStyle,
+    render, write_atomic, Figure, Format, Guide, HeatMap, Legend, LineFigure, Panel, PlotError,
+    PlotSize, Scale, Series, SeriesStyle,
 };
 use std::path::Path;
 
@@ -81,6 +86,53 @@ fn nan(v: Option<f64>) -> f64 {
     v.unwrap_or(f64::NAN)
 }
 
+/// A parameter value for a legend, in the axis's unit.
+fn value_label(p: &ParameterValues, v: f64) -> String {
+    let scale = parameter_scale(p);
+    let unit = if scale.unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {}", scale.unit)
+    };
+    format!("{} = {:.4}{unit}", p.name, v * scale.factor)
+}
+
+/// Node 0's x(t) of every point of a one-parameter switch-off sweep
+/// (`None` when the document carries no traces).
+fn trace_figure(d: &SweepDocument, p: &ParameterValues) -> Option<LineFigure> {
+    if !d.points.iter().any(|r| r.node0.is_some()) {
+        return None;
+    }
+    let mut panel = Panel::new("Displacement x of node 0", Scale::mm());
+    for r in &d.points {
+        let Some(t) = &r.node0 else { continue };
+        let x0 = t.x_m.first().copied().unwrap_or(0.0);
+        let dx = t.x_m.iter().map(|x| x - x0).collect();
+        let time = match r.result {
+            Some(s) => format!("{:.3} ms", s * 1e3),
+            None => "not reached".to_string(),
+        };
+        panel.series.push(Series::line(
+            format!("{}: {time}", value_label(p, r.values[0])),
+            t.time_s.clone(),
+            dx,
+        ));
+    }
+    let distance = SwitchOffSettings::default().distance;
+    panel.hlines.push(Guide::reference(
+        distance,
+        format!("{:.3} mm", distance * 1e3),
+    ));
+    panel.legend = Legend::UpperLeft;
+    let mut fig = LineFigure::new(
+        format!("{}: node 0 against time, {}", d.model, p.name),
+        "Time",
+        Scale::ms(),
+    );
+    fig.panels.push(panel);
+    Some(fig)
+}
+
 /// The figure of a sweep document (complete, not a shard).
 pub fn sweep_figure(d: &SweepDocument) -> Result<Figure, PlotError> {
     let fmax = d
@@ -103,6 +155,9 @@ pub fn sweep_figure(d: &SweepDocument) -> Result<Figure, PlotError> {
     let z_scale = Scale::si(unit, fmax);
     match &d.parameters[..] {
         [p] => {
+            if let Some(fig) = trace_figure(d, p) {
+                return Ok(fig.into());
+            }
             let x: Vec<f64> = d.points.iter().map(|r| r.values[0]).collect();
             let mut fig = LineFigure::new(
                 format!("{}: {} against {}", d.model, d.quantity, p.name),
