@@ -3,6 +3,7 @@
 
 pub mod calibrate;
 pub mod convergence;
+pub mod damped_modes;
 pub mod impulse;
 pub mod modal;
 pub mod simulate;
