@@ -212,6 +212,6 @@ pub enum SimulationError {
     InvalidSetting { flag: &'static str, value: f64 },
     #[error("--point: {why}")]
     InvalidPoint { why: String },
-    #[error("joint `{joint}` is a released support: it lets go of the static equilibrium's hold, so start from the equilibrium (--from-equilibrium)")]
+    #[error("joint `{joint}` is a released support: it lets go of the static equilibrium's hold, so start from the equilibrium (`transient --from-equilibrium`, `sweep --prestress`)")]
     ReleaseNeedsEquilibrium { joint: String },
 }

@@ -12,8 +12,10 @@ use crate::error::{AnalysisError, Problem};
 pub enum SweepError {
     #[error("no parameter to vary (give at least one --param NAME=LO:HI:N[:log])")]
     NoParameters,
-    #[error("`{given}` is not NAME=LO:HI:N[:log]")]
+    #[error("`{given}` is not NAME=LO:HI:N[:log] or NAME+=LO:HI:N[:log] (an offset; not for load_scale:)")]
     ParamSyntax { given: String },
+    #[error("`{name}+=`: the model has no value at `{path}` to offset (give it in the model file, or set it with `{name}=`)")]
+    NoValueToOffset { name: String, path: String },
     #[error("`{given}`: {what} `{text}` is not a finite number")]
     NotANumber {
         given: String,

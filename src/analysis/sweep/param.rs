@@ -44,6 +44,8 @@ enum Op {
     Set,
     /// The value multiplies the model's number `base`.
     Scale { base: f64 },
+    /// The value is added to the model's number `base` (`NAME+=…`).
+    Shift { base: f64 },
 }
 
 /// One number a parameter changes.
@@ -71,14 +73,19 @@ pub struct Parameter {
 }
 
 impl Parameter {
-    /// Resolves `NAME=LO:HI:N[:log]` against `model` (JSON form `json`).
+    /// Resolves `NAME=LO:HI:N[:log]` against `model` (JSON form `json`);
+    /// `NAME+=LO:HI:N` adds the values to the model's number (an offset,
+    /// e.g. a point moved by 0 → −1 mm).
     pub fn parse(model: &Model, json: &Value, given: &str) -> Result<Parameter, SweepError> {
         let (name, range) = given
             .split_once('=')
             .ok_or_else(|| SweepError::ParamSyntax {
                 given: given.to_string(),
             })?;
-        let name = name.trim();
+        let (name, offset) = match name.trim().strip_suffix('+') {
+            Some(n) => (n.trim(), true),
+            None => (name.trim(), false),
+        };
         if name.is_empty() {
             return Err(SweepError::ParamSyntax {
                 given: given.to_string(),
@@ -86,25 +93,48 @@ impl Parameter {
         }
         let axis = Axis::parse(range, given)?;
         let (target, edits, scales_loads) = match name.strip_prefix("load_scale:") {
+            Some(_) if offset => {
+                return Err(SweepError::ParamSyntax {
+                    given: given.to_string(),
+                })
+            }
             Some(ids) => {
                 let (t, e) = load_scale(model, json, name, ids)?;
                 (t, e, true)
             }
             None => {
                 let path = resolve_number(model, json, name)?;
-                let target = display(&path);
-                let integer = get(json, &path).is_some_and(|v| v.is_i64() || v.is_u64());
-                let edit = Edit {
-                    path,
-                    op: Op::Set,
-                    integer,
+                let mut target = display(&path);
+                let current = get(json, &path);
+                let integer = current.is_some_and(|v| v.is_i64() || v.is_u64());
+                let op = match (offset, current.and_then(Value::as_f64)) {
+                    (false, _) => Op::Set,
+                    (true, Some(base)) => Op::Shift { base },
+                    (true, None) => {
+                        return Err(SweepError::NoValueToOffset {
+                            name: name.to_string(),
+                            path: target,
+                        })
+                    }
                 };
-                check_settable(json, name, &target, &edit, axis.lo)?;
+                let lowest = match op {
+                    Op::Shift { base } => base + axis.lo,
+                    _ => axis.lo,
+                };
+                if offset {
+                    target.push_str(" offset");
+                }
+                let edit = Edit { path, op, integer };
+                check_settable(json, name, &target, &edit, lowest)?;
                 (target, vec![edit], false)
             }
         };
         Ok(Parameter {
-            name: name.to_string(),
+            name: if offset {
+                format!("{name}+")
+            } else {
+                name.to_string()
+            },
             target,
             axis,
             scales_loads,
@@ -125,6 +155,7 @@ impl Parameter {
             let v = match e.op {
                 Op::Set => value,
                 Op::Scale { base } => base * value,
+                Op::Shift { base } => base + value,
             };
             if let Some(slot) = slot_mut(json, &e.path) {
                 *slot = number(v, e.integer);
@@ -518,6 +549,27 @@ mod tests {
         assert!(matches!(
             resolve("load_scale:nope"),
             Err(SweepError::UnknownLoad { .. })
+        ));
+    }
+
+    #[test]
+    fn an_offset_adds_to_the_models_number() {
+        let m = Model::builtin();
+        let json = serde_json::to_value(&m).unwrap();
+        let base = m.beams[0].section.height;
+        let p = Parameter::parse(&m, &json, "beams[0].section.height+=-1e-4:1e-4:3").unwrap();
+        assert_eq!(p.name, "beams[0].section.height+");
+        assert_ne!(
+            p.target, "beams[0].section.height",
+            "an offset is its own target"
+        );
+        for v in [-1e-4, 0.0, 1e-4] {
+            let out = apply(&json, std::slice::from_ref(&p), &[v]).unwrap();
+            assert_eq!(out.beams[0].section.height, base + v);
+        }
+        assert!(matches!(
+            Parameter::parse(&m, &json, "load_scale:loads[0]+=0:1:2"),
+            Err(SweepError::ParamSyntax { .. })
         ));
     }
 
