@@ -355,6 +355,14 @@ fn cli_merge_of_three_shards_prints_the_single_run() {
         assert!(v.get(key).is_some(), "key {key}");
     }
     assert_eq!(v["total_points"], 7);
+    // Provenance: this build and the SHA-256 of the model file's bytes.
+    use sha2::Digest;
+    let sha: String = sha2::Sha256::digest(std::fs::read(m).unwrap())
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    assert_eq!(v["model_sha256"], sha.as_str());
+    assert_eq!(v["tool_version"], env!("CARGO_PKG_VERSION"));
     let csv = std::fs::read_to_string(csv).unwrap();
     assert_eq!(csv.lines().count(), 8);
     assert!(csv

@@ -10,6 +10,7 @@ use ancf_modal::analysis::sweep::{
     DEFAULT_TRACKED_MODES,
 };
 use ancf_modal::output::figures::sweep::{check_plottable, write_sweep_figure};
+use ancf_modal::output::provenance::{sha256_hex, tool_version};
 use ancf_modal::output::sweep_report::{sweep_csv, sweep_table};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
@@ -129,8 +130,30 @@ pub fn run(args: SweepArgs) -> Result<()> {
         }
         check_plottable(path, sweep.parameters.len()).map_err(|e| anyhow!("--plot: {e}"))?;
     }
+    let sha = model_sha256(
+        args.model.as_deref(),
+        sweep.settings.quantity == Quantity::TimeToDistance,
+    )?;
     let run = compute(&sweep, shard, args.threads)?;
-    emit(&run.document(), &args.outputs)
+    let doc = SweepDocument {
+        tool_version: Some(tool_version().to_string()),
+        model_sha256: Some(sha),
+        ..run.document()
+    };
+    emit(&doc, &args.outputs)
+}
+
+/// SHA-256 of the model file, or of the built-in model's text (the
+/// switch-off assembly for a switch-off quantity).
+fn model_sha256(path: Option<&std::path::Path>, switch_off: bool) -> Result<String> {
+    let bytes = match path {
+        Some(p) => {
+            std::fs::read(p).with_context(|| format!("{}: cannot read the file", p.display()))?
+        }
+        None if switch_off => ancf_modal::model::SWITCH_OFF_MODEL_JSON.as_bytes().to_vec(),
+        None => ancf_modal::model::DEFAULT_MODEL_JSON.as_bytes().to_vec(),
+    };
+    Ok(sha256_hex(&bytes))
 }
 
 /// Runs the sweep on `threads` workers (all cores by default) with a

@@ -4,6 +4,7 @@
 use super::sweep::{emit, OutputArgs};
 use ancf_modal::analysis::sweep::{merge, SweepDocument, SweepError};
 use ancf_modal::output::figures::sweep::check_plottable;
+use ancf_modal::output::provenance::tool_version;
 use anyhow::{anyhow, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -34,5 +35,10 @@ pub fn run(args: SweepMergeArgs) -> Result<()> {
     if let Some(path) = &args.outputs.plot {
         check_plottable(path, run.header.parameters.len()).map_err(|e| anyhow!("--plot: {e}"))?;
     }
-    emit(&run.document(), &args.outputs)
+    let doc = SweepDocument {
+        tool_version: Some(tool_version().to_string()),
+        model_sha256: docs[0].1.model_sha256.clone(),
+        ..run.document()
+    };
+    emit(&doc, &args.outputs)
 }

@@ -168,6 +168,8 @@ mod tests {
             tracked_modes: None,
             failed_points: 1,
             shard: None,
+            tool_version: None,
+            model_sha256: None,
             points: vec![
                 point(0, Some(4600.0), None),
                 point(1, None, Some("x, \"y\"")),

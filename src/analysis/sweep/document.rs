@@ -38,6 +38,12 @@ pub struct SweepDocument {
     /// Which shard this is (shard documents only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shard: Option<ShardInfo>,
+    /// Provenance (set by the command line): this build's version and the
+    /// SHA-256 of the model file (or of the built-in model's text).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tool_version: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model_sha256: Option<String>,
     pub points: Vec<PointRecord>,
 }
 
@@ -168,6 +174,8 @@ impl SweepRun {
                 index: s.index,
                 count: s.count,
             }),
+            tool_version: None,
+            model_sha256: None,
             points,
         }
     }
