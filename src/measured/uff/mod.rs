@@ -172,9 +172,8 @@ pub fn blocks_bytes<'a>(file: &Path, data: &'a [u8]) -> Result<Vec<Block<'a>>, M
         let bytes = cur.skip(header.bytes);
         let closed = bytes.len() == header.bytes
             && match cur.next_line() {
-                Some((_, l)) if l.is_empty() => {
-                    cur.next_line().is_some_and(|(_, l)| is_delimiter(l))
-                }
+                // One line end after the data, then the `-1`.
+                Some((_, [])) => cur.next_line().is_some_and(|(_, l)| is_delimiter(l)),
                 Some((_, l)) => is_delimiter(l),
                 None => false,
             };
