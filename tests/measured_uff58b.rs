@@ -135,6 +135,10 @@ fn binary8byte_parses_to_the_values_at_their_offsets() {
         assert!((value - sine).abs() < 1e-5, "point {k}: {value} vs {sine}");
     }
     assert_eq!(v[0], 0.0);
+    // Messages about a point name its record's `58b` line (line 2); the
+    // data start on line 14.
+    assert_eq!(f.lines, vec![2; 250]);
+    assert_eq!(f.data_line, 14);
 }
 
 /// Ordinate data types of record 7.

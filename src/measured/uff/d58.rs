@@ -139,7 +139,7 @@ pub struct Function {
     /// Line (1-based) of the first data line, for messages.
     pub data_line: usize,
     /// Line (1-based) of each point's data, for messages (empty for a
-    /// function not read from a file).
+    /// function not read from a file; for 58b, the record's type line).
     pub lines: Vec<usize>,
 }
 
