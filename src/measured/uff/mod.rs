@@ -128,12 +128,12 @@ pub fn blocks_bytes<'a>(file: &Path, data: &'a [u8]) -> Result<Vec<Block<'a>>, M
             file: file.to_path_buf(),
             line,
         };
-        let (type_no, type_line) = cur.next_line().ok_or(unterminated(open))?;
+        let (type_no, type_line) = cur.next_line().ok_or_else(|| unterminated(open))?;
         let type_text = String::from_utf8_lossy(type_line);
         let mut kind = type_text
             .split_whitespace()
             .next()
-            .ok_or(unterminated(open))?
+            .ok_or_else(|| unterminated(open))?
             .to_string();
         if kind == "58" || kind.eq_ignore_ascii_case("58b") {
             records += 1;
@@ -141,7 +141,7 @@ pub fn blocks_bytes<'a>(file: &Path, data: &'a [u8]) -> Result<Vec<Block<'a>>, M
         if !kind.eq_ignore_ascii_case("58b") {
             let mut lines = Vec::new();
             loop {
-                let (_, l) = cur.next_line().ok_or(unterminated(type_no))?;
+                let (_, l) = cur.next_line().ok_or_else(|| unterminated(type_no))?;
                 if is_delimiter(l) {
                     break;
                 }
@@ -159,7 +159,7 @@ pub fn blocks_bytes<'a>(file: &Path, data: &'a [u8]) -> Result<Vec<Block<'a>>, M
         let header = d58b::BinaryHeader::parse(file, type_no, &type_text)?;
         let mut lines = Vec::with_capacity(header.ascii_lines);
         for k in 0..header.ascii_lines {
-            let (_, l) = cur.next_line().ok_or(MeasuredError::UffTruncated {
+            let (_, l) = cur.next_line().ok_or_else(|| MeasuredError::UffTruncated {
                 file: file.to_path_buf(),
                 line: cur.line,
                 dataset: 58,
