@@ -117,6 +117,26 @@ pub enum MeasuredError {
         found: usize,
         expected: usize,
     },
+    #[error("{}:{line}: UFF 58b record {record}: {found} bytes of binary data before {until}, but its header announces {expected}", file.display())]
+    UffBinaryLength {
+        file: PathBuf,
+        line: usize,
+        record: usize,
+        found: usize,
+        until: &'static str,
+        expected: usize,
+    },
+    #[error("{}:{line}: UFF 58b record {record}: its header announces {announced} bytes of binary data, but {points} points × {per_point} values × {size} bytes make {needed}", file.display())]
+    UffBinarySize {
+        file: PathBuf,
+        line: usize,
+        record: usize,
+        announced: usize,
+        points: usize,
+        per_point: usize,
+        size: usize,
+        needed: usize,
+    },
     #[error("{}:{line}: UFF block has no closing `    -1` line", file.display())]
     UffUnterminated { file: PathBuf, line: usize },
     #[error("{}: holds an FRF, which cannot be averaged with other files; give it alone", file.display())]

@@ -18,7 +18,10 @@
 use std::fmt::Write;
 use std::path::Path;
 
-use super::{blocks, close_block, columns, fmt_e, id_line, open_block, parse_number, write_values};
+use super::{
+    blocks_bytes, close_block, columns, fmt_e, id_line, open_block, parse_number, source_bytes,
+    write_values,
+};
 use crate::measured::MeasuredError;
 
 /// A node of dataset 15.
@@ -121,7 +124,7 @@ pub fn read_modes(
 ) -> Result<(Vec<NodeCoordinates>, Vec<NormalMode>), MeasuredError> {
     let mut nodes = Vec::new();
     let mut modes = Vec::new();
-    for b in blocks(file, text)? {
+    for b in blocks_bytes(file, &source_bytes(file, text))? {
         match b.kind.as_str() {
             "15" => {
                 for (k, l) in b.lines.iter().enumerate() {
@@ -145,7 +148,10 @@ pub fn read_modes(
                     });
                 }
             }
-            "55" => modes.push(parse_mode(file, b.first_line, &b.lines)?),
+            "55" => {
+                let lines: Vec<&str> = b.lines.iter().map(|l| l.as_ref()).collect();
+                modes.push(parse_mode(file, b.first_line, &lines)?);
+            }
             _ => {}
         }
     }

@@ -20,6 +20,9 @@
 //!    double `4E20.12`, complex single `6E13.5` as re, im pairs, complex
 //!    double `4E20.12`); uneven spacing, abscissa and ordinate together.
 //!
+//! Dataset 58b holds records 1–11 as here and record 12 in binary: see
+//! [`super::d58b`], which reads records 1–11 with [`parse_header`].
+//!
 //! This writer writes doubles (`%20.11e`, four to a line) with an even
 //! abscissa, as pyuff's `_write58` does.
 
@@ -136,7 +139,7 @@ pub struct Function {
     /// Line (1-based) of the first data line, for messages.
     pub data_line: usize,
     /// Line (1-based) of each point's data, for messages (empty for a
-    /// function not read from a file).
+    /// function not read from a file; for 58b, the record's type line).
     pub lines: Vec<usize>,
 }
 
@@ -172,8 +175,81 @@ fn int_field(
     })
 }
 
-/// Parses the lines of one dataset-58 block.
+/// How the data of a dataset 58 are laid out (record 7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Layout {
+    /// Number of points.
+    pub points: usize,
+    /// Complex ordinate (re, im pairs).
+    pub complex: bool,
+    /// Double precision (ordinate data types 4 and 6); single otherwise.
+    pub double: bool,
+    /// Even abscissa; an uneven one stores each point's abscissa first.
+    pub even: bool,
+    /// Line (1-based) of record 7, for messages.
+    pub line: usize,
+}
+
+impl Layout {
+    /// Values stored per point: abscissa (uneven only), re, im (complex).
+    pub fn per_point(&self) -> usize {
+        usize::from(self.complex) + 1 + usize::from(!self.even)
+    }
+
+    /// Puts `values` (`points × per_point`, in stored order) into `f`,
+    /// `lines` holding the line of each value.
+    pub fn fill(&self, f: &mut Function, values: &[f64], lines: &[usize]) {
+        let per_point = self.per_point();
+        let pts = values.chunks(per_point);
+        if !self.even {
+            f.x = pts.clone().map(|p| p[0]).collect();
+        }
+        let o = usize::from(!self.even);
+        f.ordinate = if self.complex {
+            Ordinate::Complex(pts.map(|p| Complex64::new(p[o], p[o + 1])).collect())
+        } else {
+            Ordinate::Real(pts.map(|p| p[o]).collect())
+        };
+        f.lines = lines.iter().copied().step_by(per_point).collect();
+    }
+}
+
+/// Parses the lines of one (ASCII) dataset-58 block.
 pub fn parse(file: &Path, b: &Block) -> Result<Function, MeasuredError> {
+    let (mut f, layout) = parse_header(file, b)?;
+    let line_no = |k: usize| b.first_line + k;
+    let n = layout.points * layout.per_point();
+    let mut values = Vec::with_capacity(n);
+    let mut value_lines = Vec::with_capacity(n);
+    for (k, l) in b.lines[11..].iter().enumerate() {
+        for tok in l.split_whitespace() {
+            value_lines.push(line_no(11 + k));
+            let v = parse_number(tok).ok_or(MeasuredError::UffField {
+                file: file.to_path_buf(),
+                line: line_no(11 + k),
+                dataset: 58,
+                field: "data value",
+                value: tok.to_string(),
+            })?;
+            values.push(v);
+        }
+    }
+    if values.len() != n {
+        return Err(MeasuredError::UffTruncated {
+            file: file.to_path_buf(),
+            line: line_no(b.lines.len()),
+            dataset: 58,
+            found: values.len(),
+            expected: n,
+        });
+    }
+    layout.fill(&mut f, &values, &value_lines);
+    Ok(f)
+}
+
+/// Parses records 1–11 of a dataset 58 or 58b: the function without its
+/// data (empty ordinate) and the layout of the data.
+pub fn parse_header(file: &Path, b: &Block) -> Result<(Function, Layout), MeasuredError> {
     let line_no = |k: usize| b.first_line + k;
     if b.lines.len() < 11 {
         return Err(MeasuredError::UffTruncated {
@@ -185,7 +261,7 @@ pub fn parse(file: &Path, b: &Block) -> Result<Function, MeasuredError> {
         });
     }
     let id: [String; 5] = std::array::from_fn(|k| b.lines[k].trim_end().to_string());
-    let r6 = b.lines[5];
+    let r6: &str = &b.lines[5];
     let l6 = line_no(5);
     let function_type =
         FunctionType::from_code(int_field(file, l6, &columns(r6, 0, 5), "function type")?);
@@ -240,7 +316,7 @@ pub fn parse(file: &Path, b: &Block) -> Result<Function, MeasuredError> {
     };
     let even = spacing == 1;
     let axis = |k: usize| -> Result<(SpecDataType, String, String), MeasuredError> {
-        let l = b.lines[7 + k];
+        let l: &str = &b.lines[7 + k];
         let t = int_field(
             file,
             line_no(7 + k),
@@ -252,48 +328,14 @@ pub fn parse(file: &Path, b: &Block) -> Result<Function, MeasuredError> {
     let (abscissa_type, abscissa_label, abscissa_units) = axis(0)?;
     let (ordinate_type, ordinate_label, ordinate_units) = axis(1)?;
     let (denominator_type, denominator_label, denominator_units) = axis(2)?;
-    let n = usize::try_from(num_pts).unwrap_or(0);
-    let per_point = usize::from(complex) + 1 + usize::from(!even);
-    let mut values = Vec::with_capacity(n * per_point);
-    let mut value_lines = Vec::with_capacity(n * per_point);
-    for (k, l) in b.lines[11..].iter().enumerate() {
-        for tok in l.split_whitespace() {
-            value_lines.push(line_no(11 + k));
-            let v = parse_number(tok).ok_or(MeasuredError::UffField {
-                file: file.to_path_buf(),
-                line: line_no(11 + k),
-                dataset: 58,
-                field: "data value",
-                value: tok.to_string(),
-            })?;
-            values.push(v);
-        }
-    }
-    if values.len() != n * per_point {
-        return Err(MeasuredError::UffTruncated {
-            file: file.to_path_buf(),
-            line: line_no(b.lines.len()),
-            dataset: 58,
-            found: values.len(),
-            expected: n * per_point,
-        });
-    }
-    let (x, ordinate) = {
-        let pts = values.chunks(per_point);
-        let x: Vec<f64> = if even {
-            Vec::new()
-        } else {
-            pts.clone().map(|p| p[0]).collect()
-        };
-        let o = usize::from(!even);
-        let ordinate = if complex {
-            Ordinate::Complex(pts.map(|p| Complex64::new(p[o], p[o + 1])).collect())
-        } else {
-            Ordinate::Real(pts.map(|p| p[o]).collect())
-        };
-        (x, ordinate)
+    let layout = Layout {
+        points: usize::try_from(num_pts).unwrap_or(0),
+        complex,
+        double: matches!(ord_type, 4 | 6),
+        even,
+        line: l7,
     };
-    Ok(Function {
+    let f = Function {
         id,
         function_type,
         response_entity: columns(r6, 31, 10),
@@ -305,7 +347,7 @@ pub fn parse(file: &Path, b: &Block) -> Result<Function, MeasuredError> {
         even,
         x_min,
         dx,
-        x,
+        x: Vec::new(),
         abscissa_type,
         abscissa_label,
         abscissa_units,
@@ -315,10 +357,11 @@ pub fn parse(file: &Path, b: &Block) -> Result<Function, MeasuredError> {
         denominator_type,
         denominator_label,
         denominator_units,
-        ordinate,
+        ordinate: Ordinate::Real(Vec::new()),
         data_line: line_no(11),
-        lines: value_lines.into_iter().step_by(per_point).collect(),
-    })
+        lines: Vec::new(),
+    };
+    Ok((f, layout))
 }
 
 /// Appends `f` as an ASCII dataset 58 (even abscissa, doubles). An uneven

@@ -1,6 +1,6 @@
-//! Universal File Format (UFF / UNV) datasets, ASCII: 15 (nodes), 55 (data
-//! at nodes: normal modes) and 58 (function at a nodal DOF: time records,
-//! FRFs, coherence), read and written.
+//! Universal File Format (UFF / UNV) datasets 15 (nodes), 55 (data at
+//! nodes: normal modes) and 58 (function at a nodal DOF: time records, FRFs,
+//! coherence): ASCII read and written, binary 58b read.
 //!
 //! A file is a sequence of blocks, each opened and closed by a line holding
 //! `-1` (right-aligned in six columns), the first line inside naming the
@@ -11,14 +11,20 @@
 //! the axis labels) and as blank-separated fields elsewhere, which also
 //! accepts three-digit exponents (`1.0E+000`) and Fortran `D` exponents.
 //!
+//! Dataset 58b, the binary variant of 58 that acquisition software writes,
+//! is read as well ([`d58b`] has its layout): its block holds arbitrary
+//! bytes (newlines among them), so files are split into blocks as bytes,
+//! the binary part taken by the byte count its type line announces.
+//!
 //! Datasets that describe the test but carry no data this tool uses (151
 //! header, 164 units, 18 and 2420 coordinate systems, 82 trace lines, 2411
 //! and 2412 mesh) are skipped; any other type is an error naming its line.
-//! The binary variant 58b is reported as unsupported.
 
 pub mod d55;
 pub mod d58;
+pub mod d58b;
 
+use std::borrow::Cow;
 use std::fmt::Write;
 use std::path::Path;
 
@@ -26,6 +32,7 @@ use super::{Channel, Channels, MeasuredError, MeasuredFrf, Measurement, TimeReco
 
 pub use d55::{NodeCoordinates, NormalMode};
 pub use d58::{Function, FunctionType, Ordinate, SpecDataType};
+pub use d58b::Binary;
 
 /// Dataset types that are skipped when reading.
 pub const SKIPPED: [&str; 7] = ["151", "164", "18", "2420", "82", "2411", "2412"];
@@ -33,54 +40,165 @@ pub const SKIPPED: [&str; 7] = ["151", "164", "18", "2420", "82", "2411", "2412"
 /// One block of a UFF file.
 #[derive(Debug, Clone)]
 pub struct Block<'a> {
-    /// The dataset type as written (`58`, `58b`, …).
+    /// The dataset type as written (`58`, `58b`, …; `58B` is read as `58b`).
     pub kind: String,
     /// Line number (1-based) of the line after the type line.
     pub first_line: usize,
-    /// The lines between the type line and the closing `-1`.
-    pub lines: Vec<&'a str>,
+    /// The text lines between the type line and the closing `-1` (for
+    /// 58b, the ASCII lines before the binary data), decoded as UTF-8 with
+    /// invalid bytes replaced.
+    pub lines: Vec<Cow<'a, str>>,
+    /// Dataset 58b: the binary data after the ASCII lines.
+    pub binary: Option<Binary<'a>>,
 }
 
-/// Splits UFF text into blocks.
+/// Splits UFF text into blocks (as [`blocks_bytes`]; binary 58b data must
+/// be intact in `text`, see [`source_bytes`]).
 pub fn blocks<'a>(file: &Path, text: &'a str) -> Result<Vec<Block<'a>>, MeasuredError> {
-    let lines: Vec<&str> = text.lines().collect();
+    blocks_bytes(file, text.as_bytes())
+}
+
+/// A read position in a file's bytes, with the 1-based number of the line
+/// it stands on (lines counted at every `\n`, inside binary data too).
+struct Cursor<'a> {
+    data: &'a [u8],
+    pos: usize,
+    line: usize,
+}
+
+impl<'a> Cursor<'a> {
+    /// The next line without its `\n` or `\r\n`, and its number.
+    fn next_line(&mut self) -> Option<(usize, &'a [u8])> {
+        if self.pos >= self.data.len() {
+            return None;
+        }
+        let rest = &self.data[self.pos..];
+        let (line, advance) = match rest.iter().position(|&c| c == b'\n') {
+            Some(k) => (&rest[..k], k + 1),
+            None => (rest, rest.len()),
+        };
+        let line = line.strip_suffix(b"\r").unwrap_or(line);
+        let no = self.line;
+        self.pos += advance;
+        self.line += 1;
+        Some((no, line))
+    }
+
+    /// Skips `n` raw bytes (at most to the end), counting their newlines.
+    fn skip(&mut self, n: usize) -> &'a [u8] {
+        let end = (self.pos + n).min(self.data.len());
+        let bytes = &self.data[self.pos..end];
+        self.line += bytes.iter().filter(|&&c| c == b'\n').count();
+        self.pos = end;
+        bytes
+    }
+}
+
+fn is_delimiter(line: &[u8]) -> bool {
+    line.trim_ascii() == b"-1"
+}
+
+/// Splits the bytes of a UFF file into blocks. ASCII blocks end at the
+/// first `-1` line; a 58b block holds, after its type line, the number of
+/// ASCII lines and then exactly the number of binary bytes its type line
+/// announces (whatever bytes they are, newlines included), followed by the
+/// closing `-1` (after at most one line end, which some writers add).
+pub fn blocks_bytes<'a>(file: &Path, data: &'a [u8]) -> Result<Vec<Block<'a>>, MeasuredError> {
+    let mut cur = Cursor {
+        data,
+        pos: 0,
+        line: 1,
+    };
     let mut out = Vec::new();
-    let mut i = 0;
-    while i < lines.len() {
-        if lines[i].trim().is_empty() {
-            i += 1;
+    let mut records = 0;
+    while let Some((open, line)) = cur.next_line() {
+        if line.trim_ascii().is_empty() {
             continue;
         }
-        if lines[i].trim() != "-1" {
+        if !is_delimiter(line) {
             return Err(MeasuredError::UffField {
                 file: file.to_path_buf(),
-                line: i + 1,
+                line: open,
                 dataset: 0,
                 field: "block delimiter (-1)",
-                value: lines[i].trim().to_string(),
+                value: String::from_utf8_lossy(line.trim_ascii()).into_owned(),
             });
         }
-        let type_line = i + 1;
-        let kind = lines
-            .get(type_line)
-            .and_then(|l| l.split_whitespace().next())
-            .ok_or(MeasuredError::UffUnterminated {
-                file: file.to_path_buf(),
-                line: i + 1,
-            })?
+        let unterminated = |line| MeasuredError::UffUnterminated {
+            file: file.to_path_buf(),
+            line,
+        };
+        let (type_no, type_line) = cur.next_line().ok_or_else(|| unterminated(open))?;
+        let type_text = String::from_utf8_lossy(type_line);
+        let mut kind = type_text
+            .split_whitespace()
+            .next()
+            .ok_or_else(|| unterminated(open))?
             .to_string();
-        let end = (type_line + 1..lines.len())
-            .find(|&j| lines[j].trim() == "-1")
-            .ok_or(MeasuredError::UffUnterminated {
+        if kind == "58" || kind.eq_ignore_ascii_case("58b") {
+            records += 1;
+        }
+        if !kind.eq_ignore_ascii_case("58b") {
+            let mut lines = Vec::new();
+            loop {
+                let (_, l) = cur.next_line().ok_or_else(|| unterminated(type_no))?;
+                if is_delimiter(l) {
+                    break;
+                }
+                lines.push(String::from_utf8_lossy(l));
+            }
+            out.push(Block {
+                kind,
+                first_line: type_no + 1,
+                lines,
+                binary: None,
+            });
+            continue;
+        }
+        kind = "58b".into();
+        let header = d58b::BinaryHeader::parse(file, type_no, &type_text)?;
+        let mut lines = Vec::with_capacity(header.ascii_lines);
+        for k in 0..header.ascii_lines {
+            let (_, l) = cur.next_line().ok_or_else(|| MeasuredError::UffTruncated {
                 file: file.to_path_buf(),
-                line: type_line + 1,
+                line: cur.line,
+                dataset: 58,
+                found: k,
+                expected: header.ascii_lines,
             })?;
+            lines.push(String::from_utf8_lossy(l));
+        }
+        let start = cur.pos;
+        let bytes = cur.skip(header.bytes);
+        let closed = bytes.len() == header.bytes
+            && match cur.next_line() {
+                // One line end after the data, then the `-1`.
+                Some((_, [])) => cur.next_line().is_some_and(|(_, l)| is_delimiter(l)),
+                Some((_, l)) => is_delimiter(l),
+                None => false,
+            };
+        if !closed {
+            let (found, until) = d58b::binary_extent(&data[start..]);
+            return Err(MeasuredError::UffBinaryLength {
+                file: file.to_path_buf(),
+                line: type_no,
+                record: records,
+                found,
+                until,
+                expected: header.bytes,
+            });
+        }
         out.push(Block {
             kind,
-            first_line: type_line + 2,
-            lines: lines[type_line + 1..end].to_vec(),
+            first_line: type_no + 1,
+            lines,
+            binary: Some(Binary {
+                header,
+                bytes,
+                line: type_no,
+                record: records,
+            }),
         });
-        i = end + 1;
     }
     Ok(out)
 }
@@ -153,26 +271,41 @@ pub fn close_block(out: &mut String) {
     let _ = writeln!(out, "{:>6}", -1);
 }
 
-/// Every dataset-58 function of a file (other types checked: skipped or an
-/// error).
-pub fn read_functions(file: &Path, text: &str) -> Result<Vec<Function>, MeasuredError> {
-    let mut out = Vec::new();
-    for b in blocks(file, text)? {
-        match b.kind.as_str() {
-            "58" => out.push(d58::parse(file, &b)?),
-            "58b" => {
-                return Err(MeasuredError::UffUnsupported {
-                    file: file.to_path_buf(),
-                    line: b.first_line - 1,
-                    dataset: 58,
-                    field: "format",
-                    value: "58b (binary)".into(),
-                    supported: "ASCII dataset 58; export it as ASCII",
-                })
+/// The bytes to split for `text` read from `file`. Callers that read a
+/// file as text decode it lossily (`String::from_utf8_lossy`), which turns
+/// the invalid UTF-8 of binary 58b data into U+FFFD and changes its byte
+/// count. When `text` holds U+FFFD and `file` still holds the bytes it was
+/// decoded from, those bytes are returned; otherwise `text` itself.
+pub fn source_bytes<'t>(file: &Path, text: &'t str) -> Cow<'t, [u8]> {
+    if text.contains(char::REPLACEMENT_CHARACTER) {
+        if let Ok(bytes) = std::fs::read(file) {
+            if String::from_utf8_lossy(&bytes) == text {
+                return Cow::Owned(bytes);
             }
-            "15" | "55" => {}
-            k if SKIPPED.contains(&k) => {}
-            k => {
+        }
+    }
+    Cow::Borrowed(text.as_bytes())
+}
+
+/// Every dataset-58 function (ASCII 58 and binary 58b) of a file, other
+/// types checked: skipped or an error. `text` is the file read as text; a
+/// file with binary 58b records is read again as bytes (see
+/// [`source_bytes`]).
+pub fn read_functions(file: &Path, text: &str) -> Result<Vec<Function>, MeasuredError> {
+    read_functions_bytes(file, &source_bytes(file, text))
+}
+
+/// Every dataset-58 function (ASCII 58 and binary 58b) in the bytes of a
+/// UFF file.
+pub fn read_functions_bytes(file: &Path, data: &[u8]) -> Result<Vec<Function>, MeasuredError> {
+    let mut out = Vec::new();
+    for b in blocks_bytes(file, data)? {
+        match (b.kind.as_str(), &b.binary) {
+            (_, Some(bin)) => out.push(d58b::parse(file, &b, bin)?),
+            ("58", None) => out.push(d58::parse(file, &b)?),
+            ("15" | "55", None) => {}
+            (k, None) if SKIPPED.contains(&k) => {}
+            (k, None) => {
                 return Err(MeasuredError::UnknownUffType {
                     file: file.to_path_buf(),
                     line: b.first_line - 1,
