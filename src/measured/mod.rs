@@ -142,7 +142,7 @@ pub fn read_measurement(path: &Path, channels: &Channels) -> Result<Measurement,
                 file: path.to_path_buf(),
             })
         }
-        Some("-1") => uff::measurement_from_uff(path, &text, channels)?,
+        Some("-1") => uff::measurement_from_uff(path, &bytes, channels)?,
         Some(_) => Measurement::Time(csv::parse_csv(path, &text, channels)?),
     };
     if let Measurement::Time(r) = &m {

@@ -330,10 +330,10 @@ fn matches(f: &Function, index: usize, channel: &Channel) -> bool {
 /// coherence (type 6) if present.
 pub fn measurement_from_uff(
     file: &Path,
-    text: &str,
+    bytes: &[u8],
     channels: &Channels,
 ) -> Result<Measurement, MeasuredError> {
-    let functions = read_functions(file, text)?;
+    let functions = read_functions_bytes(file, bytes)?;
     if functions.is_empty() {
         return Err(MeasuredError::NoChannel {
             file: file.to_path_buf(),
