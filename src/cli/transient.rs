@@ -61,6 +61,7 @@ pub fn run(args: TransientArgs) -> Result<()> {
             step: args.step,
             end_time: args.end_time,
             spectral_radius: args.spectral_radius,
+            damping: model.damping,
             ..TransientSettings::default()
         },
         from_equilibrium: args.from_equilibrium,

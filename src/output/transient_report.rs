@@ -69,6 +69,13 @@ pub fn transient_table(model: &str, settings: &SimulationSettings, sim: &Simulat
         "energy balance: error {:.3e} J against {:.4e} J stored (load work {:.4e} J, contact dissipation {:.4e} J)",
         e.error_j, e.stored_j, e.load_work_j, e.contact_dissipation_j
     );
+    if e.damping_dissipation_j != 0.0 {
+        let _ = writeln!(
+            s,
+            "Rayleigh damping dissipated {:.4e} J",
+            e.damping_dissipation_j
+        );
+    }
     s
 }
 

@@ -210,7 +210,11 @@ pub fn run_impulse(
     let probe = SensorProbe::new(&system, point);
     let modal = modal_at_reference(&system, &ModalSettings::default())?;
     let h = settings.transient.step;
-    let mut integrator = Integrator::new(&system, settings.transient)?;
+    let transient = TransientSettings {
+        damping: settings.transient.damping.or(model.damping),
+        ..settings.transient
+    };
+    let mut integrator = Integrator::new(&system, transient)?;
     let mut state = integrator.initial_state()?;
     let total = settings.transient.steps();
     let mut recorder = Recorder::new(&probe, settings.sample_rate, &settings.transient);
