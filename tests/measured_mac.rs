@@ -104,7 +104,7 @@ fn the_model_against_itself_translated_has_a_unit_diagonal() {
 fn modal_uff_export_reads_back() {
     let system = System::new(&Model::builtin());
     let r = modes(&system);
-    let text = modal_uff(&system, &r, "test");
+    let text = modal_uff(&system, &r, &["test".into(), String::new()]);
     let (nodes, read) = read_modes(Path::new("modes.uff"), &text).unwrap();
     let expect = export_nodes(&system);
     assert_eq!(nodes.len(), expect.len());

@@ -1,7 +1,7 @@
 //! `ancf-modal modal`: frequencies and mode shapes.
 
 use super::args::ModalArgs;
-use super::common::{load_model, source_label, write_output};
+use super::common::{load_model, print_json, source_label, write_output};
 use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings, Mode, ModeKind};
 use ancf_modal::measured::mac::mac;
 use ancf_modal::measured::uff::d55::read_modes;
@@ -35,9 +35,8 @@ pub fn run(args: ModalArgs) -> Result<()> {
         write_output(path, &modal_csv(&result))?;
     }
     if let Some(path) = &args.uff {
-        let provenance = format!(
-            "ancf-modal {}",
-            ancf_modal::output::provenance::tool_version()
+        let provenance = ancf_modal::output::provenance::header_lines(
+            &super::common::model_sha256(args.model.as_deref())?,
         );
         write_output(path, &modal_uff(&system, &result, &provenance))?;
     }
@@ -64,7 +63,7 @@ pub fn run(args: ModalArgs) -> Result<()> {
                 "matrix": m.row_iter().map(|r| r.iter().copied().collect::<Vec<f64>>()).collect::<Vec<_>>(),
             });
         }
-        outln!("{}", serde_json::to_string_pretty(&doc)?);
+        print_json(&doc, args.model.as_deref())?;
     } else {
         out!("{}", modal_table(&model.name, &result));
         if let Some(d) = model.damping {

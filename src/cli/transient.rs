@@ -1,7 +1,7 @@
 //! `ancf-modal transient`: the general time integration of a model, with
 //! its sensors, contact statistics and energy balance.
 
-use super::common::{load_model, source_label, write_output};
+use super::common::{load_model, print_json, source_label, write_output};
 use ancf_modal::analysis::simulate::{simulate, SimulationSettings};
 use ancf_modal::analysis::transient::TransientSettings;
 use ancf_modal::output::figures::write_figure;
@@ -82,10 +82,10 @@ pub fn run(args: TransientArgs) -> Result<()> {
         )?;
     }
     if args.json {
-        outln!(
-            "{}",
-            serde_json::to_string_pretty(&transient_json(&model.name, &settings, &sim))?
-        );
+        print_json(
+            transient_json(&model.name, &settings, &sim),
+            args.model.as_deref(),
+        )?;
     } else {
         out!("{}", transient_table(&model.name, &settings, &sim));
     }

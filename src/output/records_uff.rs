@@ -7,14 +7,14 @@ use crate::measured::uff::{d58, Function, FunctionType, Ordinate, SpecDataType};
 use crate::model::SensorQuantity;
 
 /// UFF 58 text of the force and sensor records sampled at `time` (uniform
-/// from `time[0]`); `provenance` goes into ID line 2.
+/// from `time[0]`); `provenance` goes into ID lines 2 and 3.
 pub fn time_records_uff(
     time: &[f64],
     force: &[f64],
     signal: &[f64],
     sensor: &str,
     quantity: SensorQuantity,
-    provenance: &str,
+    provenance: &[String; 2],
 ) -> String {
     let dx = if time.len() > 1 {
         time[1] - time[0]
@@ -30,8 +30,8 @@ pub fn time_records_uff(
         |name: &str, node: i64, t: SpecDataType, label: &str, unit: &str, v: &[f64]| Function {
             id: [
                 name.to_string(),
-                provenance.to_string(),
-                String::new(),
+                provenance[0].clone(),
+                provenance[1].clone(),
                 String::new(),
                 String::new(),
             ],
