@@ -7,7 +7,7 @@ use ancf_modal::analysis::transient::TransientSettings;
 use ancf_modal::output::figures::write_figure;
 use ancf_modal::output::plot::{Format, PlotSize};
 use ancf_modal::output::transient_report::{
-    transient_csv, transient_figure, transient_json, transient_table,
+    transient_csv, transient_figure, transient_json, transient_table, transient_uff,
 };
 use ancf_modal::System;
 use anyhow::{Context, Result};
@@ -46,11 +46,21 @@ pub struct TransientArgs {
     /// Draw the sensors against time to FILE (.svg or .png).
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
+    /// Write the sensors and the time-varying loads' forces as UFF 58 time
+    /// data (needs a sample rate above 0: UFF 58 samples evenly).
+    #[arg(long, value_name = "FILE")]
+    pub uff: Option<PathBuf>,
 }
 
 pub fn run(args: TransientArgs) -> Result<()> {
     if let Some(path) = &args.plot {
         Format::from_path(path)?;
+    }
+    if args.uff.is_some() && args.sample_rate <= 0.0 {
+        anyhow::bail!(
+            "--uff needs --sample-rate above 0 (UFF 58 time data are evenly sampled), got {}",
+            args.sample_rate
+        );
     }
     let mut model = load_model(args.model.as_deref())?;
     if args.rigid_beams {
@@ -73,6 +83,12 @@ pub fn run(args: TransientArgs) -> Result<()> {
         simulate(&system, &[], &settings).with_context(|| source_label(args.model.as_deref()))?;
     if let Some(path) = &args.csv {
         write_output(path, &transient_csv(&sim))?;
+    }
+    if let Some(path) = &args.uff {
+        let provenance = ancf_modal::output::provenance::header_lines(
+            &super::common::model_sha256(args.model.as_deref())?,
+        );
+        write_output(path, &transient_uff(&system, &sim, &provenance))?;
     }
     if let Some(path) = &args.plot {
         write_figure(
