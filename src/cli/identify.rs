@@ -109,7 +109,7 @@ fn write_figures(
     .context("mesh convergence for the figure")?;
     let convergence: Figure = convergence_figure(&data).into();
     let spectrum: Figure = spectrum_figure(model, impulse).into();
-    let response: Figure = response_figure(&model.name, impulse).into();
+    let response: Figure = response_figure(&model.name, impulse);
     for ext in ["svg", "png"] {
         let path = |name: &str| dir.join(format!("{name}.{ext}"));
         write_mode_shapes(system, &system.q0, modal, &path("modes"))?;

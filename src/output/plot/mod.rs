@@ -71,6 +71,7 @@ mod pngtext;
 mod presets;
 mod series;
 mod size;
+mod stack;
 mod style;
 mod ticks;
 
@@ -89,6 +90,7 @@ pub use modeshape::{Geometry, ModeShape, ModeShapeFigure};
 pub use presets::{calibration_figure, convergence_figure, Calibration, Convergence};
 pub use series::{Guide, Legend, MarkerShape, PointMarker, Series, SeriesStyle};
 pub use size::PlotSize;
+pub use stack::StackedFigure;
 pub use style::{
     format_sig, palette, Scale, BACKGROUND, GUIDE, INK, PALETTE, REFERENCE, UNDEFORMED,
 };
@@ -124,6 +126,13 @@ pub enum Figure {
     Line(LineFigure),
     ModeShapes(ModeShapeFigure),
     Heat(HeatMap),
+    Stack(StackedFigure),
+}
+
+impl From<StackedFigure> for Figure {
+    fn from(f: StackedFigure) -> Self {
+        Figure::Stack(f)
+    }
 }
 
 impl From<HeatMap> for Figure {
@@ -155,6 +164,7 @@ impl Figure {
             Figure::Line(f) => f.draw(root, size),
             Figure::ModeShapes(f) => f.draw(root, size),
             Figure::Heat(f) => f.draw(root, size),
+            Figure::Stack(f) => f.draw(root, size),
         }
     }
 
