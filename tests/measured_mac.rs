@@ -132,3 +132,62 @@ fn modal_uff_export_reads_back() {
         }
     }
 }
+
+/// `modal --mac OTHER --mac-plot F.svg`: a heat map with one labelled cell
+/// per mode pair; the model against itself (plain MAC, unit diagonal) has
+/// 1.00 in every diagonal cell.
+#[test]
+fn mac_plot_draws_one_labelled_cell_per_pair() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/beam_free_free.json");
+    let svg = dir.path().join("mac.svg");
+    let out = assert_cmd::Command::cargo_bin("ancf-modal")
+        .unwrap()
+        .arg("modal")
+        .arg(&model)
+        .args(["--modes", "9", "--mac"])
+        .arg(&model)
+        .arg("--mac-plot")
+        .arg(&svg)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    // 9 modes of a free beam: 3 rigid, 6 elastic → 6 × 6 cells.
+    let n = 6;
+    let values: Vec<String> = doc
+        .descendants()
+        .filter(|e| e.has_tag_name("text"))
+        .map(|e| e.text().unwrap_or("").trim().to_string())
+        .filter(|t| t.len() == 4 && t.as_bytes()[1] == b'.' && t.parse::<f64>().is_ok())
+        .collect();
+    assert_eq!(values.len(), n * n, "cell labels: {values:?}");
+    assert!(values
+        .iter()
+        .all(|v| (0.0..=1.0).contains(&v.parse::<f64>().unwrap())));
+    assert!(values.iter().filter(|v| *v == "1.00").count() >= n);
+    // Cells: equal rectangles (a uniform grid of mode numbers).
+    let size = |e: &roxmltree::Node, k: &str| -> f64 {
+        e.attribute(k).and_then(|v| v.parse().ok()).unwrap_or(0.0)
+    };
+    let rects: Vec<(f64, f64)> = doc
+        .descendants()
+        .filter(|e| e.has_tag_name("rect"))
+        .map(|e| (size(&e, "width"), size(&e, "height")))
+        .collect();
+    let widest = rects
+        .iter()
+        .filter(|r| r.0 < 1000.0)
+        .map(|r| r.0)
+        .fold(0.0, f64::max);
+    let cells = rects
+        .iter()
+        .filter(|r| (r.0 - widest).abs() <= 1.0 && r.1 > 20.0)
+        .count();
+    assert_eq!(cells, n * n, "cell rectangles of width {widest}");
+}

@@ -16,6 +16,9 @@ pub fn run(args: ModalArgs) -> Result<()> {
     if let Some(range) = args.sweep_load {
         return super::sweep::run_load_sweep(&args, range);
     }
+    if let Some(path) = &args.mac_plot {
+        ancf_modal::output::plot::Format::from_path(path)?;
+    }
     let model = load_model(args.model.as_deref())?;
     let system = System::new(&model);
     let settings = ModalSettings {
@@ -42,6 +45,19 @@ pub fn run(args: ModalArgs) -> Result<()> {
     }
     if let Some(path) = &args.plot {
         ancf_modal::output::figures::write_mode_shapes(&system, &system.q0, &result, path)?;
+    }
+    if let (Some(path), Some((_, _, m))) = (&args.mac_plot, &mac) {
+        let other = args
+            .mac
+            .as_deref()
+            .and_then(|p| p.file_name())
+            .map_or(String::new(), |p| p.to_string_lossy().into_owned());
+        let title = format!("MAC: {} vs {other}", model.name);
+        ancf_modal::output::figures::write_figure(
+            &ancf_modal::output::figures::mac_figure(&title, m),
+            path,
+            ancf_modal::output::plot::PlotSize::default(),
+        )?;
     }
     let ratio = |m: &Mode| -> Option<f64> {
         (m.kind != ModeKind::Rigid).then(|| {

@@ -84,7 +84,7 @@ use super::files;
 
 pub use error::PlotError;
 pub use frame::PanelLayout;
-pub use heatmap::{colour_map, HeatMap};
+pub use heatmap::{colour_map, HeatMap, LabelledHeatMap};
 pub use line::{LineFigure, Panel};
 pub use modeshape::{Geometry, ModeShape, ModeShapeFigure};
 pub use presets::{calibration_figure, convergence_figure, Calibration, Convergence};
@@ -127,6 +127,13 @@ pub enum Figure {
     ModeShapes(ModeShapeFigure),
     Heat(HeatMap),
     Stack(StackedFigure),
+    LabelledHeat(LabelledHeatMap),
+}
+
+impl From<LabelledHeatMap> for Figure {
+    fn from(f: LabelledHeatMap) -> Self {
+        Figure::LabelledHeat(f)
+    }
 }
 
 impl From<StackedFigure> for Figure {
@@ -165,6 +172,7 @@ impl Figure {
             Figure::ModeShapes(f) => f.draw(root, size),
             Figure::Heat(f) => f.draw(root, size),
             Figure::Stack(f) => f.draw(root, size),
+            Figure::LabelledHeat(f) => f.draw(root, size),
         }
     }
 
