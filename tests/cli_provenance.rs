@@ -4,9 +4,11 @@
 //! file), computed here independently with the sha2 crate; so does the
 //! ID line of the UFF files `impulse` and `modal` export.
 
-use assert_cmd::Command;
+mod common;
+use common::run_ok;
 use serde_json::Value;
 use sha2::{Digest, Sha256};
+use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
 fn sha256(bytes: &[u8]) -> String {
@@ -23,18 +25,10 @@ fn model_path(name: &str) -> PathBuf {
 }
 
 fn json_of(args: &[&str], model: Option<&Path>) -> Value {
-    let mut cmd = Command::cargo_bin("ancf-modal").unwrap();
-    cmd.args(args);
-    if let Some(m) = model {
-        cmd.arg(m);
-    }
-    let out = cmd.arg("--json").output().unwrap();
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{args:?}: {e}"))
+    let mut all: Vec<OsString> = args.iter().map(OsString::from).collect();
+    all.extend(model.map(OsString::from));
+    all.push("--json".into());
+    serde_json::from_slice(&run_ok(all)).unwrap_or_else(|e| panic!("{args:?}: {e}"))
 }
 
 fn check(doc: &Value, expected_sha: &str, what: &str) {
@@ -76,20 +70,10 @@ fn exported_uff_files_carry_the_provenance() {
     let dir = tempfile::tempdir().unwrap();
     for (cmd, extra) in [("impulse", vec!["--end-time", "0.002"]), ("modal", vec![])] {
         let uff = dir.path().join(format!("{cmd}.uff"));
-        let out = Command::cargo_bin("ancf-modal")
-            .unwrap()
-            .arg(cmd)
-            .arg(&cantilever)
-            .args(&extra)
-            .arg("--uff")
-            .arg(&uff)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        let mut args: Vec<OsString> = vec![cmd.into(), cantilever.clone().into()];
+        args.extend(extra.iter().map(OsString::from));
+        args.extend(["--uff".into(), uff.clone().into()]);
+        run_ok(args);
         let text = std::fs::read_to_string(&uff).unwrap();
         for line in [
             format!("ancf-modal {}", env!("CARGO_PKG_VERSION")),

@@ -1,5 +1,6 @@
 //! MAC and the UFF 15/55 export of model modes.
 
+mod common;
 use ancf_modal::analysis::{modal_at_reference, ModalSettings, ModeKind};
 use ancf_modal::measured::mac::{mac, mac_weighted};
 use ancf_modal::measured::uff::d55::read_modes;
@@ -141,21 +142,10 @@ fn mac_plot_draws_one_labelled_cell_per_pair() {
     let dir = tempfile::tempdir().unwrap();
     let model = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/beam_free_free.json");
     let svg = dir.path().join("mac.svg");
-    let out = assert_cmd::Command::cargo_bin("ancf-modal")
-        .unwrap()
-        .arg("modal")
-        .arg(&model)
-        .args(["--modes", "9", "--mac"])
-        .arg(&model)
-        .arg("--mac-plot")
-        .arg(&svg)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let mut args: Vec<std::ffi::OsString> = vec!["modal".into(), model.clone().into()];
+    args.extend(["--modes", "9", "--mac"].map(Into::into));
+    args.extend([model.into(), "--mac-plot".into(), svg.clone().into()]);
+    common::run_ok(args);
     let text = std::fs::read_to_string(&svg).unwrap();
     let doc = roxmltree::Document::parse(&text).unwrap();
     // 9 modes of a free beam: 3 rigid, 6 elastic → 6 × 6 cells.

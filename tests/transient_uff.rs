@@ -5,34 +5,25 @@
 //! samples equal to the `--csv` samples of the same run (CSV: 10
 //! significant digits), the forces equal to the model's |F₀|·f(t).
 
+mod common;
 use ancf_modal::measured::uff::d58::SpecDataType;
 use ancf_modal::measured::uff::read_functions;
 use assert_cmd::Command;
+use common::run_ok;
 use std::f64::consts::PI;
+use std::ffi::OsString;
 use std::path::Path;
 
 fn run(model: &str, dir: &Path) -> (Vec<ancf_modal::measured::uff::Function>, Vec<Vec<f64>>) {
     let uff = dir.join("run.uff");
     let csv = dir.join("run.csv");
-    let out = Command::cargo_bin("ancf-modal")
-        .unwrap()
-        .arg("transient")
-        .arg(
-            Path::new(env!("CARGO_MANIFEST_DIR"))
-                .join("models")
-                .join(model),
-        )
-        .args(["--end-time", "0.002", "--uff"])
-        .arg(&uff)
-        .arg("--csv")
-        .arg(&csv)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("models")
+        .join(model);
+    let mut args: Vec<OsString> = vec!["transient".into(), path.into()];
+    args.extend(["--end-time", "0.002", "--uff"].map(OsString::from));
+    args.extend([uff.clone().into(), "--csv".into(), csv.clone().into()]);
+    run_ok(args);
     let text = std::fs::read_to_string(&uff).unwrap();
     let functions = read_functions(&uff, &text).unwrap();
     let rows: Vec<Vec<f64>> = std::fs::read_to_string(&csv)
