@@ -145,7 +145,7 @@ fn linear_pixel(
 #[test]
 fn both_figures_render_in_both_formats() {
     let (model, result) = short_run(0.02);
-    let response: Figure = response_figure(&model.name, &result).into();
+    let response: Figure = response_figure(&model.name, &result);
     let spectrum: Figure = spectrum_figure(&model, &result).into();
     for (fig, name, texts) in [
         (
@@ -180,6 +180,53 @@ fn both_figures_render_in_both_formats() {
             "{name}: a data path of > 100 vertices expected, longest has {longest}"
         );
     }
+}
+
+#[test]
+fn response_zoom_panel_shows_the_first_ten_periods() {
+    let (model, result) = short_run(0.02);
+    let fig = response_figure(&model.name, &result);
+    let layout = fig.layout(SIZE).expect("layout");
+    assert_eq!(
+        layout.len(),
+        4,
+        "whole record (2 panels) over the zoom (2 panels)"
+    );
+    // The whole record's panels span it, the zoom panels 0 to ten periods
+    // of the first bending eigenfrequency.
+    let f1 = result.modal.first_bending().unwrap().frequency_hz;
+    for (i, end) in [(0, 0.02), (1, 0.02), (2, 10.0 / f1), (3, 10.0 / f1)] {
+        let (lo, hi) = layout[i].x_range;
+        assert!(lo.abs() < 1e-12, "panel {i} starts at {lo} s");
+        assert!(
+            (hi - end).abs() <= 1e-3 * end,
+            "panel {i} ends at {hi} s, expected {end} s"
+        );
+    }
+    let svg = parse_svg(&render(&fig, Format::Svg, SIZE).unwrap(), "response");
+    assert_texts(
+        &svg,
+        &["First 2.19 ms: the pulse and the first oscillations"],
+        "zoom",
+    );
+    // Independent of the layout: the sensor curve drawn in the zoomed
+    // signal panel oscillates ten times (its maxima counted on the pixels).
+    let l = &layout[2];
+    let (top, bottom) = (l.y_pixels.1 as f64, l.y_pixels.0 as f64);
+    let curve = svg
+        .polylines
+        .iter()
+        .filter(|(_, p)| p.len() > 50)
+        .find(|(_, p)| p.iter().all(|&(_, y)| y >= top - 1.0 && y <= bottom + 1.0))
+        .expect("a sensor curve inside the zoomed signal panel");
+    let ys: Vec<f64> = curve.1.iter().map(|p| p.1).collect();
+    let maxima = (1..ys.len() - 1)
+        .filter(|&k| ys[k] < ys[k - 1] && ys[k] <= ys[k + 1])
+        .count();
+    assert!(
+        (9..=11).contains(&maxima),
+        "{maxima} maxima in the zoom (expected 10 periods)"
+    );
 }
 
 #[test]

@@ -1,5 +1,6 @@
 //! MAC and the UFF 15/55 export of model modes.
 
+mod common;
 use ancf_modal::analysis::{modal_at_reference, ModalSettings, ModeKind};
 use ancf_modal::measured::mac::{mac, mac_weighted};
 use ancf_modal::measured::uff::d55::read_modes;
@@ -104,7 +105,7 @@ fn the_model_against_itself_translated_has_a_unit_diagonal() {
 fn modal_uff_export_reads_back() {
     let system = System::new(&Model::builtin());
     let r = modes(&system);
-    let text = modal_uff(&system, &r, "test");
+    let text = modal_uff(&system, &r, &["test".into(), String::new()]);
     let (nodes, read) = read_modes(Path::new("modes.uff"), &text).unwrap();
     let expect = export_nodes(&system);
     assert_eq!(nodes.len(), expect.len());
@@ -131,4 +132,52 @@ fn modal_uff_export_reads_back() {
             assert_eq!(v[2], 0.0);
         }
     }
+}
+
+/// `modal --mac OTHER --mac-plot F.svg`: a heat map with one labelled cell
+/// per mode pair; the model against itself (plain MAC, unit diagonal) has
+/// 1.00 in every diagonal cell.
+#[test]
+fn mac_plot_draws_one_labelled_cell_per_pair() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/beam_free_free.json");
+    let svg = dir.path().join("mac.svg");
+    let mut args: Vec<std::ffi::OsString> = vec!["modal".into(), model.clone().into()];
+    args.extend(["--modes", "9", "--mac"].map(Into::into));
+    args.extend([model.into(), "--mac-plot".into(), svg.clone().into()]);
+    common::run_ok(args);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    // 9 modes of a free beam: 3 rigid, 6 elastic → 6 × 6 cells.
+    let n = 6;
+    let values: Vec<String> = doc
+        .descendants()
+        .filter(|e| e.has_tag_name("text"))
+        .map(|e| e.text().unwrap_or("").trim().to_string())
+        .filter(|t| t.len() == 4 && t.as_bytes()[1] == b'.' && t.parse::<f64>().is_ok())
+        .collect();
+    assert_eq!(values.len(), n * n, "cell labels: {values:?}");
+    assert!(values
+        .iter()
+        .all(|v| (0.0..=1.0).contains(&v.parse::<f64>().unwrap())));
+    assert!(values.iter().filter(|v| *v == "1.00").count() >= n);
+    // Cells: equal rectangles (a uniform grid of mode numbers).
+    let size = |e: &roxmltree::Node, k: &str| -> f64 {
+        e.attribute(k).and_then(|v| v.parse().ok()).unwrap_or(0.0)
+    };
+    let rects: Vec<(f64, f64)> = doc
+        .descendants()
+        .filter(|e| e.has_tag_name("rect"))
+        .map(|e| (size(&e, "width"), size(&e, "height")))
+        .collect();
+    let widest = rects
+        .iter()
+        .filter(|r| r.0 < 1000.0)
+        .map(|r| r.0)
+        .fold(0.0, f64::max);
+    let cells = rects
+        .iter()
+        .filter(|r| (r.0 - widest).abs() <= 1.0 && r.1 > 20.0)
+        .count();
+    assert_eq!(cells, n * n, "cell rectangles of width {widest}");
 }

@@ -8,9 +8,9 @@
 //! springs and contacts, V = −f_gᵀq the gravity potential (the generalized
 //! gravity force f_g is constant), W = ∫Q_loadsᵀq̇ dt the work of the
 //! applied loads (trapezoidal rule over the steps) and D the energy the
-//! contacts dissipated, the balance error is
-//! (T + U + V)(t) − (T + U + V)(0) − W + D: what the integrator's numerical
-//! damping (ρ∞ < 1) and the Newton tolerance leave.
+//! contacts and the model's Rayleigh damping dissipated, the balance error
+//! is (T + U + V)(t) − (T + U + V)(0) − W + D: what the integrator's
+//! numerical damping (ρ∞ < 1) and the Newton tolerance leave.
 
 use super::impulse::sensor::SensorProbe;
 use super::impulse::spectrum::resample_uniform;
@@ -60,6 +60,8 @@ pub struct EnergyBalance {
     pub load_work_j: f64,
     /// Dissipated by the contacts (damping and friction).
     pub contact_dissipation_j: f64,
+    /// Dissipated by the model's Rayleigh damping, ∫q̇ᵀCq̇ dt.
+    pub damping_dissipation_j: f64,
     /// (T + U + V)(end) − (T + U + V)(0) − W + D.
     pub error_j: f64,
     /// The elastic energy stored at the start, U(0) (beams, springs,
@@ -181,7 +183,8 @@ pub fn simulate(
         end,
         load_work_j: work,
         contact_dissipation_j: dissipated,
-        error_j: end.total() - initial.total() - work + dissipated,
+        damping_dissipation_j: stats.damping_dissipation,
+        error_j: end.total() - initial.total() - work + dissipated + stats.damping_dissipation,
         stored_j: initial.strain_j + initial.spring_j,
     };
     // Samples: linear interpolation between the steps at the sample rate,

@@ -33,6 +33,10 @@ pub struct ModalArgs {
     /// (.json) or a UFF file with datasets 55, matched by node number.
     #[arg(long, value_name = "OTHER")]
     pub mac: Option<PathBuf>,
+    /// Draw the MAC matrix of --mac as a heat map with its values to FILE
+    /// (.svg or .png).
+    #[arg(long, value_name = "FILE", requires = "mac")]
+    pub mac_plot: Option<PathBuf>,
     /// Linearize at the static equilibrium under the model's constant loads
     /// and gravity (pre-stress) and show the unstressed frequencies beside.
     #[arg(long)]

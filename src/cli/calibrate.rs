@@ -1,7 +1,7 @@
 //! `ancf-modal calibrate`: fit model parameters to measured frequencies
 //! (the paper's "equivalent geometry").
 
-use super::common::{load_model, write_output};
+use super::common::{load_model, print_json, write_output};
 use super::impulse::ExperimentArgs;
 use ancf_modal::analysis::calibrate::{
     calibrate, calibrate_with, sweep, CalibrationError, CalibrationRequest, CalibrationResult,
@@ -246,10 +246,7 @@ pub fn run(args: CalibrateArgs) -> Result<()> {
         write_atomic(path, &bytes)?;
     }
     if args.json {
-        outln!(
-            "{}",
-            serde_json::to_string_pretty(&calibrate_json(&model.name, &result))?
-        );
+        print_json(calibrate_json(&model.name, &result), args.model.as_deref())?;
     } else {
         out!("{}", calibrate_table(&model.name, &result));
         if let Some(path) = &args.out {

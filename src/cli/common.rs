@@ -13,6 +13,22 @@ pub fn load_model(path: Option<&Path>) -> Result<Model> {
     })
 }
 
+/// SHA-256 of the model's bytes (the file, or the built-in model's text),
+/// for the provenance of JSON documents and exported files.
+pub fn model_sha256(path: Option<&Path>) -> Result<String> {
+    use anyhow::Context;
+    ancf_modal::output::provenance::model_sha256(path)
+        .with_context(|| format!("{}: cannot read the file", source_label(path)))
+}
+
+/// Prints `doc` with `tool_version` and `model_sha256` as pretty JSON.
+pub fn print_json(doc: impl serde::Serialize, path: Option<&Path>) -> Result<()> {
+    let mut doc = serde_json::to_value(doc)?;
+    ancf_modal::output::provenance::stamp(&mut doc, &model_sha256(path)?);
+    outln!("{}", serde_json::to_string_pretty(&doc)?);
+    Ok(())
+}
+
 /// The model's name in messages: its path, or `<built-in model>`.
 pub fn source_label(path: Option<&Path>) -> String {
     match path {

@@ -2,7 +2,7 @@
 //! frequencies, against Euler–Bernoulli for a single free beam, else
 //! against the finest mesh of the study.
 
-use super::common::load_model;
+use super::common::{load_model, print_json};
 use ancf_modal::analysis::convergence::{
     euler_bernoulli_free_free, mesh_convergence_with, with_elements, ConvergenceData, Reference,
     ReferenceKind,
@@ -74,7 +74,7 @@ pub fn run(args: ConvergenceArgs) -> Result<()> {
         write_figure(&convergence_figure(&data).into(), path, PlotSize::default())?;
     }
     if args.json {
-        outln!("{}", serde_json::to_string_pretty(&document(&data))?);
+        print_json(document(&data), args.model.as_deref())?;
     } else {
         out!("{}", table(&data));
     }

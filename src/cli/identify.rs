@@ -109,7 +109,7 @@ fn write_figures(
     .context("mesh convergence for the figure")?;
     let convergence: Figure = convergence_figure(&data).into();
     let spectrum: Figure = spectrum_figure(model, impulse).into();
-    let response: Figure = response_figure(&model.name, impulse).into();
+    let response: Figure = response_figure(&model.name, impulse);
     for ext in ["svg", "png"] {
         let path = |name: &str| dir.join(format!("{name}.{ext}"));
         write_mode_shapes(system, &system.q0, modal, &path("modes"))?;
@@ -197,7 +197,7 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         rows.push(("paper, ANSYS BEAM188".into(), Some(table3.ansys_hz)));
     }
     let errors = |f: &Option<f64>| f.zip(experiment_hz).map(|(f, e)| Errors::new(f, e));
-    let summary = json!({
+    let mut summary = json!({
         "model": model.name,
         "supports": supports(&model),
         "experiment_hz": experiment_hz,
@@ -221,6 +221,10 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         "impulse": impulse_json(&model.name, &impulse, experiment_hz),
         "calibration": calibration.as_ref().map(|c| calibrate_json(&model.name, c)),
     });
+    ancf_modal::output::provenance::stamp(
+        &mut summary,
+        &super::common::model_sha256(args.model.as_deref())?,
+    );
     if let Some(dir) = &args.out_dir {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("{}: cannot create the output directory", dir.display()))?;

@@ -1,6 +1,6 @@
 //! `ancf-modal impulse`: the paper's time-domain frequency test.
 
-use super::common::{load_model, source_label, write_output};
+use super::common::{load_model, print_json, source_label, write_output};
 use ancf_modal::analysis::impulse::{run_impulse, ImpulseResult, ImpulseSettings};
 use ancf_modal::analysis::spectrum::Window;
 use ancf_modal::model::Model;
@@ -124,10 +124,8 @@ pub fn run(args: ImpulseArgs) -> Result<()> {
         write_output(&spectrum_path(path), &spectrum_csv(&result))?;
     }
     if let Some(path) = &args.uff {
-        let provenance = format!(
-            "ancf-modal {} model {}",
-            ancf_modal::output::provenance::tool_version(),
-            model.name
+        let provenance = ancf_modal::output::provenance::header_lines(
+            &super::common::model_sha256(args.model.as_deref())?,
         );
         let text = ancf_modal::output::records_uff::time_records_uff(
             &result.time,
@@ -144,10 +142,10 @@ pub fn run(args: ImpulseArgs) -> Result<()> {
         write_impulse_figures(&model, &result, path, &response, PlotSize::default())?;
     }
     if args.json {
-        outln!(
-            "{}",
-            serde_json::to_string_pretty(&impulse_json(&model.name, &result, reference))?
-        );
+        print_json(
+            impulse_json(&model.name, &result, reference),
+            args.model.as_deref(),
+        )?;
     } else {
         out!("{}", impulse_table(&model.name, &result, reference));
     }

@@ -1,7 +1,7 @@
 //! `ancf-modal modal`: frequencies and mode shapes.
 
 use super::args::ModalArgs;
-use super::common::{load_model, source_label, write_output};
+use super::common::{load_model, print_json, source_label, write_output};
 use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings, Mode, ModeKind};
 use ancf_modal::measured::mac::mac;
 use ancf_modal::measured::uff::d55::read_modes;
@@ -15,6 +15,9 @@ use std::path::Path;
 pub fn run(args: ModalArgs) -> Result<()> {
     if let Some(range) = args.sweep_load {
         return super::sweep::run_load_sweep(&args, range);
+    }
+    if let Some(path) = &args.mac_plot {
+        ancf_modal::output::plot::Format::from_path(path)?;
     }
     let model = load_model(args.model.as_deref())?;
     let system = System::new(&model);
@@ -35,14 +38,26 @@ pub fn run(args: ModalArgs) -> Result<()> {
         write_output(path, &modal_csv(&result))?;
     }
     if let Some(path) = &args.uff {
-        let provenance = format!(
-            "ancf-modal {}",
-            ancf_modal::output::provenance::tool_version()
+        let provenance = ancf_modal::output::provenance::header_lines(
+            &super::common::model_sha256(args.model.as_deref())?,
         );
         write_output(path, &modal_uff(&system, &result, &provenance))?;
     }
     if let Some(path) = &args.plot {
         ancf_modal::output::figures::write_mode_shapes(&system, &system.q0, &result, path)?;
+    }
+    if let (Some(path), Some((_, _, m))) = (&args.mac_plot, &mac) {
+        let other = args
+            .mac
+            .as_deref()
+            .and_then(|p| p.file_name())
+            .map_or(String::new(), |p| p.to_string_lossy().into_owned());
+        let title = format!("MAC: {} vs {other}", model.name);
+        ancf_modal::output::figures::write_figure(
+            &ancf_modal::output::figures::mac_figure(&title, m),
+            path,
+            ancf_modal::output::plot::PlotSize::default(),
+        )?;
     }
     let ratio = |m: &Mode| -> Option<f64> {
         (m.kind != ModeKind::Rigid).then(|| {
@@ -64,7 +79,7 @@ pub fn run(args: ModalArgs) -> Result<()> {
                 "matrix": m.row_iter().map(|r| r.iter().copied().collect::<Vec<f64>>()).collect::<Vec<_>>(),
             });
         }
-        outln!("{}", serde_json::to_string_pretty(&doc)?);
+        print_json(&doc, args.model.as_deref())?;
     } else {
         out!("{}", modal_table(&model.name, &result));
         if let Some(d) = model.damping {

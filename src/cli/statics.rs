@@ -6,7 +6,7 @@
 //! the statics settings (`--sweep-load` is a sweep: [`super::sweep`]).
 
 use super::args::{finite, ModalArgs};
-use super::common::{load_model, source_label, write_output};
+use super::common::{load_model, print_json, source_label, write_output};
 use ancf_modal::analysis::prestress::prestressed_modal;
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf_modal::analysis::ModalSettings;
@@ -57,7 +57,7 @@ pub fn run(args: StaticArgs) -> Result<()> {
     }
     let report = static_report(&model, &system, &eq);
     if args.json {
-        outln!("{}", serde_json::to_string_pretty(&report)?);
+        print_json(&report, args.model.as_deref())?;
     } else {
         out!("{}", static_table(&report));
     }
@@ -84,10 +84,7 @@ pub fn run_prestress(
         write_mode_shapes(system, &result.equilibrium.q, &result.prestressed, path)?;
     }
     if args.json {
-        outln!(
-            "{}",
-            serde_json::to_string_pretty(&prestress_json(&model.name, &result))?
-        );
+        print_json(prestress_json(&model.name, &result), args.model.as_deref())?;
     } else {
         out!("{}", prestress_table(&model.name, &result));
     }

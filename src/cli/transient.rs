@@ -1,13 +1,13 @@
 //! `ancf-modal transient`: the general time integration of a model, with
 //! its sensors, contact statistics and energy balance.
 
-use super::common::{load_model, source_label, write_output};
+use super::common::{load_model, print_json, source_label, write_output};
 use ancf_modal::analysis::simulate::{simulate, SimulationSettings};
 use ancf_modal::analysis::transient::TransientSettings;
 use ancf_modal::output::figures::write_figure;
 use ancf_modal::output::plot::{Format, PlotSize};
 use ancf_modal::output::transient_report::{
-    transient_csv, transient_figure, transient_json, transient_table,
+    transient_csv, transient_figure, transient_json, transient_table, transient_uff,
 };
 use ancf_modal::System;
 use anyhow::{Context, Result};
@@ -46,11 +46,21 @@ pub struct TransientArgs {
     /// Draw the sensors against time to FILE (.svg or .png).
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
+    /// Write the sensors and the time-varying loads' forces as UFF 58 time
+    /// data (needs a sample rate above 0: UFF 58 samples evenly).
+    #[arg(long, value_name = "FILE")]
+    pub uff: Option<PathBuf>,
 }
 
 pub fn run(args: TransientArgs) -> Result<()> {
     if let Some(path) = &args.plot {
         Format::from_path(path)?;
+    }
+    if args.uff.is_some() && args.sample_rate <= 0.0 {
+        anyhow::bail!(
+            "--uff needs --sample-rate above 0 (UFF 58 time data are evenly sampled), got {}",
+            args.sample_rate
+        );
     }
     let mut model = load_model(args.model.as_deref())?;
     if args.rigid_beams {
@@ -61,6 +71,7 @@ pub fn run(args: TransientArgs) -> Result<()> {
             step: args.step,
             end_time: args.end_time,
             spectral_radius: args.spectral_radius,
+            damping: model.damping,
             ..TransientSettings::default()
         },
         from_equilibrium: args.from_equilibrium,
@@ -73,6 +84,12 @@ pub fn run(args: TransientArgs) -> Result<()> {
     if let Some(path) = &args.csv {
         write_output(path, &transient_csv(&sim))?;
     }
+    if let Some(path) = &args.uff {
+        let provenance = ancf_modal::output::provenance::header_lines(
+            &super::common::model_sha256(args.model.as_deref())?,
+        );
+        write_output(path, &transient_uff(&system, &sim, &provenance))?;
+    }
     if let Some(path) = &args.plot {
         write_figure(
             &transient_figure(&model.name, &sim).into(),
@@ -81,10 +98,10 @@ pub fn run(args: TransientArgs) -> Result<()> {
         )?;
     }
     if args.json {
-        outln!(
-            "{}",
-            serde_json::to_string_pretty(&transient_json(&model.name, &settings, &sim))?
-        );
+        print_json(
+            transient_json(&model.name, &settings, &sim),
+            args.model.as_deref(),
+        )?;
     } else {
         out!("{}", transient_table(&model.name, &settings, &sim));
     }

@@ -190,21 +190,17 @@ pub fn frf_uff(a: &FrfAnalysis, q: ResponseQuantity, model_sha256: Option<&str>)
     } else {
         0.0
     };
-    let provenance = format!(
-        "ancf-modal {} model_sha256 {}",
-        super::provenance::tool_version(),
-        model_sha256.unwrap_or("none")
-    );
+    let [tool, model] = super::provenance::header_lines(model_sha256.unwrap_or("none"));
     let base = Function {
         id: [
             "H1".into(),
-            provenance,
+            tool,
+            model,
             a.files
                 .iter()
                 .map(|f| f.display().to_string())
                 .collect::<Vec<_>>()
                 .join(" "),
-            String::new(),
             String::new(),
         ],
         function_type: FunctionType::Frf,

@@ -71,6 +71,36 @@ pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f
             let _ = writeln!(s, "no bending peak identified (the model has no bending mode or the sensor does not see it)");
         }
     }
+    if let Some(d) = &r.damping {
+        let _ = writeln!(s, "first bending damping ratio:");
+        let _ = writeln!(
+            s,
+            "  fitted from force and sensor (H1, LSCF)  {:>9.5} %   at {:.3} Hz",
+            100.0 * d.identified_ratio,
+            d.identified_hz
+        );
+        let _ = writeln!(
+            s,
+            "  model (Rayleigh α/(2ω) + βω/2)            {:>9.5} %",
+            100.0 * d.modal_ratio
+        );
+        let _ = writeln!(
+            s,
+            "  integrator's numerical damping           {:>9.5} %",
+            100.0 * d.numerical_ratio
+        );
+        match d.relative_error() {
+            Some(e) => {
+                let _ = writeln!(s, "  fitted vs model + numerical {e:+.2e}");
+            }
+            None => {
+                let _ = writeln!(
+                    s,
+                    "  (the model has no damping: the fit measures the record's truncation)"
+                );
+            }
+        }
+    }
     s
 }
 
@@ -87,6 +117,14 @@ pub fn impulse_json(model_name: &str, r: &ImpulseResult, reference_hz: Option<f6
         "eigen_first_bending_hz": fb.map(|f| f.eigen_hz),
         "raw_vs_eigen": fb.map(|f| f.raw_error()),
         "corrected_vs_eigen": fb.map(|f| f.corrected_error()),
+        "damping": r.damping.map(|d| json!({
+            "identified_ratio": d.identified_ratio,
+            "identified_hz": d.identified_hz,
+            "modal_ratio": d.modal_ratio,
+            "numerical_ratio": d.numerical_ratio,
+            "expected_ratio": d.expected_ratio(),
+            "relative_error": d.relative_error(),
+        })),
         "peaks": r.peaks.iter().map(|p| json!({"frequency_hz": p.frequency_hz, "magnitude": p.magnitude})).collect::<Vec<_>>(),
         "reference_hz": reference_hz,
         "error_percent": errors.map(|e| e.error_percent),

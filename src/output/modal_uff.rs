@@ -54,8 +54,8 @@ pub fn translations(nodes: &[ExportNode], shape: &[f64]) -> Vec<f64> {
 }
 
 /// UFF 15 and 55 text of the elastic modes; `provenance` goes into each
-/// mode's ID line.
-pub fn modal_uff(system: &System, result: &ModalResult, provenance: &str) -> String {
+/// mode's ID lines 2 and 3.
+pub fn modal_uff(system: &System, result: &ModalResult, provenance: &[String; 2]) -> String {
     let nodes = export_nodes(system);
     let mut s = String::new();
     let coords: Vec<NodeCoordinates> = nodes
@@ -71,7 +71,10 @@ pub fn modal_uff(system: &System, result: &ModalResult, provenance: &str) -> Str
         write_mode(
             &mut s,
             &NormalMode {
-                id: format!("mode {} ({}) {provenance}", m.index, m.kind),
+                id: format!(
+                    "mode {} ({})\n{}\n{}",
+                    m.index, m.kind, provenance[0], provenance[1]
+                ),
                 mode_number: m.index as i64,
                 frequency_hz: m.frequency_hz,
                 modal_mass: 1.0,

@@ -16,3 +16,31 @@ pub fn sha256_hex(bytes: &[u8]) -> String {
         .map(|b| format!("{b:02x}"))
         .collect()
 }
+
+/// SHA-256 of the model a command describes: of the file's bytes, or of the
+/// built-in model's JSON text when no file is given.
+pub fn model_sha256(path: Option<&std::path::Path>) -> std::io::Result<String> {
+    Ok(match path {
+        Some(p) => sha256_hex(&std::fs::read(p)?),
+        None => sha256_hex(crate::model::DEFAULT_MODEL_JSON.as_bytes()),
+    })
+}
+
+/// Adds `tool_version` and `model_sha256` to a JSON object (other values
+/// are left as they are).
+pub fn stamp(doc: &mut serde_json::Value, model_sha256: &str) {
+    if let Some(map) = doc.as_object_mut() {
+        map.insert("tool_version".into(), tool_version().into());
+        map.insert("model_sha256".into(), model_sha256.into());
+    }
+}
+
+/// The provenance of an exported file's header: two lines of at most 80
+/// characters (UFF ID lines), `ancf-modal VERSION` and
+/// `model_sha256 HEX`.
+pub fn header_lines(model_sha256: &str) -> [String; 2] {
+    [
+        format!("ancf-modal {}", tool_version()),
+        format!("model_sha256 {model_sha256}"),
+    ]
+}

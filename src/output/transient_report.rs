@@ -5,8 +5,10 @@
 //! `energy`.
 
 use crate::analysis::simulate::{Simulation, SimulationSettings};
-use crate::model::SensorQuantity;
+use crate::model::{SensorQuantity, TimeFunction};
 use crate::output::plot::{Legend, LineFigure, Panel, Scale, Series};
+use crate::output::records_uff::{records_uff, Record, RecordKind};
+use crate::system::System;
 use serde_json::{json, Map, Value};
 use std::fmt::Write;
 
@@ -69,7 +71,49 @@ pub fn transient_table(model: &str, settings: &SimulationSettings, sim: &Simulat
         "energy balance: error {:.3e} J against {:.4e} J stored (load work {:.4e} J, contact dissipation {:.4e} J)",
         e.error_j, e.stored_j, e.load_work_j, e.contact_dissipation_j
     );
+    if e.damping_dissipation_j != 0.0 {
+        let _ = writeln!(
+            s,
+            "Rayleigh damping dissipated {:.4e} J",
+            e.damping_dissipation_j
+        );
+    }
     s
+}
+
+/// UFF 58 time data of a run sampled at a uniform rate: the force
+/// magnitude |F₀|·f(t) of every time-varying load (at the sample times),
+/// then every sensor (see [`super::records_uff`]).
+pub fn transient_uff(sys: &System, sim: &Simulation, provenance: &[String; 2]) -> String {
+    let forces: Vec<(&str, Vec<f64>)> = sys
+        .loads
+        .iter()
+        .filter(|l| !matches!(l.time, TimeFunction::Constant))
+        .map(|l| {
+            let f0 = l.force.norm();
+            let v = sim.time.iter().map(|&t| f0 * l.time.value(t)).collect();
+            (l.label.as_str(), v)
+        })
+        .collect();
+    let mut records: Vec<Record> = forces
+        .iter()
+        .map(|(name, v)| Record {
+            name,
+            kind: RecordKind::Force,
+            values: v,
+        })
+        .collect();
+    records.extend(
+        sim.sensors
+            .iter()
+            .zip(&sim.quantities)
+            .map(|((id, v), q)| Record {
+                name: id,
+                kind: RecordKind::Sensor(*q),
+                values: v,
+            }),
+    );
+    records_uff(&sim.time, &records, provenance)
 }
 
 pub fn transient_csv(sim: &Simulation) -> String {

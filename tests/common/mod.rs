@@ -69,3 +69,23 @@ pub fn freqs(r: &ModalResult, kind: ModeKind) -> Vec<f64> {
 pub fn rel(a: f64, b: f64) -> f64 {
     (a - b) / b
 }
+
+/// Runs `ancf-modal` with `args`, asserts that it succeeds (its standard
+/// error in the message) and returns its standard output.
+pub fn run_ok<I, S>(args: I) -> Vec<u8>
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<std::ffi::OsStr>,
+{
+    let out = assert_cmd::Command::cargo_bin("ancf-modal")
+        .unwrap()
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}

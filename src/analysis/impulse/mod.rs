@@ -17,6 +17,7 @@
 //! it samples: the modes above the Nyquist frequency (29.3 and 30.6 kHz of
 //! the paper's assembly at 51.2 kHz) do not fold into the spectrum.
 
+pub mod damping;
 pub mod sensor;
 pub mod spectrum;
 
@@ -27,6 +28,7 @@ use crate::error::{AnalysisError, TransientError};
 use crate::measured::decimate::{resample, AntiAlias};
 use crate::model::{Model, SensorQuantity, TimeFunction};
 use crate::system::System;
+use damping::{identify_damping, DampingBand, DampingCheck};
 use sensor::SensorProbe;
 use spectrum::{Frf, Peak, PeakSettings, Spectrum, SpectrumError, SpectrumSettings};
 use std::f64::consts::PI;
@@ -129,6 +131,9 @@ pub struct ImpulseResult {
     pub spectrum: Spectrum,
     pub peaks: Vec<Peak>,
     pub first_bending: Option<FirstBending>,
+    /// The first bending mode's damping fitted from the records against
+    /// the model's (see [`damping`]).
+    pub damping: Option<DampingCheck>,
     pub frf: Option<Frf>,
     pub modal: ModalResult,
     pub stats: RunStats,
@@ -210,7 +215,11 @@ pub fn run_impulse(
     let probe = SensorProbe::new(&system, point);
     let modal = modal_at_reference(&system, &ModalSettings::default())?;
     let h = settings.transient.step;
-    let mut integrator = Integrator::new(&system, settings.transient)?;
+    let transient = TransientSettings {
+        damping: settings.transient.damping.or(model.damping),
+        ..settings.transient
+    };
+    let mut integrator = Integrator::new(&system, transient)?;
     let mut state = integrator.initial_state()?;
     let total = settings.transient.steps();
     let mut recorder = Recorder::new(&probe, settings.sample_rate, &settings.transient);
@@ -227,6 +236,8 @@ pub fn run_impulse(
     let spectrum = spectrum::amplitude_spectrum(&signal, sample_rate_hz, &settings.spectrum)?;
     let peaks = spectrum::find_peaks(&spectrum, &settings.peaks);
     let first_bending = identify_first_bending(&modal, &spectrum, settings)?;
+    let damping = damping_band(&modal, &transient)?
+        .and_then(|band| identify_damping(&force, &signal, sample_rate_hz, &band));
     let frf = spectrum::frf_h1(&force, &signal, sample_rate_hz, &settings.spectrum).ok();
     Ok(ImpulseResult {
         sensor: probe.id().to_string(),
@@ -238,6 +249,7 @@ pub fn run_impulse(
         spectrum,
         peaks,
         first_bending,
+        damping,
         frf,
         modal,
         stats,
@@ -255,6 +267,49 @@ fn pulse_magnitude(system: &System, t: f64) -> f64 {
         .sum()
 }
 
+/// The first bending eigenfrequency and its band, half-way to its elastic
+/// neighbours [SI: Hz].
+fn first_bending_band(modal: &ModalResult) -> Option<(f64, f64, f64)> {
+    let elastic: Vec<f64> = modal
+        .modes
+        .iter()
+        .filter(|m| m.kind != ModeKind::Rigid)
+        .map(|m| m.frequency_hz)
+        .collect();
+    let eigen = modal.first_bending()?.frequency_hz;
+    let k = elastic.iter().position(|&f| f == eigen).unwrap_or(0);
+    let lo = if k == 0 {
+        0.5 * eigen
+    } else {
+        0.5 * (elastic[k - 1] + eigen)
+    };
+    let hi = elastic
+        .get(k + 1)
+        .map_or(1.5 * eigen, |f| 0.5 * (f + eigen));
+    Some((eigen, lo, hi))
+}
+
+/// The band and the expected ratios of the damping check.
+fn damping_band(
+    modal: &ModalResult,
+    transient: &TransientSettings,
+) -> Result<Option<DampingBand>, ImpulseError> {
+    let Some((eigen_hz, lo_hz, hi_hz)) = first_bending_band(modal) else {
+        return Ok(None);
+    };
+    let omega = 2.0 * PI * eigen_hz;
+    let numerical = GenAlpha::from_spectral_radius(transient.spectral_radius)?
+        .numerical_frequency(omega, transient.step)?;
+    let w = damping::BAND_HALF_WIDTH;
+    Ok(Some(DampingBand {
+        eigen_hz,
+        lo_hz: lo_hz.max(eigen_hz * (1.0 - w)),
+        hi_hz: hi_hz.min(eigen_hz * (1.0 + w)),
+        modal_ratio: transient.damping.map_or(0.0, |d| d.ratio(omega)),
+        numerical_ratio: numerical.damping_ratio,
+    }))
+}
+
 /// The FFT peak in the band of the first bending eigenfrequency (half-way
 /// to its elastic neighbours), corrected for the integrator.
 fn identify_first_bending(
@@ -262,27 +317,9 @@ fn identify_first_bending(
     spec: &Spectrum,
     s: &ImpulseSettings,
 ) -> Result<Option<FirstBending>, ImpulseError> {
-    let elastic: Vec<f64> = modal
-        .modes
-        .iter()
-        .filter(|m| m.kind != ModeKind::Rigid)
-        .map(|m| m.frequency_hz)
-        .collect();
-    let Some(eigen) = modal.first_bending() else {
+    let Some((eigen_hz, lo, hi)) = first_bending_band(modal) else {
         return Ok(None);
     };
-    let k = elastic
-        .iter()
-        .position(|&f| f == eigen.frequency_hz)
-        .unwrap_or(0);
-    let lo = if k == 0 {
-        0.5 * eigen.frequency_hz
-    } else {
-        0.5 * (elastic[k - 1] + eigen.frequency_hz)
-    };
-    let hi = elastic
-        .get(k + 1)
-        .map_or(1.5 * eigen.frequency_hz, |f| 0.5 * (f + eigen.frequency_hz));
     let Some(peak) = spectrum::dominant_peak_in(spec, lo, hi) else {
         return Ok(None);
     };
@@ -293,7 +330,7 @@ fn identify_first_bending(
     Ok(Some(FirstBending {
         raw_hz: peak.frequency_hz,
         corrected_hz: corrected,
-        eigen_hz: eigen.frequency_hz,
+        eigen_hz,
     }))
 }
 

@@ -28,6 +28,12 @@
 //! angles). The rate estimate θ/(1 − θ) carries over from step to step
 //! (floored at 1e-3).
 //!
+//! With the model's Rayleigh damping (`TransientSettings::damping`), the
+//! force C q̇, C = αM + βK, joins D in the residual and γ′C joins the
+//! iteration matrix ([`rayleigh`]: K is the reference stiffness turned with
+//! the assembly's rigid rotation, so rigid motion feels no β damping).
+//! Without it the integrator runs exactly as before.
+//!
 //! The iteration matrix is factored by faer ([`solver`]): densely for small
 //! models, by a sparse LU with a fixed pattern for large ones
 //! ([`LinearSolver`], [`SPARSE_THRESHOLD`]). The rotating-frame
@@ -37,14 +43,17 @@
 pub mod contacts;
 pub mod dispersion;
 pub mod frame;
+pub mod rayleigh;
 pub mod solver;
 
 use crate::error::TransientError;
 use crate::linalg::Scatter;
+use crate::model::RayleighDamping;
 use crate::system::{Linearization, System};
 use contacts::{add_contact_dissipation, ContactTracker};
 use dispersion::GenAlpha;
 use frame::RotatingFrame;
+use rayleigh::RayleighForce;
 use solver::{DenseLu, FactorFailure, Factorization, Placed, Positions, Product, SparseLu};
 
 /// Contraction rate θ above which a factorization that has served at least
@@ -99,6 +108,8 @@ pub struct TransientSettings {
     pub max_iterations: usize,
     /// Dense or sparse factorization of the iteration matrix.
     pub solver: LinearSolver,
+    /// The model's Rayleigh damping C = αM + βK (`None`: none).
+    pub damping: Option<RayleighDamping>,
 }
 
 impl Default for TransientSettings {
@@ -110,6 +121,7 @@ impl Default for TransientSettings {
             tolerance: 1e-10,
             max_iterations: 8,
             solver: LinearSolver::Auto,
+            damping: None,
         }
     }
 }
@@ -166,6 +178,9 @@ pub struct RunStats {
     pub max_length_residual: f64,
     /// Largest |C(q)| of angular constraint equations (welds) [rad].
     pub max_angle_residual: f64,
+    /// Energy the Rayleigh damping absorbed, ∫q̇ᵀCq̇ dt (trapezoidal rule
+    /// over the steps) [SI: J]; 0 without damping.
+    pub damping_dissipation: f64,
 }
 
 /// The generalized-α integrator for one system.
@@ -199,6 +214,10 @@ pub struct Integrator<'s> {
     h: f64,
     /// Contact states, impact speeds and statistics.
     pub contacts: ContactTracker,
+    /// The model's Rayleigh damping, if any.
+    rayleigh: Option<RayleighForce>,
+    /// q̇ᵀCq̇ at the last accepted state [SI: W].
+    damping_power: f64,
     /// The state before a step that contact step control may repeat.
     saved: State,
     pub stats: RunStats,
@@ -218,6 +237,7 @@ impl<'s> Integrator<'s> {
         })?;
         let h = settings.step;
         let (n, m) = (sys.ndof(), sys.constraint_count());
+        let rayleigh = RayleighForce::new(sys, settings.damping);
         let beta_p = (1.0 - coef.alpha_m) / ((1.0 - coef.alpha_f) * coef.beta * h * h);
         let gamma_p = coef.gamma / (coef.beta * h);
         let sparse = match settings.solver {
@@ -239,6 +259,9 @@ impl<'s> Integrator<'s> {
             };
             let mut scratch = vec![0.0; n];
             add_iteration_matrix(sys, &at, &v, beta_p, gamma_p, &mut scratch, &mut positions);
+            if let Some(r) = &rayleigh {
+                r.add_matrix(sys, &at, gamma_p / beta_p, &mut positions);
+            }
             let lu = SparseLu::new(n + m, &positions.0).map_err(|f| factor_error(sys, f, 0.0))?;
             Factorization::Sparse(Box::new(lu))
         } else {
@@ -285,6 +308,8 @@ impl<'s> Integrator<'s> {
             since_factor: 0,
             h,
             contacts: ContactTracker::new(sys, &sys.q0),
+            rayleigh,
+            damping_power: 0.0,
             stats: RunStats::default(),
         })
     }
@@ -345,6 +370,11 @@ impl<'s> Integrator<'s> {
         let mut damping = vec![0.0; n];
         self.sys
             .add_damping(&q, &v, &mut damping, None::<&mut Positions>);
+        if let Some(r) = &mut self.rayleigh {
+            let mut rayleigh = vec![0.0; n];
+            self.damping_power = r.power(self.sys, &q, &v, &mut rayleigh);
+            damping.iter_mut().zip(&rayleigh).for_each(|(d, f)| *d += f);
+        }
         for ((r, f), d) in rhs.iter_mut().zip(&self.force).zip(&damping) {
             *r -= f + d;
         }
@@ -398,6 +428,9 @@ impl<'s> Integrator<'s> {
         }
         self.sys
             .add_damping(&st.q, &st.v, dyn_part, None::<&mut Positions>);
+        if let Some(r) = &mut self.rayleigh {
+            r.add_force(self.sys, &st.q, &st.v, dyn_part);
+        }
         add_contact_dissipation(
             self.sys,
             &st.q,
@@ -434,6 +467,9 @@ impl<'s> Integrator<'s> {
             scratch,
             &mut self.lu,
         );
+        if let Some(r) = &self.rayleigh {
+            r.add_matrix(self.sys, &at, self.gamma_p / self.beta_p, &mut self.lu);
+        }
         add_contact_dissipation(
             self.sys,
             &st.q,
@@ -566,6 +602,11 @@ impl<'s> Integrator<'s> {
         }
         self.eta = self.eta.max(1e-3);
         std::mem::swap(state, &mut self.next);
+        if let Some(r) = &mut self.rayleigh {
+            let p = r.power(self.sys, &state.q, &state.v, &mut self.force);
+            self.stats.damping_dissipation += 0.5 * h * (p + self.damping_power);
+            self.damping_power = p;
+        }
         self.stats.steps += 1;
         self.since_factor += 1;
         // `work[..m]` still holds C(q) of the accepted iterate, from the
@@ -605,6 +646,7 @@ impl<'s> Integrator<'s> {
             self.set_step(h);
             self.contacts.begin_step(self.sys, &state.q, &state.v);
             self.saved.clone_from(state);
+            let damping = (self.stats.damping_dissipation, self.damping_power);
             let result = self.step(state);
             let retry = match &result {
                 Err(TransientError::NewtonFailure { .. }) => Some(0.5 * h),
@@ -616,6 +658,7 @@ impl<'s> Integrator<'s> {
                     if result.is_ok() {
                         self.stats.steps -= 1;
                     }
+                    (self.stats.damping_dissipation, self.damping_power) = damping;
                     state.clone_from(&self.saved);
                     h = shorter;
                 }

@@ -34,6 +34,8 @@ pub struct NodeCoordinates {
 /// A real normal mode of dataset 55 (3 translations per node).
 #[derive(Debug, Clone, PartialEq)]
 pub struct NormalMode {
+    /// ID lines 1–5, separated by newlines (missing ones are written as NONE;
+    /// the reader keeps the first).
     pub id: String,
     pub mode_number: i64,
     pub frequency_hz: f64,
@@ -59,9 +61,9 @@ pub fn write_nodes(out: &mut String, nodes: &[NodeCoordinates]) {
 /// Appends one dataset 55 with mode `m`.
 pub fn write_mode(out: &mut String, m: &NormalMode) {
     open_block(out, 55);
-    id_line(out, &m.id);
-    for _ in 0..4 {
-        id_line(out, "NONE");
+    let ids: Vec<&str> = m.id.lines().take(5).collect();
+    for k in 0..5 {
+        id_line(out, ids.get(k).copied().unwrap_or("NONE"));
     }
     let _ = writeln!(
         out,

@@ -4,7 +4,11 @@
 //!   ms] with its quantity and unit (displacement [m], velocity [m/s] or
 //!   acceleration [m/s²], shown with the SI prefix that makes the largest
 //!   value a number in 1…1000, e.g. mm/s or µm), over the applied half-sine
-//!   force pulse F(t) [N] in a second panel on the same time axis.
+//!   force pulse F(t) [N] in a second panel on the same time axis; below
+//!   them the same two panels zoomed on the first [`ZOOM_PERIODS`] periods
+//!   of the first bending mode (2.2 ms for the paper's assembly: the pulse
+//!   and the first oscillations, which a 100 ms record shows only as a
+//!   solid band).
 //! * [`spectrum_figure`] — the amplitude spectrum 20·log₁₀|X(f)| [dB re 1
 //!   signal unit] from 0 to the Nyquist frequency f_s/2 [SI: Hz, shown in
 //!   kHz]: the identified peaks marked and labelled with their frequency,
@@ -23,7 +27,8 @@ use crate::analysis::impulse::ImpulseResult;
 use crate::analysis::ModeKind;
 use crate::model::{Model, SensorQuantity};
 use crate::output::plot::{
-    Guide, Legend, LineFigure, MarkerShape, Panel, PlotError, PlotSize, PointMarker, Scale, Series,
+    Figure, Guide, Legend, LineFigure, MarkerShape, Panel, PlotError, PlotSize, PointMarker, Scale,
+    Series, StackedFigure,
 };
 use std::path::{Path, PathBuf};
 
@@ -46,31 +51,77 @@ fn max_abs(v: &[f64]) -> f64 {
         .fold(0.0, |m, x| m.max(x.abs()))
 }
 
-/// Sensor signal over the force pulse, against time in ms.
-pub fn response_figure(model_name: &str, result: &ImpulseResult) -> LineFigure {
+/// Periods of the first bending mode the zoomed panels show.
+pub const ZOOM_PERIODS: f64 = 10.0;
+
+/// End of the zoom [SI: s]: [`ZOOM_PERIODS`] periods of the first bending
+/// eigenfrequency (2 % of the record without one), within the record.
+pub fn zoom_end(result: &ImpulseResult) -> f64 {
+    let t0 = result.time.first().copied().unwrap_or(0.0);
+    let t1 = result.time.last().copied().unwrap_or(0.0);
+    let span = match result.modal.first_bending() {
+        Some(m) if m.frequency_hz > 0.0 => ZOOM_PERIODS / m.frequency_hz,
+        _ => 0.02 * (t1 - t0),
+    };
+    (t0 + span).min(t1)
+}
+
+/// The signal and force panels over the samples up to `end` (and one
+/// beyond, so the curves reach the edge).
+fn response_panels(result: &ImpulseResult, end: f64) -> Vec<Panel> {
+    let n = result.time.partition_point(|&t| t <= end);
+    let n = (n + 1).min(result.time.len());
+    let time = &result.time[..n];
     let (name, unit) = quantity_name(result.quantity);
-    let mut signal = Panel::new(name, Scale::si(unit, max_abs(&result.signal)));
+    let mut signal = Panel::new(name, Scale::si(unit, max_abs(&result.signal[..n])));
     signal.series.push(Series::line(
         format!("sensor {}", result.sensor),
-        result.time.clone(),
-        result.signal.clone(),
+        time.to_vec(),
+        result.signal[..n].to_vec(),
     ));
     // A long record fills the panel; the title names the sensor.
     signal.legend = Legend::None;
     let mut force = Panel::new("Force", Scale::unit("N"));
     force.series.push(Series::line(
         "force pulse",
-        result.time.clone(),
-        result.force.clone(),
+        time.to_vec(),
+        result.force[..n].to_vec(),
     ));
     force.legend = Legend::UpperRight;
-    let mut fig = LineFigure::new(
+    vec![signal, force]
+}
+
+/// Sensor signal over the force pulse, against time in ms: the whole
+/// record, and below it the first milliseconds ([`zoom_end`]).
+pub fn response_figure(model_name: &str, result: &ImpulseResult) -> Figure {
+    let t1 = result.time.last().copied().unwrap_or(0.0);
+    let mut whole = LineFigure::new(
         format!("Impulse response: {model_name}, sensor {}", result.sensor),
         "Time",
         Scale::ms(),
     );
-    fig.panels = vec![signal, force];
-    fig
+    whole.panels = response_panels(result, t1);
+    let end = zoom_end(result);
+    let t0 = result.time.first().copied().unwrap_or(0.0);
+    if !(end > t0 && end < t1) {
+        return whole.into();
+    }
+    let mut zoom = LineFigure::new(
+        format!(
+            "First {:.2} ms: the pulse and the first oscillations",
+            1e3 * (end - t0)
+        ),
+        "Time",
+        Scale::ms(),
+    );
+    zoom.x_range = Some((t0, end));
+    zoom.panels = response_panels(result, end);
+    // The whole record's force panel above names the curve.
+    zoom.panels[1].legend = Legend::None;
+    StackedFigure {
+        parts: vec![whole, zoom],
+    }
+    .into()
 }
 
 /// Amplitude of a peak in dB re 1 signal unit.
@@ -202,5 +253,5 @@ pub fn write_impulse_figures(
     size: PlotSize,
 ) -> Result<(), PlotError> {
     write_figure(&spectrum_figure(model, result).into(), spectrum, size)?;
-    write_figure(&response_figure(&model.name, result).into(), response, size)
+    write_figure(&response_figure(&model.name, result), response, size)
 }

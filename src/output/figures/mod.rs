@@ -13,6 +13,7 @@
 //!   pulse against time, and the amplitude spectrum with identified peaks,
 //!   eigenfrequency guides and the measured reference frequency.
 //!
+//! * [`mac`] — the MAC matrix between two mode sets as a labelled heat map.
 //! * [`sweep`] — a parameter study: tracked frequencies (Campbell style) or
 //!   the quantity against one parameter, a heat map over two.
 //!
@@ -20,6 +21,7 @@
 
 pub mod convergence;
 pub mod impulse;
+pub mod mac;
 pub mod modal;
 pub mod sweep;
 pub mod switch_off;
@@ -27,6 +29,7 @@ mod write;
 
 pub use convergence::convergence_figure;
 pub use impulse::{response_figure, response_path, spectrum_figure, write_impulse_figures};
+pub use mac::mac_figure;
 pub use modal::{
     assembly_geometry, mode_amplitude, mode_shape_figure, mode_shape_figure_with, ModeShapeSettings,
 };

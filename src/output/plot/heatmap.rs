@@ -5,7 +5,9 @@
 //! neighbours (in log10 on a log axis); missing values (non-finite, e.g. a
 //! failed point) are drawn in light grey. Colours run through a
 //! perceptually uniform, colour-blind-safe map (viridis, dark blue → yellow)
-//! from the smallest to the largest value.
+//! from the smallest to the largest value. A [`LabelledHeatMap`] also
+//! writes a text in every cell (e.g. the MAC values), dark on the light
+//! end of the map and white on the dark end.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -15,7 +17,8 @@ use super::error::PlotError;
 use super::frame::{self, AxisFrame, AxisMap, FrameSizes, PanelLayout};
 use super::geom::Extent;
 use super::size::PlotSize;
-use super::style::{Scale, TextSizes};
+use super::style::{self, Scale, TextSizes, INK};
+use plotters::style::text_anchor::{HPos, VPos};
 
 /// A value over a grid.
 #[derive(Debug, Clone, Default)]
@@ -104,6 +107,16 @@ impl HeatMap {
         root: &DrawingArea<DB, Shift>,
         size: PlotSize,
     ) -> Result<Vec<PanelLayout>, PlotError> {
+        self.draw_labelled(root, size, None)
+    }
+
+    /// Draws the map, and `labels[j][i]` centred in cell (i, j) if given.
+    fn draw_labelled<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        size: PlotSize,
+        labels: Option<&[Vec<String>]>,
+    ) -> Result<Vec<PanelLayout>, PlotError> {
         let rows_ok =
             self.z.len() == self.y.len() && self.z.iter().all(|r| r.len() == self.x.len());
         if !rows_ok {
@@ -141,19 +154,30 @@ impl HeatMap {
                 what: format!("heat map `{}` has no value to show", self.title),
             })?;
         let target = |px: u32, per: f64| (px as f64 / per).round().clamp(3.0, 10.0) as usize;
-        let x = AxisFrame::new(
+        // A labelled map over integers (mode numbers) ticks every integer.
+        let integers = |v: &[f64]| v.iter().all(|x| x.fract() == 0.0);
+        let axis = |map: AxisMap, lo: f64, hi: f64, desc: String, n: usize, grid: &[f64]| {
+            if labels.is_some() && !map.log && integers(grid) {
+                AxisFrame::with_step(map, lo, hi, map.factor.abs(), desc)
+            } else {
+                AxisFrame::new(map, lo, hi, desc, n)
+            }
+        };
+        let x = axis(
             xm,
             x0,
             x1,
             self.x_scale.label(&self.x_label),
             target(size.width, 140.0),
+            &self.x,
         );
-        let y = AxisFrame::new(
+        let y = axis(
             ym,
             y0,
             y1,
             self.y_scale.label(&self.y_label),
             target(size.height, 70.0),
+            &self.y,
         );
         let zm = AxisMap {
             factor: self.z_scale.factor,
@@ -204,6 +228,26 @@ impl HeatMap {
             }
         }
         chart.draw_series(cells)?;
+        if let Some(labels) = labels {
+            let mut texts = Vec::new();
+            for (j, (row, values)) in labels.iter().zip(&self.z).enumerate() {
+                for (i, (text, &v)) in row.iter().zip(values).enumerate() {
+                    let t = zm.coord(v).map_or(0.0, |c| (c - z.lo) / span_z);
+                    let colour = if t > 0.55 {
+                        INK
+                    } else {
+                        RGBColor(255, 255, 255)
+                    };
+                    let centre = (0.5 * (xe[i].0 + xe[i].1), 0.5 * (ye[j].0 + ye[j].1));
+                    texts.push(Text::new(
+                        text.clone(),
+                        centre,
+                        style::text(sizes.tick, colour, HPos::Center, VPos::Center),
+                    ));
+                }
+            }
+            chart.draw_series(texts)?;
+        }
         let layout = frame::layout_of(&chart, &x, &y);
 
         // The colour bar: a one-column chart over the value range.
@@ -238,6 +282,34 @@ impl HeatMap {
             )
         }))?;
         Ok(vec![layout])
+    }
+}
+
+/// A heat map with a text in every cell.
+#[derive(Debug, Clone, Default)]
+pub struct LabelledHeatMap {
+    pub map: HeatMap,
+    /// `labels[j][i]` in the cell at `(x[i], y[j])`.
+    pub labels: Vec<Vec<String>>,
+}
+
+impl LabelledHeatMap {
+    pub(super) fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        size: PlotSize,
+    ) -> Result<Vec<PanelLayout>, PlotError> {
+        let m = &self.map;
+        let fits =
+            self.labels.len() == m.y.len() && self.labels.iter().all(|r| r.len() == m.x.len());
+        if !fits {
+            return Err(PlotError::LengthMismatch {
+                series: format!("{} (cell labels)", m.title),
+                x_len: m.x.len() * m.y.len(),
+                y_len: self.labels.iter().map(Vec::len).sum(),
+            });
+        }
+        m.draw_labelled(root, size, Some(&self.labels))
     }
 }
 

@@ -197,8 +197,18 @@ impl LineFigure {
         root: &DrawingArea<DB, Shift>,
         size: PlotSize,
     ) -> Result<Vec<PanelLayout>, PlotError> {
+        self.draw_sized(root, size, TextSizes::for_size(size))
+    }
+
+    /// Draws into `root` of `size` pixels with the given text sizes (a part
+    /// of a [`super::StackedFigure`] keeps the whole figure's text).
+    pub(super) fn draw_sized<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        size: PlotSize,
+        sizes: TextSizes,
+    ) -> Result<Vec<PanelLayout>, PlotError> {
         self.validate()?;
-        let sizes = TextSizes::for_size(size);
         let title_h = draw_title(root, &self.title, &sizes)?;
         let x = self.x_frame(size.width)?;
 

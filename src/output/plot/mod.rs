@@ -71,6 +71,7 @@ mod pngtext;
 mod presets;
 mod series;
 mod size;
+mod stack;
 mod style;
 mod ticks;
 
@@ -83,12 +84,13 @@ use super::files;
 
 pub use error::PlotError;
 pub use frame::PanelLayout;
-pub use heatmap::{colour_map, HeatMap};
+pub use heatmap::{colour_map, HeatMap, LabelledHeatMap};
 pub use line::{LineFigure, Panel};
 pub use modeshape::{Geometry, ModeShape, ModeShapeFigure};
 pub use presets::{calibration_figure, convergence_figure, Calibration, Convergence};
 pub use series::{Guide, Legend, MarkerShape, PointMarker, Series, SeriesStyle};
 pub use size::PlotSize;
+pub use stack::StackedFigure;
 pub use style::{
     format_sig, palette, Scale, BACKGROUND, GUIDE, INK, PALETTE, REFERENCE, UNDEFORMED,
 };
@@ -124,6 +126,20 @@ pub enum Figure {
     Line(LineFigure),
     ModeShapes(ModeShapeFigure),
     Heat(HeatMap),
+    Stack(StackedFigure),
+    LabelledHeat(LabelledHeatMap),
+}
+
+impl From<LabelledHeatMap> for Figure {
+    fn from(f: LabelledHeatMap) -> Self {
+        Figure::LabelledHeat(f)
+    }
+}
+
+impl From<StackedFigure> for Figure {
+    fn from(f: StackedFigure) -> Self {
+        Figure::Stack(f)
+    }
 }
 
 impl From<HeatMap> for Figure {
@@ -155,6 +171,8 @@ impl Figure {
             Figure::Line(f) => f.draw(root, size),
             Figure::ModeShapes(f) => f.draw(root, size),
             Figure::Heat(f) => f.draw(root, size),
+            Figure::Stack(f) => f.draw(root, size),
+            Figure::LabelledHeat(f) => f.draw(root, size),
         }
     }
 
