@@ -196,9 +196,8 @@ fn energy_balance_closes_with_the_damping_dissipation() {
         alpha: 100.0,
         beta: 2e-6,
     });
-    let sys = System::new(&model);
     let sim = simulate(
-        &sys,
+        System::new(&model),
         &[],
         &SimulationSettings {
             transient: TransientSettings {

@@ -90,6 +90,9 @@ pub struct Simulation {
     pub min_step: f64,
     /// Static iterations spent on the initial equilibrium.
     pub static_iterations: usize,
+    /// The applied loads of the integrated system (released supports'
+    /// reactions among them).
+    pub loads: Vec<crate::load::PointLoad>,
 }
 
 fn energies(sys: &System, gravity: &[f64], st: &State) -> Energies {
@@ -225,6 +228,7 @@ pub fn simulate(
         stats,
         min_step,
         static_iterations,
+        loads: sys.loads.clone(),
     })
 }
 

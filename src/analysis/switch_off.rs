@@ -166,7 +166,9 @@ fn run_one(
     let point = model.resolve(&spec, "point").expect("resolved above");
     let sys = System::new(&model);
     let anchor = sys.anchor_of(&point);
-    let sim = simulate(sys, &[anchor], &settings.simulation(step))?;
+    let mut sim_settings = settings.simulation(step);
+    sim_settings.transient.damping = model.damping;
+    let sim = simulate(sys, &[anchor], &sim_settings)?;
     let [x, y] = &sim.step_points[0];
     let n = settings.direction[0].hypot(settings.direction[1]);
     let dir = [settings.direction[0] / n, settings.direction[1] / n];

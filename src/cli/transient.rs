@@ -88,7 +88,7 @@ pub fn run(args: TransientArgs) -> Result<()> {
         let provenance = ancf_modal::output::provenance::header_lines(
             &super::common::model_sha256(args.model.as_deref())?,
         );
-        write_output(path, &transient_uff(&system, &sim, &provenance))?;
+        write_output(path, &transient_uff(&sim, &provenance))?;
     }
     if let Some(path) = &args.plot {
         write_figure(

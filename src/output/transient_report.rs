@@ -8,7 +8,6 @@ use crate::analysis::simulate::{Simulation, SimulationSettings};
 use crate::model::{SensorQuantity, TimeFunction};
 use crate::output::plot::{Legend, LineFigure, Panel, Scale, Series};
 use crate::output::records_uff::{records_uff, Record, RecordKind};
-use crate::system::System;
 use serde_json::{json, Map, Value};
 use std::fmt::Write;
 
@@ -84,8 +83,8 @@ pub fn transient_table(model: &str, settings: &SimulationSettings, sim: &Simulat
 /// UFF 58 time data of a run sampled at a uniform rate: the force
 /// magnitude |F₀|·f(t) of every time-varying load (at the sample times),
 /// then every sensor (see [`super::records_uff`]).
-pub fn transient_uff(sys: &System, sim: &Simulation, provenance: &[String; 2]) -> String {
-    let forces: Vec<(&str, Vec<f64>)> = sys
+pub fn transient_uff(sim: &Simulation, provenance: &[String; 2]) -> String {
+    let forces: Vec<(&str, Vec<f64>)> = sim
         .loads
         .iter()
         .filter(|l| !matches!(l.time, TimeFunction::Constant))

@@ -261,6 +261,7 @@ pub fn evaluate(
                     transient: TransientSettings {
                         step: settings.step.unwrap_or(defaults.step),
                         end_time: settings.end_time.unwrap_or(defaults.end_time),
+                        damping: model.damping,
                         ..TransientSettings::default()
                     },
                     from_equilibrium: settings.prestress,
