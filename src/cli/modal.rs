@@ -2,6 +2,7 @@
 
 use super::args::ModalArgs;
 use super::common::{load_model, print_json, source_label, write_output};
+use ancf_modal::analysis::damped_modes::{damped_modes, has_dampers};
 use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings, Mode, ModeKind};
 use ancf_modal::measured::mac::mac;
 use ancf_modal::measured::uff::d55::read_modes;
@@ -59,18 +60,43 @@ pub fn run(args: ModalArgs) -> Result<()> {
             ancf_modal::output::plot::PlotSize::default(),
         )?;
     }
+    // Damping ratios: complex modes when dampers make the damping
+    // non-proportional, else the Rayleigh formula (0 without damping).
+    let at = system.reference();
+    let complex = if has_dampers(&system, at.q) {
+        Some(
+            damped_modes(&system, &at, &result, model.damping)
+                .with_context(|| source_label(args.model.as_deref()))?,
+        )
+    } else {
+        None
+    };
+    let complex_of = |m: &Mode| {
+        complex
+            .as_ref()?
+            .iter()
+            .find(|d| d.index == m.index)
+            .copied()
+    };
     let ratio = |m: &Mode| -> Option<f64> {
-        (m.kind != ModeKind::Rigid).then(|| {
-            model.damping.map_or(0.0, |d| {
+        if m.kind == ModeKind::Rigid {
+            return None;
+        }
+        match &complex {
+            Some(_) => complex_of(m).map(|d| d.damping_ratio),
+            None => Some(model.damping.map_or(0.0, |d| {
                 d.ratio(2.0 * std::f64::consts::PI * m.frequency_hz)
-            })
-        })
+            })),
+        }
     };
     if args.json {
         let mut doc = modal_json(&model.name, &result);
         if let Some(modes) = doc["modes"].as_array_mut() {
             for (entry, m) in modes.iter_mut().zip(&result.modes) {
                 entry["damping_ratio"] = serde_json::json!(ratio(m));
+                if let Some(d) = complex_of(m) {
+                    entry["damped_frequency_hz"] = serde_json::json!(d.damped_hz);
+                }
             }
         }
         if let Some((rows, cols, m)) = &mac {
@@ -82,7 +108,32 @@ pub fn run(args: ModalArgs) -> Result<()> {
         print_json(&doc, args.model.as_deref())?;
     } else {
         out!("{}", modal_table(&model.name, &result));
-        if let Some(d) = model.damping {
+        if complex.is_some() {
+            let lines: Vec<String> = result
+                .modes
+                .iter()
+                .filter_map(|m| {
+                    let d = complex_of(m)?;
+                    let fd = d
+                        .damped_hz
+                        .map_or("overdamped".to_string(), |f| format!("f_d {f:.2} Hz"));
+                    Some(format!(
+                        "mode {}: {:.4} %, {fd}",
+                        m.index,
+                        100.0 * d.damping_ratio
+                    ))
+                })
+                .collect();
+            outln!(
+                "Complex modes (dampers{}; in the basis of the computed modes): {}",
+                if model.damping.is_some() {
+                    " and Rayleigh damping"
+                } else {
+                    ""
+                },
+                lines.join(", ")
+            );
+        } else if let Some(d) = model.damping {
             let ratios: Vec<String> = result
                 .modes
                 .iter()
@@ -149,8 +200,10 @@ fn mac_against(
                 .collect(),
         )
     } else {
-        let text = std::fs::read_to_string(other)
+        // Bytes, decoded leniently: a file may also hold binary 58b records.
+        let bytes = std::fs::read(other)
             .with_context(|| format!("{}: cannot read the file", other.display()))?;
+        let text = String::from_utf8_lossy(&bytes);
         let (_, modes) = read_modes(other, &text)?;
         if modes.is_empty() {
             anyhow::bail!(
