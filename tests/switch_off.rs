@@ -162,6 +162,14 @@ fn switch_off_json_has_the_designed_keys() {
     // 3 ms at the camera's 67.2 kHz.
     assert_eq!(n, (3e-3f64 * 67.2e3).floor() as usize + 1);
     assert!(doc["rigid"]["time_to_distance_s"].is_number());
+    // Provenance: the built-in switch-off assembly is models/rcbo_switch_off.json.
+    use sha2::Digest;
+    let sha: String = sha2::Sha256::digest(std::fs::read("models/rcbo_switch_off.json").unwrap())
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    assert_eq!(doc["model_sha256"], sha.as_str());
+    assert_eq!(doc["tool_version"], env!("CARGO_PKG_VERSION"));
 }
 
 #[test]

@@ -16,15 +16,25 @@ pub fn load_model(path: Option<&Path>) -> Result<Model> {
 /// SHA-256 of the model's bytes (the file, or the built-in model's text),
 /// for the provenance of JSON documents and exported files.
 pub fn model_sha256(path: Option<&Path>) -> Result<String> {
+    model_sha256_or(path, ancf_modal::model::DEFAULT_MODEL_JSON)
+}
+
+/// As [`model_sha256`] for a command whose built-in model is `builtin`.
+pub fn model_sha256_or(path: Option<&Path>, builtin: &str) -> Result<String> {
     use anyhow::Context;
-    ancf_modal::output::provenance::model_sha256(path)
+    ancf_modal::output::provenance::model_sha256_or(path, builtin)
         .with_context(|| format!("{}: cannot read the file", source_label(path)))
 }
 
 /// Prints `doc` with `tool_version` and `model_sha256` as pretty JSON.
 pub fn print_json(doc: impl serde::Serialize, path: Option<&Path>) -> Result<()> {
+    print_json_sha(doc, &model_sha256(path)?)
+}
+
+/// Prints `doc` stamped with this build's version and `model_sha256`.
+pub fn print_json_sha(doc: impl serde::Serialize, model_sha256: &str) -> Result<()> {
     let mut doc = serde_json::to_value(doc)?;
-    ancf_modal::output::provenance::stamp(&mut doc, &model_sha256(path)?);
+    ancf_modal::output::provenance::stamp(&mut doc, model_sha256);
     outln!("{}", serde_json::to_string_pretty(&doc)?);
     Ok(())
 }

@@ -10,7 +10,7 @@ use ancf_modal::analysis::sweep::{
     DEFAULT_TRACKED_MODES,
 };
 use ancf_modal::output::figures::sweep::{check_plottable, write_sweep_figure};
-use ancf_modal::output::provenance::{sha256_hex, tool_version};
+use ancf_modal::output::provenance::tool_version;
 use ancf_modal::output::sweep_report::{sweep_csv, sweep_table};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
@@ -146,14 +146,12 @@ pub fn run(args: SweepArgs) -> Result<()> {
 /// SHA-256 of the model file, or of the built-in model's text (the
 /// switch-off assembly for a switch-off quantity).
 fn model_sha256(path: Option<&std::path::Path>, switch_off: bool) -> Result<String> {
-    let bytes = match path {
-        Some(p) => {
-            std::fs::read(p).with_context(|| format!("{}: cannot read the file", p.display()))?
-        }
-        None if switch_off => ancf_modal::model::SWITCH_OFF_MODEL_JSON.as_bytes().to_vec(),
-        None => ancf_modal::model::DEFAULT_MODEL_JSON.as_bytes().to_vec(),
+    let builtin = if switch_off {
+        ancf_modal::model::SWITCH_OFF_MODEL_JSON
+    } else {
+        ancf_modal::model::DEFAULT_MODEL_JSON
     };
-    Ok(sha256_hex(&bytes))
+    super::common::model_sha256_or(path, builtin)
 }
 
 /// Runs the sweep on `threads` workers (all cores by default) with a

@@ -115,10 +115,11 @@ pub fn run(args: SwitchOffArgs) -> Result<()> {
         write_switch_off_figures(&result, path, PlotSize::default())?;
     }
     if args.json {
-        outln!(
-            "{}",
-            serde_json::to_string_pretty(&switch_off_json(&result))?
-        );
+        let sha = super::common::model_sha256_or(
+            args.model.as_deref(),
+            ancf_modal::model::SWITCH_OFF_MODEL_JSON,
+        )?;
+        super::common::print_json_sha(switch_off_json(&result), &sha)?;
     } else {
         out!("{}", switch_off_table(&result));
     }

@@ -20,9 +20,15 @@ pub fn sha256_hex(bytes: &[u8]) -> String {
 /// SHA-256 of the model a command describes: of the file's bytes, or of the
 /// built-in model's JSON text when no file is given.
 pub fn model_sha256(path: Option<&std::path::Path>) -> std::io::Result<String> {
+    model_sha256_or(path, crate::model::DEFAULT_MODEL_JSON)
+}
+
+/// As [`model_sha256`], for a command whose built-in model is `builtin`
+/// (e.g. `switch-off`'s assembly).
+pub fn model_sha256_or(path: Option<&std::path::Path>, builtin: &str) -> std::io::Result<String> {
     Ok(match path {
         Some(p) => sha256_hex(&std::fs::read(p)?),
-        None => sha256_hex(crate::model::DEFAULT_MODEL_JSON.as_bytes()),
+        None => sha256_hex(builtin.as_bytes()),
     })
 }
 
