@@ -11,18 +11,7 @@ use std::path::{Path, PathBuf};
 const N: usize = 5_120;
 
 fn modes() -> Vec<TestMode> {
-    vec![
-        TestMode {
-            f: 800.0,
-            zeta: 0.01,
-            inv_mass: 500.0,
-        },
-        TestMode {
-            f: 2_100.0,
-            zeta: 0.02,
-            inv_mass: 800.0,
-        },
-    ]
+    measured_support::two_modes()
 }
 
 fn write_hits(dir: &Path, hits: usize) -> Vec<PathBuf> {

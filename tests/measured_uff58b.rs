@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 use ancf_modal::measured::uff::{self, FunctionType, Ordinate, SpecDataType};
 use ancf_modal::measured::MeasuredError;
 use assert_cmd::Command;
-use measured_support::{hammer_records, TestMode};
+use measured_support::hammer_records;
 use realfft::num_complex::Complex64;
 
 fn sample(name: &str) -> PathBuf {
@@ -435,18 +435,7 @@ fn bin() -> Command {
 
 #[test]
 fn frf_reads_a_hammer_test_stored_as_58b() {
-    let modes = [
-        TestMode {
-            f: 800.0,
-            zeta: 0.01,
-            inv_mass: 500.0,
-        },
-        TestMode {
-            f: 2_100.0,
-            zeta: 0.02,
-            inv_mass: 800.0,
-        },
-    ];
+    let modes = measured_support::two_modes();
     let (fs, n) = (10_240.0, 5_120);
     let dir = tempfile::tempdir().unwrap();
     let mut files = Vec::new();
@@ -489,7 +478,7 @@ fn frf_reads_a_hammer_test_stored_as_58b() {
     assert_eq!(doc["averages"], 3);
     let peaks = doc["peaks"].as_array().unwrap();
     assert_eq!(peaks.len(), 2, "{peaks:?}");
-    for (p, m) in peaks.iter().zip(modes) {
+    for (p, m) in peaks.iter().zip(&modes) {
         let f = p["frequency_hz"].as_f64().unwrap();
         let z = p["damping_ratio"].as_f64().unwrap();
         assert!((f - m.f).abs() < 3e-4 * m.f, "f = {f}");

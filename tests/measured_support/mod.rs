@@ -19,6 +19,23 @@ pub struct TestMode {
     pub inv_mass: f64,
 }
 
+/// Two well-separated modes, 800 Hz at 1 % and 2100 Hz at 2 %.
+#[allow(dead_code)]
+pub fn two_modes() -> Vec<TestMode> {
+    vec![
+        TestMode {
+            f: 800.0,
+            zeta: 0.01,
+            inv_mass: 500.0,
+        },
+        TestMode {
+            f: 2_100.0,
+            zeta: 0.02,
+            inv_mass: 800.0,
+        },
+    ]
+}
+
 /// Coefficients (a1, a2, b1) of y[k] = a1 y[k−1] + a2 y[k−2] + b1 x[k−1].
 fn coefficients(m: &TestMode, fs: f64) -> (f64, f64, f64) {
     let t = 1.0 / fs;
