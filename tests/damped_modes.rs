@@ -181,25 +181,34 @@ fn modal_json_reports_the_complex_ratio_of_a_damped_oscillator() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("osc.json");
     std::fs::write(&path, chain(m, k, c, None).to_string()).unwrap();
-    let out = assert_cmd::Command::cargo_bin("ancf-modal")
-        .unwrap()
-        .args(["modal", "--json"])
-        .arg(&path)
-        .assert()
-        .success();
-    let doc: Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
-    let mode = doc["modes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|e| e["kind"] != "rigid")
-        .expect("one elastic mode")
-        .clone();
     let zeta = c / (2.0 * (k * m).sqrt());
     let wn = (k / m).sqrt();
-    let z = mode["damping_ratio"].as_f64().unwrap();
-    let fd = mode["damped_frequency_hz"].as_f64().unwrap();
-    assert!((z - zeta).abs() < 1e-9, "ζ {z} vs c/(2√(km)) = {zeta}");
-    let exact = wn * (1.0 - zeta * zeta).sqrt() / (2.0 * PI);
-    assert!((fd - exact).abs() < 1e-9 * exact, "f_d {fd} vs {exact}");
+    // At the reference and at the (here unloaded) static equilibrium.
+    for prestress in [false, true] {
+        let mut cmd = assert_cmd::Command::cargo_bin("ancf-modal").unwrap();
+        cmd.args(["modal", "--json"]).arg(&path);
+        if prestress {
+            cmd.arg("--prestress");
+        }
+        let out = cmd.assert().success();
+        let doc: Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
+        let mode = doc["modes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["kind"] != "rigid")
+            .expect("one elastic mode")
+            .clone();
+        let z = mode["damping_ratio"].as_f64().unwrap();
+        let fd = mode["damped_frequency_hz"].as_f64().unwrap();
+        assert!(
+            (z - zeta).abs() < 1e-9,
+            "prestress {prestress}: ζ {z} vs c/(2√(km)) = {zeta}"
+        );
+        let exact = wn * (1.0 - zeta * zeta).sqrt() / (2.0 * PI);
+        assert!(
+            (fd - exact).abs() < 1e-9 * exact,
+            "prestress {prestress}: f_d {fd} vs {exact}"
+        );
+    }
 }

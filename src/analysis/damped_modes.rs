@@ -160,3 +160,55 @@ pub fn damped_modes(
     }
     Ok(out.into_iter().flatten().collect())
 }
+
+/// One mode's damping as the commands report it.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ModeDamping {
+    /// ζ; `None` for rigid modes.
+    pub damping_ratio: Option<f64>,
+    /// Im λ/2π of a complex mode [SI: Hz]; `None` without dampers (the
+    /// Rayleigh formula) or when overdamped.
+    pub damped_frequency_hz: Option<f64>,
+    /// Whether the ratio comes from complex modes (dampers present).
+    pub complex: bool,
+}
+
+/// The damping of every mode of `modal`, in its order: complex modes when
+/// the system has dampers, else ζ = α/(2ω) + βω/2 (0 without damping).
+pub fn mode_damping(
+    system: &System,
+    at: &Linearization,
+    modal: &ModalResult,
+    rayleigh: Option<RayleighDamping>,
+) -> Result<Vec<ModeDamping>, AnalysisError> {
+    let complex = if has_dampers(system, at.q) {
+        Some(damped_modes(system, at, modal, rayleigh)?)
+    } else {
+        None
+    };
+    Ok(modal
+        .modes
+        .iter()
+        .map(|m| {
+            if m.kind == ModeKind::Rigid {
+                return ModeDamping::default();
+            }
+            match &complex {
+                Some(c) => {
+                    let d = c.iter().find(|d| d.index == m.index);
+                    ModeDamping {
+                        damping_ratio: d.map(|d| d.damping_ratio),
+                        damped_frequency_hz: d.and_then(|d| d.damped_hz),
+                        complex: true,
+                    }
+                }
+                None => ModeDamping {
+                    damping_ratio: Some(rayleigh.map_or(0.0, |r| {
+                        r.ratio(2.0 * std::f64::consts::PI * m.frequency_hz)
+                    })),
+                    ..ModeDamping::default()
+                },
+            }
+        })
+        .collect())
+}

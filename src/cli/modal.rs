@@ -2,7 +2,7 @@
 
 use super::args::ModalArgs;
 use super::common::{load_model, print_json, source_label, write_output};
-use ancf_modal::analysis::damped_modes::{damped_modes, has_dampers};
+use ancf_modal::analysis::damped_modes::{mode_damping, ModeDamping};
 use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings, Mode, ModeKind};
 use ancf_modal::measured::mac::mac;
 use ancf_modal::measured::uff::d55::read_modes;
@@ -60,44 +60,13 @@ pub fn run(args: ModalArgs) -> Result<()> {
             ancf_modal::output::plot::PlotSize::default(),
         )?;
     }
-    // Damping ratios: complex modes when dampers make the damping
-    // non-proportional, else the Rayleigh formula (0 without damping).
-    let at = system.reference();
-    let complex = if has_dampers(&system, at.q) {
-        Some(
-            damped_modes(&system, &at, &result, model.damping)
-                .with_context(|| source_label(args.model.as_deref()))?,
-        )
-    } else {
-        None
-    };
-    let complex_of = |m: &Mode| {
-        complex
-            .as_ref()?
-            .iter()
-            .find(|d| d.index == m.index)
-            .copied()
-    };
-    let ratio = |m: &Mode| -> Option<f64> {
-        if m.kind == ModeKind::Rigid {
-            return None;
-        }
-        match &complex {
-            Some(_) => complex_of(m).map(|d| d.damping_ratio),
-            None => Some(model.damping.map_or(0.0, |d| {
-                d.ratio(2.0 * std::f64::consts::PI * m.frequency_hz)
-            })),
-        }
-    };
+    let damping = mode_damping(&system, &system.reference(), &result, model.damping)
+        .with_context(|| source_label(args.model.as_deref()))?;
+    let complex = damping.iter().any(|d| d.complex);
     if args.json {
         let mut doc = modal_json(&model.name, &result);
         if let Some(modes) = doc["modes"].as_array_mut() {
-            for (entry, m) in modes.iter_mut().zip(&result.modes) {
-                entry["damping_ratio"] = serde_json::json!(ratio(m));
-                if let Some(d) = complex_of(m) {
-                    entry["damped_frequency_hz"] = serde_json::json!(d.damped_hz);
-                }
-            }
+            add_damping(modes, &damping);
         }
         if let Some((rows, cols, m)) = &mac {
             doc["mac"] = serde_json::json!({
@@ -108,19 +77,19 @@ pub fn run(args: ModalArgs) -> Result<()> {
         print_json(&doc, args.model.as_deref())?;
     } else {
         out!("{}", modal_table(&model.name, &result));
-        if complex.is_some() {
+        if complex {
             let lines: Vec<String> = result
                 .modes
                 .iter()
-                .filter_map(|m| {
-                    let d = complex_of(m)?;
+                .zip(&damping)
+                .filter_map(|(m, d)| {
                     let fd = d
-                        .damped_hz
+                        .damped_frequency_hz
                         .map_or("overdamped".to_string(), |f| format!("f_d {f:.2} Hz"));
                     Some(format!(
                         "mode {}: {:.4} %, {fd}",
                         m.index,
-                        100.0 * d.damping_ratio
+                        100.0 * d.damping_ratio?
                     ))
                 })
                 .collect();
@@ -137,7 +106,11 @@ pub fn run(args: ModalArgs) -> Result<()> {
             let ratios: Vec<String> = result
                 .modes
                 .iter()
-                .filter_map(|m| ratio(m).map(|z| format!("mode {}: {:.4} %", m.index, 100.0 * z)))
+                .zip(&damping)
+                .filter_map(|(m, d)| {
+                    d.damping_ratio
+                        .map(|z| format!("mode {}: {:.4} %", m.index, 100.0 * z))
+                })
                 .collect();
             outln!(
                 "Rayleigh damping (α = {} 1/s, β = {:e} s), ζ = α/(2ω) + βω/2: {}",
@@ -151,6 +124,17 @@ pub fn run(args: ModalArgs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Writes `damping_ratio` (and a complex mode's `damped_frequency_hz`)
+/// into the JSON entries of the modes.
+pub fn add_damping(modes: &mut [serde_json::Value], damping: &[ModeDamping]) {
+    for (entry, d) in modes.iter_mut().zip(damping) {
+        entry["damping_ratio"] = serde_json::json!(d.damping_ratio);
+        if d.complex {
+            entry["damped_frequency_hz"] = serde_json::json!(d.damped_frequency_hz);
+        }
+    }
 }
 
 type Mac = (Vec<f64>, Vec<f64>, nalgebra::DMatrix<f64>);

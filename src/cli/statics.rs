@@ -7,6 +7,7 @@
 
 use super::args::{finite, ModalArgs};
 use super::common::{load_model, print_json, source_label, write_output};
+use ancf_modal::analysis::damped_modes::mode_damping;
 use ancf_modal::analysis::prestress::prestressed_modal;
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf_modal::analysis::ModalSettings;
@@ -84,7 +85,18 @@ pub fn run_prestress(
         write_mode_shapes(system, &result.equilibrium.q, &result.prestressed, path)?;
     }
     if args.json {
-        print_json(prestress_json(&model.name, &result), args.model.as_deref())?;
+        let damping = mode_damping(
+            system,
+            &result.equilibrium.linearization(),
+            &result.prestressed,
+            model.damping,
+        )
+        .with_context(|| source_label(args.model.as_deref()))?;
+        let mut doc = prestress_json(&model.name, &result);
+        if let Some(modes) = doc["modes"].as_array_mut() {
+            super::modal::add_damping(modes, &damping);
+        }
+        print_json(doc, args.model.as_deref())?;
     } else {
         out!("{}", prestress_table(&model.name, &result));
     }
