@@ -67,3 +67,17 @@ pub fn emit(text: &str) -> Result<()> {
         other => Ok(other?),
     }
 }
+
+/// Writes `damping_ratio` (and a complex mode's `damped_frequency_hz`)
+/// into the JSON entries of the modes.
+pub fn add_damping(
+    modes: &mut [serde_json::Value],
+    damping: &[ancf_modal::analysis::damped_modes::ModeDamping],
+) {
+    for (entry, d) in modes.iter_mut().zip(damping) {
+        entry["damping_ratio"] = serde_json::json!(d.damping_ratio);
+        if d.complex {
+            entry["damped_frequency_hz"] = serde_json::json!(d.damped_frequency_hz);
+        }
+    }
+}

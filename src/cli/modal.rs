@@ -1,8 +1,8 @@
 //! `ancf-modal modal`: frequencies and mode shapes.
 
 use super::args::ModalArgs;
-use super::common::{load_model, print_json, source_label, write_output};
-use ancf_modal::analysis::damped_modes::{mode_damping, ModeDamping};
+use super::common::{add_damping, load_model, print_json, source_label, write_output};
+use ancf_modal::analysis::damped_modes::mode_damping;
 use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings, Mode, ModeKind};
 use ancf_modal::measured::mac::mac;
 use ancf_modal::measured::uff::d55::read_modes;
@@ -124,17 +124,6 @@ pub fn run(args: ModalArgs) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// Writes `damping_ratio` (and a complex mode's `damped_frequency_hz`)
-/// into the JSON entries of the modes.
-pub fn add_damping(modes: &mut [serde_json::Value], damping: &[ModeDamping]) {
-    for (entry, d) in modes.iter_mut().zip(damping) {
-        entry["damping_ratio"] = serde_json::json!(d.damping_ratio);
-        if d.complex {
-            entry["damped_frequency_hz"] = serde_json::json!(d.damped_frequency_hz);
-        }
-    }
 }
 
 type Mac = (Vec<f64>, Vec<f64>, nalgebra::DMatrix<f64>);

@@ -94,7 +94,7 @@ pub fn run_prestress(
         .with_context(|| source_label(args.model.as_deref()))?;
         let mut doc = prestress_json(&model.name, &result);
         if let Some(modes) = doc["modes"].as_array_mut() {
-            super::modal::add_damping(modes, &damping);
+            super::common::add_damping(modes, &damping);
         }
         print_json(doc, args.model.as_deref())?;
     } else {
