@@ -77,23 +77,21 @@ pub fn run(args: ModalArgs) -> Result<()> {
         print_json(&doc, args.model.as_deref())?;
     } else {
         out!("{}", modal_table(&model.name, &result));
-        if complex {
-            let lines: Vec<String> = result
-                .modes
-                .iter()
-                .zip(&damping)
-                .filter_map(|(m, d)| {
-                    let fd = d
-                        .damped_frequency_hz
-                        .map_or("overdamped".to_string(), |f| format!("f_d {f:.2} Hz"));
-                    Some(format!(
-                        "mode {}: {:.4} %, {fd}",
-                        m.index,
-                        100.0 * d.damping_ratio?
-                    ))
+        let lines: Vec<String> = result
+            .modes
+            .iter()
+            .zip(&damping)
+            .filter_map(|(m, d)| {
+                let z = format!("mode {}: {:.4} %", m.index, 100.0 * d.damping_ratio?);
+                Some(match (d.complex, d.damped_frequency_hz) {
+                    (false, _) => z,
+                    (true, Some(f)) => format!("{z}, f_d {f:.2} Hz"),
+                    (true, None) => format!("{z}, overdamped"),
                 })
-                .collect();
-            outln!(
+            })
+            .collect();
+        match model.damping {
+            _ if complex => outln!(
                 "Complex modes (dampers{}; in the basis of the computed modes): {}",
                 if model.damping.is_some() {
                     " and Rayleigh damping"
@@ -101,23 +99,14 @@ pub fn run(args: ModalArgs) -> Result<()> {
                     ""
                 },
                 lines.join(", ")
-            );
-        } else if let Some(d) = model.damping {
-            let ratios: Vec<String> = result
-                .modes
-                .iter()
-                .zip(&damping)
-                .filter_map(|(m, d)| {
-                    d.damping_ratio
-                        .map(|z| format!("mode {}: {:.4} %", m.index, 100.0 * z))
-                })
-                .collect();
-            outln!(
+            ),
+            Some(d) => outln!(
                 "Rayleigh damping (α = {} 1/s, β = {:e} s), ζ = α/(2ω) + βω/2: {}",
                 d.alpha,
                 d.beta,
-                ratios.join(", ")
-            );
+                lines.join(", ")
+            ),
+            None => {}
         }
         if let Some((rows, cols, m)) = &mac {
             out!("{}", mac_table(rows, cols, m));
