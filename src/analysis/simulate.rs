@@ -174,7 +174,7 @@ pub fn simulate(
             r.push(probe.read(st));
         }
         for (track, a) in tracks.iter_mut().zip(points) {
-            let r = a.position(&st.q);
+            let r = sys.user_point(a.position(&st.q));
             track[0].push(r.x);
             track[1].push(r.y);
         }

@@ -189,6 +189,13 @@ impl Contact {
         }
     }
 
+    pub fn segment_mut(&mut self) -> &mut Segment {
+        match self {
+            Contact::PinSlot { slot, .. } => slot,
+            Contact::PointLine { line, .. } => line,
+        }
+    }
+
     /// (μ, regularization speed) when the contact has friction.
     pub fn friction(&self) -> Option<(f64, f64)> {
         let (mu, v) = match self {

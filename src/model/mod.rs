@@ -3,11 +3,13 @@
 //! offending value; [`Model::validate`] then checks physics and references.
 
 mod contact;
+mod placement;
 mod rigid;
 mod types;
 pub mod validate;
 
 pub use contact::*;
+pub use placement::Placement;
 pub use types::*;
 pub use validate::PointTarget;
 

@@ -62,7 +62,11 @@ pub fn modal_uff(system: &System, result: &ModalResult, provenance: &[String; 2]
         .iter()
         .map(|n| NodeCoordinates {
             label: n.label,
-            xyz: [system.q0[n.dofs[0]], system.q0[n.dofs[1]], 0.0],
+            xyz: [
+                system.q0[n.dofs[0]] + system.origin.x,
+                system.q0[n.dofs[1]] + system.origin.y,
+                0.0,
+            ],
         })
         .collect();
     write_nodes(&mut s, &coords);

@@ -95,17 +95,19 @@ fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
 /// The report of an equilibrium of `system`, built from `model`.
 pub fn static_report(model: &Model, system: &System, eq: &Equilibrium) -> StaticReport {
     let (q, q0) = (&eq.q, &system.q0);
+    // Positions where the model sits (the system works about its centre).
+    let at = |i: usize| [q[i] + system.origin.x, q[i + 1] + system.origin.y];
     let mut nodes = Vec::new();
     for b in &system.beams {
         for (k, &s) in b.node_s.iter().enumerate() {
             let i = b.dof0 + 4 * k;
-            let position = [q[i], q[i + 1]];
+            let position = at(i);
             nodes.push(NodeState {
                 beam: b.id.clone(),
                 node: k,
                 s,
                 position,
-                displacement: sub(position, [q0[i], q0[i + 1]]),
+                displacement: sub([q[i], q[i + 1]], [q0[i], q0[i + 1]]),
                 slope_deg: q[i + 3].atan2(q[i + 2]).to_degrees(),
                 strain: q[i + 2].hypot(q[i + 3]) - 1.0,
             });
@@ -116,7 +118,7 @@ pub fn static_report(model: &Model, system: &System, eq: &Equilibrium) -> Static
         let i = r.dof0;
         bodies.push(BodyState {
             id: r.id.clone(),
-            position: [q[i], q[i + 1]],
+            position: at(i),
             displacement: sub([q[i], q[i + 1]], [q0[i], q0[i + 1]]),
             rotation_deg: Some((q[i + 2] - q0[i + 2]).to_degrees()),
         });
@@ -125,7 +127,7 @@ pub fn static_report(model: &Model, system: &System, eq: &Equilibrium) -> Static
         let i = p.dof0;
         bodies.push(BodyState {
             id: p.id.clone(),
-            position: [q[i], q[i + 1]],
+            position: at(i),
             displacement: sub([q[i], q[i + 1]], [q0[i], q0[i + 1]]),
             rotation_deg: None,
         });

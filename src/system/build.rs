@@ -8,7 +8,7 @@ use crate::element::{CableElement, CableSection};
 use crate::joint::{Constraint, Pin, Slider, Weld};
 use crate::load::PointLoad;
 use crate::model::{
-    Contact, JointType, LoadFrame, Model, PointSpec, PointTarget, SegmentOwner, Side,
+    Contact, JointType, LoadFrame, Model, Placement, PointSpec, PointTarget, SegmentOwner, Side,
 };
 use crate::pair::Pair;
 use crate::spring::{LinearSpring, TorsionSpring};
@@ -54,11 +54,22 @@ fn mesh_nodes(model: &Model, beam: &crate::model::Beam) -> Vec<f64> {
 impl System {
     /// Assemble a validated model. Beams marked `rigid` become rigid
     /// bodies first ([`Model::with_rigid_beams`]).
+    ///
+    /// The system is assembled relative to the model's centre of mass
+    /// ([`Model::centre_of_mass`], kept as [`System::origin`]): inside,
+    /// positions are O(the assembly's size) wherever the model sits.
     pub fn new(model: &Model) -> System {
         if model.beams.iter().any(|b| b.rigid) {
-            return System::assemble(&model.with_rigid_beams());
+            return System::centred(&model.with_rigid_beams());
         }
-        System::assemble(model)
+        System::centred(model)
+    }
+
+    fn centred(model: &Model) -> System {
+        let c = model.centre_of_mass();
+        let mut sys = System::assemble(&model.placed(&Placement::translation([-c[0], -c[1]])));
+        sys.origin = v2(c);
+        sys
     }
 
     fn assemble(model: &Model) -> System {
@@ -127,6 +138,7 @@ impl System {
             sensors: Vec::new(),
             gravity: v2(model.gravity),
             q0,
+            origin: Vector2::zeros(),
             constraint_rows: Vec::new(),
             released: Vec::new(),
             ndof: dof,

@@ -127,8 +127,12 @@ pub struct System {
     pub sensors: Vec<SensorPoint>,
     /// Gravitational acceleration [SI: m/s²].
     pub gravity: Vector2<f64>,
-    /// Reference (initial) coordinates.
+    /// Reference (initial) coordinates, positions relative to `origin`.
     pub q0: Vec<f64>,
+    /// Where the model's frame has the system's origin [SI: m]: the
+    /// model's centre of mass. A position in the model's own frame is the
+    /// system's position plus this ([`System::user_point`]).
+    pub origin: Vector2<f64>,
     /// First row of each constraint in the stacked C.
     pub constraint_rows: Vec<usize>,
     /// Joints that hold until a transient releases them (in constraint order).
@@ -213,6 +217,11 @@ impl System {
             .iter()
             .map(|f| f.as_ref())
             .chain(self.contacts.iter().map(|c| c as &dyn ForceElement))
+    }
+
+    /// A position of the system's frame in the model's own frame [SI: m].
+    pub fn user_point(&self, p: Vector2<f64>) -> Vector2<f64> {
+        p + self.origin
     }
 
     /// Total mass [SI: kg].

@@ -57,8 +57,20 @@ impl Default for ModeShapeSettings {
 
 /// The drawn geometry of `system` at coordinates `q` [SI: m]: beam centre
 /// lines sampled `points_per_element` times per element from the shape
-/// functions, rigid-body and point-mass positions, joint anchors.
+/// functions, rigid-body and point-mass positions, joint anchors; drawn
+/// where the model sits (the system's origin added, see
+/// [`System::origin`]).
 pub fn assembly_geometry(system: &System, q: &[f64], points_per_element: usize) -> Geometry {
+    geometry(system, q, points_per_element, system.origin)
+}
+
+/// The geometry of `q` moved by `shift` (zero for a motion φ).
+fn geometry(
+    system: &System,
+    q: &[f64],
+    points_per_element: usize,
+    shift: Vector2<f64>,
+) -> Geometry {
     let per = points_per_element.max(1);
     let beams = system
         .beams
@@ -70,7 +82,7 @@ pub fn assembly_geometry(system: &System, q: &[f64], points_per_element: usize) 
                 let first = if k == 0 { 0 } else { 1 };
                 for j in first..=per {
                     let s = shape(el.le, j as f64 / per as f64).s;
-                    let mut r = [0.0; 2];
+                    let mut r = [shift.x, shift.y];
                     for (i, si) in s.iter().enumerate() {
                         r[0] += si * q[dofs[2 * i]];
                         r[1] += si * q[dofs[2 * i + 1]];
@@ -83,12 +95,15 @@ pub fn assembly_geometry(system: &System, q: &[f64], points_per_element: usize) 
         .collect();
     let rigid = system.rigid_bodies.iter().map(|r| r.dof0);
     let masses = system.point_masses.iter().map(|p| p.dof0);
-    let bodies = rigid.chain(masses).map(|d| [q[d], q[d + 1]]).collect();
+    let bodies = rigid
+        .chain(masses)
+        .map(|d| [q[d] + shift.x, q[d + 1] + shift.y])
+        .collect();
     let joints = system
         .constraints
         .iter()
         .map(|c| {
-            let p = c.pair().a.position(q);
+            let p = c.pair().a.position(q) + shift;
             [p.x, p.y]
         })
         .collect();
@@ -104,7 +119,7 @@ pub fn assembly_geometry(system: &System, q: &[f64], points_per_element: usize) 
 fn displacements(system: &System, q: &[f64], phi: &[f64], per: usize) -> Vec<Vector2<f64>> {
     // Beam points and body positions are linear in q: their displacement is
     // the geometry of φ itself (positions and slopes alike).
-    let g = assembly_geometry(system, phi, per);
+    let g = geometry(system, phi, per, Vector2::zeros());
     let mut d: Vec<Vector2<f64>> = g
         .beams
         .iter()
