@@ -56,7 +56,7 @@ fn elastic_frequencies(m: &Model) -> Vec<f64> {
     modal_all(m)
         .modes
         .iter()
-        .filter(|x| x.kind != ModeKind::Rigid)
+        .filter(|x| !x.kind.is_zero())
         .map(|x| x.frequency_hz)
         .take(12)
         .collect()
@@ -107,22 +107,31 @@ fn two_beams(joint: Value) -> Model {
 
 #[test]
 fn zero_frequency_modes_are_counted_and_reported_as_rigid() {
-    let count = |m: &Model| {
+    // (zero modes, of which mechanisms): a zero mode in the span of the
+    // whole assembly's rigid motions is `rigid`, any other a `mechanism`.
+    let split = |m: &Model| {
         let r = modal_all(m);
-        let reported = r.modes.iter().filter(|x| x.kind == ModeKind::Rigid).count();
+        let reported = r.modes.iter().filter(|x| x.kind.is_zero()).count();
         assert_eq!(
             reported, r.rigid_modes,
-            "every zero mode is reported with kind rigid"
+            "every zero mode is reported with kind rigid or mechanism"
         );
         assert!(
             r.modes
                 .iter()
-                .filter(|x| x.kind == ModeKind::Rigid)
+                .filter(|x| x.kind.is_zero())
                 .all(|x| x.frequency_hz == 0.0),
-            "rigid modes have f = 0"
+            "zero modes have f = 0"
         );
-        r.rigid_modes
+        let mechanisms = r
+            .modes
+            .iter()
+            .filter(|x| x.kind == ModeKind::Mechanism)
+            .count();
+        assert_eq!(mechanisms, r.mechanism_modes, "mechanisms counted");
+        (r.rigid_modes, mechanisms)
     };
+    let count = |m: &Model| split(m).0;
     assert_eq!(count(&free_beam(8)), 3, "free beam: 3 rigid-body modes");
     assert_eq!(
         count(&Model::builtin()),
@@ -132,9 +141,9 @@ fn zero_frequency_modes_are_counted_and_reported_as_rigid() {
     assert_eq!(count(&cantilever(8)), 0, "clamped beam: none");
     let pin = json!({"type": "pin", "a": {"beam": "blade", "s": L}, "b": {"beam": "b2", "s": 0.0}});
     assert_eq!(
-        count(&two_beams(pin.clone())),
-        4,
-        "two beams pinned: 3 + 1 mechanism"
+        split(&two_beams(pin.clone())),
+        (4, 1),
+        "two beams pinned: 3 rigid + 1 mechanism"
     );
     let mut sprung = pin.clone();
     sprung["torsion_stiffness"] = json!(0.5);
@@ -150,7 +159,11 @@ fn zero_frequency_modes_are_counted_and_reported_as_rigid() {
         "name": "pinned", "beams": [blade(6)],
         "joints": [{"type": "pin", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "blade", "s": 0.0}}]
     }));
-    assert_eq!(count(&pinned), 1, "beam pinned to the ground: the swing");
+    assert_eq!(
+        split(&pinned),
+        (1, 0),
+        "beam pinned to the ground: the swing, a rigid motion of the whole assembly"
+    );
     let rigid_chain = model(json!({
         "name": "rigid chain",
         "rigid_bodies": [
@@ -160,9 +173,9 @@ fn zero_frequency_modes_are_counted_and_reported_as_rigid() {
         "joints": [{"type": "pin", "a": {"body": "r1", "local": [0.01, 0.0]}, "b": {"body": "r2", "local": [-0.01, 0.0]}}]
     }));
     assert_eq!(
-        count(&rigid_chain),
-        4,
-        "two rigid bodies pinned, free: 4 zero modes, nothing else"
+        split(&rigid_chain),
+        (4, 1),
+        "two rigid bodies pinned, free: 3 rigid + 1 mechanism, nothing else"
     );
     assert_eq!(
         modal_all(&rigid_chain).modes.len(),
@@ -189,7 +202,7 @@ fn zero_modes_beyond_the_requested_ones_are_still_counted() {
             let r = modal_at_reference(&system, &settings).unwrap();
             assert_eq!(r.modes.len(), asked, "{what}: {asked} modes reported");
             assert!(
-                r.modes.iter().all(|x| x.kind == ModeKind::Rigid),
+                r.modes.iter().all(|x| x.kind.is_zero()),
                 "{what}: the lowest {asked} modes are zero modes"
             );
             assert_eq!(

@@ -191,7 +191,7 @@ fn a_large_free_frame_counts_three_zero_modes_on_the_sparse_path() {
     );
     let first = &r.modes[3];
     assert!(
-        first.frequency_hz > 0.0 && first.kind != ModeKind::Rigid,
+        first.frequency_hz > 0.0 && !first.kind.is_zero(),
         "the first elastic mode is elastic: {first:?}"
     );
 }

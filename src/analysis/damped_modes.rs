@@ -29,7 +29,7 @@
 //! and exact to first order in C (ζⱼ ≈ (C_m)ⱼⱼ/(2ωⱼ)) for light damping in
 //! any case. Rigid modes are left out (they have no damping ratio).
 
-use super::modal::{ModalResult, ModeKind};
+use super::modal::ModalResult;
 use crate::error::AnalysisError;
 use crate::linalg::Triplets;
 use crate::model::RayleighDamping;
@@ -66,11 +66,7 @@ pub fn damped_modes(
     rayleigh: Option<RayleighDamping>,
 ) -> Result<Vec<DampedMode>, AnalysisError> {
     let n = system.ndof();
-    let elastic: Vec<_> = modal
-        .modes
-        .iter()
-        .filter(|m| m.kind != ModeKind::Rigid)
-        .collect();
+    let elastic: Vec<_> = modal.modes.iter().filter(|m| !m.kind.is_zero()).collect();
     let m = elastic.len();
     if m == 0 {
         return Ok(Vec::new());
@@ -190,7 +186,7 @@ pub fn mode_damping(
         .modes
         .iter()
         .map(|m| {
-            if m.kind == ModeKind::Rigid {
+            if m.kind.is_zero() {
                 return ModeDamping::default();
             }
             match &complex {

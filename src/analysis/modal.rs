@@ -84,18 +84,29 @@ pub const ACCURACY_WARNING: f64 = 1e-7;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ModeKind {
-    /// Zero frequency: rigid-body motion or a free mechanism.
+    /// Zero frequency: a rigid motion of the whole assembly.
     Rigid,
+    /// Zero frequency: a motion the joints leave free while the assembly
+    /// as a whole does not move rigidly (a lever free to turn on its pin).
+    Mechanism,
     Bending,
     Axial,
     /// Energy mostly in springs (e.g. a body rocking on a torsion spring).
     Spring,
 }
 
+impl ModeKind {
+    /// A zero-frequency mode (rigid or mechanism).
+    pub fn is_zero(self) -> bool {
+        matches!(self, ModeKind::Rigid | ModeKind::Mechanism)
+    }
+}
+
 impl std::fmt::Display for ModeKind {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let s = match self {
             ModeKind::Rigid => "rigid",
+            ModeKind::Mechanism => "mechanism",
             ModeKind::Bending => "bending",
             ModeKind::Axial => "axial",
             ModeKind::Spring => "spring",
@@ -143,8 +154,11 @@ pub struct ModalResult {
     pub redundant_constraints: Vec<String>,
     /// Dimension of the reduced problem.
     pub reduced_dofs: usize,
-    /// Number of zero-frequency modes (all of them, also beyond `modes`).
+    /// Number of zero-frequency modes (all of them, also beyond `modes`):
+    /// rigid motions of the whole assembly and mechanisms.
     pub rigid_modes: usize,
+    /// How many of the zero-frequency modes are mechanisms of the joints.
+    pub mechanism_modes: usize,
     /// Which eigensolver ran.
     pub solver: &'static str,
     pub modes: Vec<Mode>,
@@ -319,12 +333,16 @@ pub fn modal(
         bending: 0.0,
         springs: 0.0,
     };
-    for shape in zero.shapes.iter().take(count) {
+    for (k, shape) in zero.shapes.iter().enumerate().take(count) {
         modes.push(Mode {
             index: modes.len() + 1,
             frequency_hz: 0.0,
             eigenvalue: 0.0,
-            kind: ModeKind::Rigid,
+            kind: if k < zero.rigid {
+                ModeKind::Rigid
+            } else {
+                ModeKind::Mechanism
+            },
             energy: zero_fractions,
             error_bound: None,
             shape: shape.clone(),
@@ -351,6 +369,7 @@ pub fn modal(
         redundant_constraints,
         reduced_dofs: dim,
         rigid_modes: k0,
+        mechanism_modes: k0 - zero.rigid,
         solver: if sparse {
             "sparse shift-invert Lanczos"
         } else {

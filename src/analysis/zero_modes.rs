@@ -34,8 +34,13 @@ use crate::system::{EnergyBreakdown, Linearization, System};
 /// Zero modes of a linearization.
 #[derive(Debug, Clone, Default)]
 pub struct ZeroModes {
-    /// Mass-normalized shapes in the global coordinates (φᵀMφ = 1).
+    /// Mass-normalized shapes in the global coordinates (φᵀMφ = 1),
+    /// M-orthogonal: the rigid motions of the whole assembly first, then
+    /// the mechanisms.
     pub shapes: Vec<Vec<f64>>,
+    /// How many of `shapes` (the first ones) move the whole assembly
+    /// rigidly; the others are mechanisms of the joints.
+    pub rigid: usize,
     /// Rigid clusters of bodies (bodies joined by welds count as one).
     pub clusters: usize,
     /// Rigid motions that satisfy the constraints (the candidates).
@@ -67,29 +72,29 @@ pub fn zero_modes(
             b.push((i, f, v * w));
         }
     }
-    // Column scale: the size of each column's terms before they cancel
-    // (a rigid motion of a cluster satisfies its own welds, so its column
-    // of B is round-off; scaling by that would blow the motion up).
-    let mut col_size = vec![0.0; c];
-    {
-        // |B| summed per (row, column), then squared per column.
-        let mut sums: Vec<(usize, usize, f64)> =
-            b.iter().map(|&(i, f, v)| (i, f, v.abs())).collect();
-        sums.sort_unstable_by_key(|e| (e.1, e.0));
-        let mut k = 0;
-        while k < sums.len() {
-            let (i, f, mut v) = sums[k];
-            k += 1;
-            while k < sums.len() && sums[k].0 == i && sums[k].1 == f {
-                v += sums[k].2;
-                k += 1;
-            }
-            col_size[f] += v * v;
-        }
-    }
-    let col_norm: Vec<f64> = col_size
+    // Column scale: each field's own mass norm √(VᵀMV), so every column
+    // is a motion of unit kinetic energy (translations and rotations, small
+    // bodies and large ones, weigh alike). A column of round-off (a
+    // rotation about a point the constraints do not move) then stays
+    // round-off against the row's other terms and is dropped with them.
+    let mass = system.mass();
+    let mut scratch = vec![0.0; n];
+    let col_norm: Vec<f64> = motions
+        .fields
         .iter()
-        .map(|&s: &f64| if s > 0.0 { s.sqrt() } else { 1.0 })
+        .map(|field| {
+            let mut v = vec![0.0; n];
+            for &(i, x) in field {
+                v[i] = x;
+            }
+            mass.mul_vec(&v, &mut scratch);
+            let m = dot(&v, &scratch);
+            if m > 0.0 {
+                m.sqrt()
+            } else {
+                1.0
+            }
+        })
         .collect();
     let kernel = NullSpace::new(
         cq.nrows(),
@@ -114,8 +119,6 @@ pub fn zero_modes(
         u.push(uk);
     }
     // Unit mass for every candidate, so the forms below are ω²-sized.
-    let mass = system.mass();
-    let mut scratch = vec![0.0; n];
     for uk in &mut u {
         mass.mul_vec(uk, &mut scratch);
         let m = dot(uk, &scratch);
@@ -124,10 +127,14 @@ pub fn zero_modes(
             uk.iter_mut().for_each(|x| *x *= inv);
         }
     }
-    let out = |shapes| ZeroModes {
-        shapes,
-        clusters: motions.clusters,
-        candidates: r,
+    let out = |shapes: Vec<Vec<f64>>| {
+        let (shapes, rigid) = rigid_first(system, at.q, shapes);
+        ZeroModes {
+            shapes,
+            rigid,
+            clusters: motions.clusters,
+            candidates: r,
+        }
     };
     if r == 0 {
         return Ok(out(Vec::new()));
@@ -154,9 +161,8 @@ pub fn zero_modes(
     let mut energies = vec![EnergyBreakdown::default(); refs.len()];
     system.stiffness_quadratic_forms(at, &refs, &mut energies);
     let form = |e: &EnergyBreakdown| 2.0 * e.total();
-    let field_noise = field_roundoff(system, at, &u);
     let mut kv = faer::Mat::zeros(r, r);
-    let mut noise = field_noise;
+    let mut noise = 0.0f64;
     for i in 0..r {
         kv[(i, i)] = form(&energies[i]);
         noise = noise.max(2.0 * energies[i].roundoff / mv[(i, i)]);
@@ -194,74 +200,76 @@ pub fn zero_modes(
     Ok(out(result))
 }
 
-/// Row sums of |A| of what is assembled into it.
-struct RowAbsSum(Vec<f64>);
+/// Cosine of the principal angle above which a zero mode counts as a
+/// rigid motion of the whole assembly.
+const RIGID_COSINE: f64 = 1.0 - 1e-6;
 
-impl crate::linalg::Scatter for RowAbsSum {
-    fn add(&mut self, i: usize, _j: usize, v: f64) {
-        self.0[i] += v.abs();
+/// The zero modes Z (M-orthonormal) re-based so that the first r span
+/// their intersection with the rigid motions G of the whole assembly
+/// (all bodies as one, about the assembly's centre): the principal
+/// vectors of ZᵀMĜ, Ĝ an M-orthonormal basis of G, with cosine 1. The
+/// rest, M-orthogonal to those, are mechanisms. Returns (shapes, r).
+fn rigid_first(system: &System, q: &[f64], z: Vec<Vec<f64>>) -> (Vec<Vec<f64>>, usize) {
+    let k = z.len();
+    if k == 0 {
+        return (z, 0);
     }
-}
-
-/// The stiffness [SI: rad²/s²] a candidate's rounding gives it: a
-/// rotation field ẑ × (r − c) is formed with an error ε|r| per position
-/// (an assembly far from the origin loses digits in r − c), so a unit-mass
-/// candidate turning at rate θ (its largest slope or angle entry) carries an
-/// error vector e with eᵢ = ε|qᵢ|θ on positions, whose energy is at most
-/// λ_G Σᵢ Mᵢᵢeᵢ², λ_G = maxᵢ Σⱼ|Kᵢⱼ|/Mᵢᵢ (Gershgorin).
-fn field_roundoff(system: &System, at: &Linearization, u: &[Vec<f64>]) -> f64 {
     let n = system.ndof();
-    // Only an assembly far from the origin (|q| well beyond its own size)
-    // loses digits there; near it the field's rounding is that of the
-    // variation itself, which the energy form's estimate already holds.
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    let mut far = 0.0f64;
-    for i in system.point_coordinates() {
-        for axis in 0..2 {
-            let x = at.q[i + axis];
-            lo[axis] = lo[axis].min(x);
-            hi[axis] = hi[axis].max(x);
-            far = far.max(x.abs());
+    let mass = system.mass();
+    let m_apply = |x: &[f64]| {
+        let mut y = vec![0.0; n];
+        mass.mul_vec(x, &mut y);
+        y
+    };
+    // Ĝ: the assembly's rigid fields, M-orthonormalized (twice).
+    let mut g: Vec<Vec<f64>> = Vec::new();
+    for field in system.assembly_motions(q) {
+        let mut v = vec![0.0; n];
+        for (i, x) in field {
+            v[i] = x;
+        }
+        let size = dot(&v, &m_apply(&v)).sqrt();
+        for _ in 0..2 {
+            for w in &g {
+                let c = dot(w, &m_apply(&v));
+                v.iter_mut().zip(w).for_each(|(a, b)| *a -= c * b);
+            }
+        }
+        let norm = dot(&v, &m_apply(&v)).max(0.0).sqrt();
+        if norm > 1e-8 * size {
+            v.iter_mut().for_each(|x| *x /= norm);
+            g.push(v);
         }
     }
-    let size = (hi[0] - lo[0]).max(hi[1] - lo[1]);
-    if far <= 4.0 * size {
-        return 0.0;
-    }
-    let mut rows = RowAbsSum(vec![0.0; n]);
-    system.add_tangent_stiffness(at, &mut rows);
-    let md = system.mass().diagonal();
-    let lambda_g = rows
-        .0
+    let mz: Vec<Vec<f64>> = z.iter().map(|x| m_apply(x)).collect();
+    let p = nalgebra::DMatrix::from_fn(k, g.len(), |i, j| dot(&mz[i], &g[j]));
+    let svd = p.svd(true, false);
+    let u = svd.u.expect("left singular vectors");
+    let common: Vec<usize> = (0..svd.singular_values.len())
+        .filter(|&i| svd.singular_values[i] >= RIGID_COSINE)
+        .collect();
+    let combine = |a: &[f64]| -> Vec<f64> {
+        let mut s = vec![0.0; n];
+        for (c, x) in a.iter().zip(&z) {
+            s.iter_mut().zip(x).for_each(|(si, xi)| *si += c * xi);
+        }
+        s
+    };
+    let mut shapes: Vec<Vec<f64>> = common
         .iter()
-        .zip(&md)
-        .filter(|(_, m)| **m > 0.0)
-        .fold(0.0f64, |a, (k, m)| a.max(k / m));
-    let mut position = vec![false; n];
-    for i in system.point_coordinates() {
-        position[i] = true;
-        position[i + 1] = true;
+        .map(|&i| combine(u.column(i).as_slice()))
+        .collect();
+    // The complement of those directions in the coefficient space.
+    let mut proj = nalgebra::DMatrix::<f64>::identity(k, k);
+    for &i in &common {
+        let c = u.column(i);
+        proj -= &c * c.transpose();
     }
-    let mut orientation = vec![false; n];
-    for b in &system.beams {
-        for k in 0..b.node_count() {
-            orientation[b.dof0 + 4 * k + 2] = true;
-            orientation[b.dof0 + 4 * k + 3] = true;
+    let eig = nalgebra::SymmetricEigen::new(proj);
+    for j in 0..k {
+        if eig.eigenvalues[j] > 0.5 {
+            shapes.push(combine(eig.eigenvectors.column(j).as_slice()));
         }
     }
-    for rb in &system.rigid_bodies {
-        orientation[rb.dof0 + 2] = true;
-    }
-    u.iter()
-        .map(|uk| {
-            let theta = (0..n)
-                .filter(|&i| orientation[i])
-                .fold(0.0f64, |a, i| a.max(uk[i].abs()));
-            let e2: f64 = (0..n)
-                .filter(|&i| position[i])
-                .map(|i| md[i] * (f64::EPSILON * at.q[i].abs() * theta).powi(2))
-                .sum();
-            lambda_g * e2
-        })
-        .fold(0.0, f64::max)
+    (shapes, common.len())
 }

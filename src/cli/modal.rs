@@ -3,7 +3,7 @@
 use super::args::ModalArgs;
 use super::common::{add_damping, load_model, print_json, source_label, write_output};
 use ancf_modal::analysis::damped_modes::mode_damping;
-use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings, Mode, ModeKind};
+use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings, Mode};
 use ancf_modal::measured::mac::mac;
 use ancf_modal::measured::uff::d55::read_modes;
 use ancf_modal::model::Model;
@@ -118,10 +118,7 @@ pub fn run(args: ModalArgs) -> Result<()> {
 type Mac = (Vec<f64>, Vec<f64>, nalgebra::DMatrix<f64>);
 
 fn elastic(r: &ModalResult) -> Vec<&Mode> {
-    r.modes
-        .iter()
-        .filter(|m| m.kind != ModeKind::Rigid)
-        .collect()
+    r.modes.iter().filter(|m| !m.kind.is_zero()).collect()
 }
 
 /// The MAC of this model's elastic modes (rows) against `other`'s

@@ -13,7 +13,7 @@
 use nalgebra::Vector2;
 use realfft::num_complex::Complex64;
 
-use crate::analysis::{ModalResult, ModeKind};
+use crate::analysis::ModalResult;
 use crate::model::SensorFrame;
 use crate::system::System;
 
@@ -61,7 +61,7 @@ pub fn model_frf(
     let terms: Vec<(f64, f64, f64)> = modal
         .modes
         .iter()
-        .filter(|m| m.kind != ModeKind::Rigid)
+        .filter(|m| !m.kind.is_zero())
         .map(|m| {
             let sr = dir.dot(&s.anchor.velocity(&system.q0, &m.shape));
             let lr = ldir.dot(&load.anchor.velocity(&system.q0, &m.shape));

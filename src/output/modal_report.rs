@@ -1,6 +1,6 @@
 //! Modal results as a table, a JSON document and CSV.
 
-use crate::analysis::{ModalResult, ModeKind};
+use crate::analysis::ModalResult;
 use serde_json::json;
 use std::fmt::Write;
 
@@ -21,8 +21,10 @@ pub fn modal_table(model_name: &str, r: &ModalResult) -> String {
     }
     let _ = writeln!(
         s,
-        "{} zero-frequency (rigid-body or mechanism) modes",
-        r.rigid_modes
+        "{} zero-frequency modes: {} rigid, {} mechanism",
+        r.rigid_modes,
+        r.rigid_modes - r.mechanism_modes,
+        r.mechanism_modes
     );
     let _ = writeln!(
         s,
@@ -30,7 +32,7 @@ pub fn modal_table(model_name: &str, r: &ModalResult) -> String {
         "mode", "frequency [Hz]", "kind", "bend %", "axial %", "sprg %", "error bound"
     );
     for m in &r.modes {
-        if m.kind == ModeKind::Rigid {
+        if m.kind.is_zero() {
             let _ = writeln!(s, "{:>5}  {:>14}  {:<8}", m.index, "0", m.kind);
         } else {
             let bound = m
@@ -70,6 +72,7 @@ pub fn modal_json(model_name: &str, r: &ModalResult) -> serde_json::Value {
         "reduced_dofs": r.reduced_dofs,
         "redundant_constraints": r.redundant_constraints,
         "rigid_modes": r.rigid_modes,
+        "mechanism_modes": r.mechanism_modes,
         "first_bending_hz": r.first_bending().map(|m| m.frequency_hz),
         "solver": r.solver,
         "accuracy_warning": r.accuracy_warning(),

@@ -8,7 +8,7 @@
 //! Shapes are the modal result's mass-normalised ones (φᵀMφ = 1, so the
 //! modal mass written is 1 kg); rigid modes are left out.
 
-use crate::analysis::{ModalResult, ModeKind};
+use crate::analysis::ModalResult;
 use crate::measured::uff::d55::{write_mode, write_nodes, NodeCoordinates, NormalMode};
 use crate::system::System;
 
@@ -70,7 +70,7 @@ pub fn modal_uff(system: &System, result: &ModalResult, provenance: &[String; 2]
         })
         .collect();
     write_nodes(&mut s, &coords);
-    for m in result.modes.iter().filter(|m| m.kind != ModeKind::Rigid) {
+    for m in result.modes.iter().filter(|m| !m.kind.is_zero()) {
         let t = translations(&nodes, &m.shape);
         write_mode(
             &mut s,

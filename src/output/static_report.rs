@@ -436,6 +436,7 @@ pub fn prestress_json(model_name: &str, r: &PrestressedModal) -> serde_json::Val
         "load_scale": r.equilibrium.load_scale,
         "dofs": r.prestressed.dofs,
         "rigid_modes": r.prestressed.rigid_modes,
+        "mechanism_modes": r.prestressed.mechanism_modes,
         "first_bending_hz": first(&r.prestressed),
         "unstressed_first_bending_hz": first(&r.reference),
         "equilibrium": {

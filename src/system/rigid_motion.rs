@@ -115,6 +115,15 @@ impl System {
     }
 }
 
+impl System {
+    /// The rigid motions of the whole assembly as one body (translations
+    /// along x and y, the rotation about the centroid of its points) at
+    /// the state q: what a zero mode that is not a mechanism is made of.
+    pub fn assembly_motions(&self, q: &[f64]) -> Vec<SparseColumn> {
+        cluster_fields(self.bodies().into_iter(), q)
+    }
+}
+
 /// Positions (coordinate of x) of a body's material points that a rotation
 /// moves, and its slope or angle coordinates.
 fn points(body: Body) -> impl Iterator<Item = usize> {

@@ -240,7 +240,7 @@ fn track(
         .modes
         .iter()
         .enumerate()
-        .filter(|(_, m)| m.kind != ModeKind::Rigid)
+        .filter(|(_, m)| !m.kind.is_zero())
         .map(|(k, _)| k)
         .collect();
     // M a for each reference shape, and aᵀMa.

@@ -21,7 +21,7 @@ pub mod damping;
 pub mod sensor;
 pub mod spectrum;
 
-use super::modal::{modal_at_reference, ModalResult, ModalSettings, ModeKind};
+use super::modal::{modal_at_reference, ModalResult, ModalSettings};
 use super::transient::dispersion::{DispersionError, GenAlpha};
 use super::transient::{Integrator, RunStats, State, TransientSettings};
 use crate::error::{AnalysisError, TransientError};
@@ -273,7 +273,7 @@ fn first_bending_band(modal: &ModalResult) -> Option<(f64, f64, f64)> {
     let elastic: Vec<f64> = modal
         .modes
         .iter()
-        .filter(|m| m.kind != ModeKind::Rigid)
+        .filter(|m| !m.kind.is_zero())
         .map(|m| m.frequency_hz)
         .collect();
     let eigen = modal.first_bending()?.frequency_hz;

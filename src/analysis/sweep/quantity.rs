@@ -24,7 +24,7 @@
 //! [`Quantity::parse`] and computed in [`evaluate`].
 
 use super::error::{PointError, SweepError};
-use crate::analysis::modal::{modal, ModalResult, ModalSettings, ModeKind};
+use crate::analysis::modal::{modal, ModalResult, ModalSettings};
 use crate::analysis::simulate::{simulate, SimulationSettings};
 use crate::analysis::statics::{solve_equilibrium, StaticSettings};
 use crate::analysis::switch_off::{run_switch_off, SwitchOffSettings};
@@ -203,7 +203,7 @@ pub fn evaluate(
             let modes: Vec<RawMode> = r
                 .modes
                 .into_iter()
-                .filter(|m| m.kind != ModeKind::Rigid)
+                .filter(|m| !m.kind.is_zero())
                 .map(|m| RawMode {
                     frequency_hz: m.frequency_hz,
                     shape: m.shape,

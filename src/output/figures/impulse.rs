@@ -24,7 +24,6 @@
 
 use super::write::write_figure;
 use crate::analysis::impulse::ImpulseResult;
-use crate::analysis::ModeKind;
 use crate::model::{Model, SensorQuantity};
 use crate::output::plot::{
     Figure, Guide, Legend, LineFigure, MarkerShape, Panel, PlotError, PlotSize, PointMarker, Scale,
@@ -155,7 +154,7 @@ pub fn spectrum_figure(model: &Model, result: &ImpulseResult) -> LineFigure {
         .modal
         .modes
         .iter()
-        .filter(|m| m.kind != ModeKind::Rigid && m.frequency_hz <= nyquist)
+        .filter(|m| !m.kind.is_zero() && m.frequency_hz <= nyquist)
         .map(|m| {
             Guide::new(
                 m.frequency_hz,

@@ -24,7 +24,7 @@
 //! displacement points along the normal (n = ẑ × t) of the first beam, or
 //! along its tangent for a mostly axial motion, making pictures repeatable.
 
-use crate::analysis::{ModalResult, Mode, ModeKind};
+use crate::analysis::{ModalResult, Mode};
 use crate::element::shape;
 use crate::output::plot::{Geometry, ModeShape, ModeShapeFigure, Scale};
 use crate::system::System;
@@ -209,7 +209,7 @@ pub fn mode_shape_figure_with(
     let shown = result
         .modes
         .iter()
-        .filter(|m| settings.include_rigid || m.kind != ModeKind::Rigid)
+        .filter(|m| settings.include_rigid || !m.kind.is_zero())
         .take(settings.modes);
     let modes = shown.map(|m| mode_shape(system, q, m, settings)).collect();
     ModeShapeFigure {

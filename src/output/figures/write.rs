@@ -29,7 +29,7 @@ pub fn write_mode_shapes(
     if figure.modes.is_empty() {
         return Err(PlotError::EmptyData {
             what: format!(
-                "the {} computed modes include no elastic one ({} rigid modes in all)",
+                "the {} computed modes include no elastic one ({} zero-frequency modes in all)",
                 result.modes.len(),
                 result.rigid_modes
             ),
