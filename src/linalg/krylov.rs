@@ -28,6 +28,7 @@
 //! invariant subspace found early is left for a fresh M-orthogonal vector).
 
 use super::dense::symmetric_eigen_qr;
+use super::inertia::negative_eigenvalues;
 use super::sparse::{diagonal, mul_vec, Triplets};
 use super::vector::{axpy, dot};
 use super::EigenFailure;
@@ -122,15 +123,33 @@ impl Shifted {
         })
     }
 
-    fn factor(&mut self, sigma: f64) -> Result<(), EigenFailure> {
+    /// K − σM on the common pattern.
+    fn matrix(&self, sigma: f64) -> Result<SparseColMat<usize, f64>, EigenFailure> {
         let values: Vec<f64> = self
             .k_values
             .iter()
             .zip(&self.m_values)
             .map(|(k, m)| k - sigma * m)
             .collect();
-        let a = SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &values)
-            .map_err(|_| EigenFailure::Factorization)?;
+        SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &values)
+            .map_err(|_| EigenFailure::Factorization)
+    }
+
+    /// How many eigenvalues of the pencil lie below σ (Sylvester's
+    /// inertia of K − σM); σ is nudged up when it hits one exactly.
+    fn count_below(&self, sigma: f64) -> Result<usize, EigenFailure> {
+        let mut s = sigma;
+        for _ in 0..4 {
+            match negative_eigenvalues(self.matrix(s)?.as_ref()) {
+                Ok(count) => return Ok(count),
+                Err(_) => s += 1e-9 * s.abs().max(f64::MIN_POSITIVE),
+            }
+        }
+        Err(EigenFailure::Factorization)
+    }
+
+    fn factor(&mut self, sigma: f64) -> Result<(), EigenFailure> {
+        let a = self.matrix(sigma)?;
         if self.llt.is_none() {
             self.llt = Some(
                 SymbolicLlt::try_new(a.symbolic(), Side::Lower)
@@ -168,12 +187,23 @@ struct Operator<'a> {
     m: &'a SparseColMat<usize, f64>,
     shifted: Shifted,
     /// Z and M Z (M-orthonormal deflation vectors).
-    z: &'a [Vec<f64>],
+    z: Vec<Vec<f64>>,
     mz: Vec<Vec<f64>>,
     scratch: Vec<f64>,
 }
 
 impl Operator<'_> {
+    /// Adds M-orthonormal vectors to the deflated space.
+    fn deflate_also(&mut self, vectors: &Mat<f64>) {
+        for c in 0..vectors.ncols() {
+            let z = vectors.col_as_slice(c).to_vec();
+            let mut mz = vec![0.0; z.len()];
+            mul_vec(self.m, &z, &mut mz);
+            self.z.push(z);
+            self.mz.push(mz);
+        }
+    }
+
     /// x ← x − Z (MZ)ᵀ x.
     fn deflate(&self, x: &mut [f64]) {
         for (z, mz) in self.z.iter().zip(&self.mz) {
@@ -240,7 +270,7 @@ pub fn lowest_modes(
     let mut op = Operator {
         m: &m_csc,
         shifted: Shifted::new(k, m)?,
-        z: deflate,
+        z: deflate.to_vec(),
         mz,
         scratch: vec![0.0; n],
     };
@@ -267,7 +297,43 @@ pub fn lowest_modes(
         }
         sigma = -rho;
     }
-    let (values, vectors, steps) = lanczos(&mut op, &u, wanted, sigma, settings)?;
+    let (mut values, mut vectors, mut steps) = lanczos(&mut op, &u, wanted, sigma, settings)?;
+    // The certificate: no eigenvalue below the highest one found was
+    // skipped (a start vector poor in some mode, or the second copy of a
+    // repeated value). Each missing one is searched for from a fresh start
+    // M-orthogonal to everything found, and the lowest `wanted` kept.
+    for round in 0..8 {
+        let Some(&top) = values.last() else { break };
+        let above = top + 1e-8 * top.abs().max(f64::MIN_POSITIVE);
+        let zeros = if above > 0.0 { deflate.len() } else { 0 };
+        let below = op.shifted.count_below(above)?;
+        factorizations += 1;
+        let missing = below.saturating_sub(values.len() + zeros);
+        if missing == 0 {
+            break;
+        }
+        op.deflate_also(&vectors);
+        let fresh: Vec<f64> = (0..n)
+            .map(|i| (2.3 * i as f64 + 0.7 * round as f64 + 0.1).sin())
+            .collect();
+        let more = missing.min(n.saturating_sub(op.z.len()));
+        if more == 0 {
+            break;
+        }
+        let (v2, x2, s2) = lanczos(&mut op, &fresh, more, sigma, settings)?;
+        steps += s2;
+        let mut all: Vec<(f64, Vec<f64>)> = (0..values.len())
+            .map(|c| (values[c], vectors.col_as_slice(c).to_vec()))
+            .chain((0..v2.len()).map(|c| (v2[c], x2.col_as_slice(c).to_vec())))
+            .collect();
+        all.sort_by(|a, b| a.0.total_cmp(&b.0));
+        all.truncate(wanted);
+        values = all.iter().map(|a| a.0).collect();
+        vectors = Mat::from_fn(n, all.len(), |r, c| all[c].1[r]);
+        // The deflated space returns to the known zero modes.
+        op.z.truncate(deflate.len());
+        op.mz.truncate(deflate.len());
+    }
     Ok(KrylovModes {
         values,
         vectors,

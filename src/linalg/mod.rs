@@ -10,11 +10,15 @@
 //! - [`dense`]: the generalized symmetric-definite eigenproblem by faer's
 //!   Cholesky and self-adjoint eigensolver (the QR path);
 //! - [`krylov`]: the lowest modes of a large sparse pencil by shift-invert
-//!   Krylov–Schur (faer's `partial_self_adjoint_eigen`) on sparse
-//!   Cholesky/LU factors;
+//!   Lanczos in the M inner product (our own: it deflates the known zero
+//!   modes and works in the M inner product) on faer's sparse Cholesky/LU
+//!   factors, certified complete by [`inertia`];
+//! - [`inertia`]: the count of eigenvalues below a shift (Sylvester's law
+//!   on faer's sparse LDLᵀ);
 //! - [`vector`]: the few vector helpers (dot, norms, axpy) everyone shares.
 
 pub mod dense;
+pub mod inertia;
 pub mod krylov;
 pub mod null_space;
 pub mod sparse;
