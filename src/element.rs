@@ -380,33 +380,51 @@ impl CableElement {
         let CableSection { ea, ei, .. } = self.section;
         // The state's quantities at every quadrature point, then each
         // variation through all points with its sums in registers.
-        let axial: [(Vector2<f64>, Vector2<f64>, f64, f64); AXIAL_POINTS] =
+        let size = |de: &Vec8, d: &Vector4<f64>| -> f64 {
+            (0..4).map(|i| d[i].abs() * node(de, i).norm()).sum()
+        };
+        // The state's own strain and curvature carry the round-off of the
+        // sums that form r' and r'' from nodal values (a straight
+        // reference has ε = κ = 0 only up to ε·Σ|Sᵢ'||eᵢ|): a tension or
+        // curvature of that size is not a stress, and the forms below are
+        // uncertain by it times their second-order terms.
+        let axial: [(Vector2<f64>, Vector2<f64>, f64, f64, f64); AXIAL_POINTS] =
             std::array::from_fn(|k| {
-                let (r1, l, eps) = axial_strain(e, &self.axial[k].d1);
+                let d1 = &self.axial[k].d1;
+                let (r1, l, eps) = axial_strain(e, d1);
                 // The stretch term is axial; the tension term ε/l·|δr'⊥|²
                 // acts on transverse motion (a string's stiffness) and
                 // counts as bending.
                 let stretch = 0.5 * self.axial[k].w * ea;
-                (r1 / l, perp_neg(r1) / l, stretch, stretch * eps / l)
+                let tension_noise = stretch * f64::EPSILON * size(e, d1) / (l * l);
+                (
+                    r1 / l,
+                    perp_neg(r1) / l,
+                    stretch,
+                    stretch * eps / l,
+                    tension_noise,
+                )
             });
-        let bending: [(BendingPoint, f64); BENDING_POINTS] = std::array::from_fn(|k| {
+        let bending: [(BendingPoint, f64, f64); BENDING_POINTS] = std::array::from_fn(|k| {
             let qp = &self.bending[k];
-            (BendingPoint::new(e, qp), 0.5 * qp.w * ei)
+            let b = BendingPoint::new(e, qp);
+            let kappa_noise =
+                f64::EPSILON * (b.p.norm() * size(e, &qp.d1) + b.q.norm() * size(e, &qp.d2));
+            (b, 0.5 * qp.w * ei, kappa_noise)
         });
-        let size = |de: &Vec8, d: &Vector4<f64>| -> f64 {
-            (0..4).map(|i| d[i].abs() * node(de, i).norm()).sum()
-        };
         for (de, o) in des.iter().zip(out.iter_mut()) {
             let (mut ax, mut bd, mut cancel, mut stress) = (0.0, 0.0, 0.0, 0.0);
-            for (qp, &(t, n, stretch, tension)) in self.axial.iter().zip(&axial) {
+            let mut state = 0.0;
+            for (qp, &(t, n, stretch, tension, noise)) in self.axial.iter().zip(&axial) {
                 let d1 = combine(de, &qp.d1);
                 let (along, across) = (t.dot(&d1), n.dot(&d1));
                 ax += stretch * along * along;
                 bd += tension * across * across;
                 cancel += stretch * size(de, &qp.d1).powi(2);
                 stress += (tension * across * across).abs();
+                state += noise * across * across;
             }
-            for (qp, (b, c)) in self.bending.iter().zip(&bending) {
+            for (qp, (b, c, noise)) in self.bending.iter().zip(&bending) {
                 let (d1, d2) = (combine(de, &qp.d1), combine(de, &qp.d2));
                 let dk = b.p.dot(&d1) + b.q.dot(&d2);
                 let second = d1.dot(&(b.h11 * d1)) + 2.0 * d1.dot(&(b.h12 * d2));
@@ -414,10 +432,11 @@ impl CableElement {
                 let dk_size = b.p.norm() * size(de, &qp.d1) + b.q.norm() * size(de, &qp.d2);
                 cancel += c * dk_size * dk_size;
                 stress += (c * b.kappa * second).abs();
+                state += c * noise * second.abs();
             }
             o.axial += ax;
             o.bending += bd;
-            o.roundoff += f64::EPSILON * (f64::EPSILON * cancel + stress);
+            o.roundoff += f64::EPSILON * (f64::EPSILON * cancel + stress) + state;
         }
     }
 

@@ -389,7 +389,9 @@ fn prestressed_assembly_is_in_force_and_moment_balance() {
         add(anchor(j), nalgebra::Vector2::new(r.force[0], r.force[1]));
     }
     let spring = &m.springs[0];
-    let ground = nalgebra::Vector2::new(spring.a.ground.unwrap()[0], spring.a.ground.unwrap()[1]);
+    // The system works about the model's centre of mass (`sys.origin`).
+    let ground = nalgebra::Vector2::new(spring.a.ground.unwrap()[0], spring.a.ground.unwrap()[1])
+        - sys.origin;
     let blade_point = anchor("helical_spring");
     let d = ground - blade_point;
     let l0 = (ground - sys.force_elements[0].pair().b.position(&sys.q0)).norm()
