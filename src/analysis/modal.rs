@@ -30,7 +30,9 @@
 //!    |Δω²| ≤ min(‖r‖, ‖r‖²/δ) (Krylov–Bogoliubov and the
 //!    quadratic residual bound of a Rayleigh quotient), so
 //!    |Δf|/f ≤ ½ min(‖r‖, ‖r‖²/δ)/ω² + √dim·ε (the round-off of the
-//!    refined quotient's sums).
+//!    refined quotient's sums) + ½ R/U (R the energy form's own round-off
+//!    estimate, U = ½φᵀKφ: the rounding of the stiff terms a soft mode's
+//!    strain cancels).
 //! 5. Each elastic mode is classified by where its strain energy ½φᵀKφ
 //!    sits: beam axial, beam bending, or springs.
 
@@ -227,7 +229,15 @@ pub fn modal(
     let n = system.ndof();
     let mut cq = Triplets::new(system.constraint_count(), n);
     system.add_constraint_jacobian(at.q, &mut cq);
-    let ns = NullSpace::new(cq.nrows(), n, cq.entries());
+    // Positions in units of the model's size, so that the basis weighs
+    // them like slopes and angles whatever the model's units or scale.
+    let mut d = vec![1.0; n];
+    let size = system.length_scale();
+    for i in system.point_coordinates() {
+        d[i] = size;
+        d[i + 1] = size;
+    }
+    let ns = NullSpace::scaled(cq.nrows(), n, cq.entries(), &d);
     let dim = ns.dim();
     if dim == 0 {
         return Err(AnalysisError::NoFreedom);
@@ -299,7 +309,14 @@ pub fn modal(
             .zip(&energies)
             .map(|(s, e)| 2.0 * e.total() / mass.quadratic_form(s))
             .collect();
-        let bounds = error_bounds(&pencil, factor.as_ref(), &vectors, &refined);
+        // Plus the round-off of the energy form itself (R relative to U is
+        // the relative error of ω², half of it of the frequency): a soft
+        // mode among stiff elements carries the rounding of their terms.
+        let bounds = error_bounds(&pencil, factor.as_ref(), &vectors, &refined)
+            .into_iter()
+            .zip(&energies)
+            .map(|(b, e)| b + 0.5 * e.roundoff / e.total().abs().max(f64::MIN_POSITIVE))
+            .collect();
         Ok(Elastic {
             sparse,
             shapes,

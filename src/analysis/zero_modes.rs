@@ -66,8 +66,23 @@ pub fn zero_modes(
             by_coord[i].push((f, v));
         }
     }
+    // Rows of joints inside one rigid cluster are left out: the cluster's
+    // rigid motions satisfy them by construction (both points move with the
+    // same rigid motion), and their rows of C_q V are only the rounding of
+    // the model's own coordinates (a weld's two points a rounding apart
+    // after a placement 1 m away) that must not pass for a constraint.
+    let mut internal = vec![false; cq.nrows()];
+    for (c, &row) in system.constraints.iter().zip(&system.constraint_rows) {
+        let pair = c.pair();
+        let cluster = |dofs: &[usize]| dofs.first().map(|&d| motions.cluster_of_dof[d]);
+        if let (Some(a), Some(b)) = (cluster(pair.a.dofs()), cluster(pair.b.dofs())) {
+            if a == b {
+                internal[row..row + c.rows()].fill(true);
+            }
+        }
+    }
     let mut b: Vec<(usize, usize, f64)> = Vec::new();
-    for (i, j, v) in cq.entries() {
+    for (i, j, v) in cq.entries().filter(|&(i, _, _)| !internal[i]) {
         for &(f, w) in &by_coord[j] {
             b.push((i, f, v * w));
         }

@@ -35,6 +35,8 @@ pub struct NullSpace {
     map: Vec<(usize, f64)>,
     /// Rows of C_q that depend linearly on other rows of their group.
     pub redundant_rows: Vec<usize>,
+    /// 1/dᵢ² of a column scaling D (see [`NullSpace::scaled`]).
+    inv_scale2: Option<Vec<f64>>,
 }
 
 /// One group of coupled constraint rows.
@@ -126,7 +128,31 @@ impl NullSpace {
             start,
             map,
             redundant_rows,
+            inv_scale2: None,
         }
+    }
+
+    /// The free motions q = D N q̃ of C_q with the coordinates scaled by D
+    /// = diag(d): N is an orthonormal basis of null(C_q D), so that
+    /// coordinates of different units (positions [m] beside slopes and
+    /// angles [–]) weigh alike when d brings them to one scale (positions
+    /// divided by the model's size). [`NullSpace::row`] and
+    /// [`NullSpace::expand`] give D N, [`NullSpace::restrict`] Nᵀ D⁻¹,
+    /// and [`Projected`] (DN)ᵀ A (DN).
+    pub fn scaled(
+        m: usize,
+        n: usize,
+        entries: impl Iterator<Item = (usize, usize, f64)>,
+        d: &[f64],
+    ) -> Self {
+        let mut ns = NullSpace::new(m, n, entries.map(|(i, j, v)| (i, j, v * d[j])));
+        for g in 0..n {
+            for e in &mut ns.map[ns.start[g]..ns.start[g + 1]] {
+                e.1 *= d[g];
+            }
+        }
+        ns.inv_scale2 = Some(d.iter().map(|x| 1.0 / (x * x)).collect());
+        ns
     }
 
     /// Null space of a dense m × n matrix.
@@ -154,10 +180,11 @@ impl NullSpace {
             .collect()
     }
 
-    /// Nᵀ v.
+    /// Nᵀ v (Nᵀ D⁻¹ v when scaled: the reduced coordinates of q = D N q̃).
     pub fn restrict(&self, v: &[f64]) -> Vec<f64> {
         let mut out = vec![0.0; self.dim];
         for (g, &vg) in v.iter().enumerate() {
+            let vg = self.inv_scale2.as_ref().map_or(vg, |s| vg * s[g]);
             for &(r, z) in self.row(g) {
                 out[r] += z * vg;
             }

@@ -219,6 +219,38 @@ impl System {
             .chain(self.contacts.iter().map(|c| c as &dyn ForceElement))
     }
 
+    /// A length for the assembly [SI: m]: the larger of the longest beam
+    /// and the diagonal of the box around all reference positions; 1 m if
+    /// both vanish. Tolerances and the scaling of position coordinates
+    /// against slopes and angles are taken relative to it.
+    pub fn length_scale(&self) -> f64 {
+        let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+        let mut any = false;
+        for i in self.point_coordinates() {
+            any = true;
+            for axis in 0..2 {
+                lo[axis] = lo[axis].min(self.q0[i + axis]);
+                hi[axis] = hi[axis].max(self.q0[i + axis]);
+            }
+        }
+        let diag = if any {
+            (hi[0] - lo[0]).hypot(hi[1] - lo[1])
+        } else {
+            0.0
+        };
+        let beam = self
+            .beams
+            .iter()
+            .map(|b| b.node_s[b.node_s.len() - 1])
+            .fold(0.0, f64::max);
+        let l = diag.max(beam);
+        if l > 0.0 {
+            l
+        } else {
+            1.0
+        }
+    }
+
     /// A position of the system's frame in the model's own frame [SI: m].
     pub fn user_point(&self, p: Vector2<f64>) -> Vector2<f64> {
         p + self.origin

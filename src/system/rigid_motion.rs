@@ -28,6 +28,8 @@ pub struct RigidMotions {
     pub clusters: usize,
     /// Two or three fields per cluster.
     pub fields: Vec<SparseColumn>,
+    /// The cluster of every coordinate (`usize::MAX` for none).
+    pub cluster_of_dof: Vec<usize>,
 }
 
 /// A body's coordinates: its kind decides how a rotation moves them.
@@ -107,11 +109,23 @@ impl System {
         }
         let mut fields = Vec::new();
         let mut clusters = 0;
+        let mut cluster_of_body = vec![usize::MAX; bodies.len()];
         for group in members.iter().filter(|m| !m.is_empty()) {
+            for &k in group {
+                cluster_of_body[k] = clusters;
+            }
             clusters += 1;
             fields.extend(cluster_fields(group.iter().map(|&k| bodies[k]), q));
         }
-        RigidMotions { clusters, fields }
+        let cluster_of_dof = body_of
+            .iter()
+            .map(|&k| cluster_of_body.get(k).copied().unwrap_or(usize::MAX))
+            .collect();
+        RigidMotions {
+            clusters,
+            fields,
+            cluster_of_dof,
+        }
     }
 }
 

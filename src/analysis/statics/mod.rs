@@ -276,7 +276,7 @@ impl<'a> Solver<'a> {
         let mut gravity_force = vec![0.0; n];
         system.add_gravity(&mut gravity_force);
         let has_gravity = gravity_force.iter().any(|&g| g != 0.0);
-        let length = characteristic_length(system);
+        let length = system.length_scale();
         let mut scales = vec![length; n];
         for b in &system.beams {
             for k in 0..b.node_count() {
@@ -657,43 +657,4 @@ fn gram_matrix(a: &SparseColMat<usize, f64>) -> SparseColMat<usize, f64> {
         }
     }
     g.to_sparse()
-}
-
-/// A length for the assembly: the larger of the longest beam and the
-/// diagonal of the box around all reference positions [SI: m]; 1 m if both vanish.
-fn characteristic_length(system: &System) -> f64 {
-    let mut pts: Vec<(f64, f64)> = Vec::new();
-    for b in &system.beams {
-        for k in 0..b.node_count() {
-            let i = b.dof0 + 4 * k;
-            pts.push((system.q0[i], system.q0[i + 1]));
-        }
-    }
-    for r in &system.rigid_bodies {
-        pts.push((system.q0[r.dof0], system.q0[r.dof0 + 1]));
-    }
-    for p in &system.point_masses {
-        pts.push((system.q0[p.dof0], system.q0[p.dof0 + 1]));
-    }
-    let (mut lo, mut hi) = ((f64::MAX, f64::MAX), (f64::MIN, f64::MIN));
-    for (x, y) in &pts {
-        lo = (lo.0.min(*x), lo.1.min(*y));
-        hi = (hi.0.max(*x), hi.1.max(*y));
-    }
-    let diag = if pts.is_empty() {
-        0.0
-    } else {
-        (hi.0 - lo.0).hypot(hi.1 - lo.1)
-    };
-    let beam = system
-        .beams
-        .iter()
-        .map(|b| b.node_s[b.node_s.len() - 1])
-        .fold(0.0, f64::max);
-    let l = diag.max(beam);
-    if l > 0.0 {
-        l
-    } else {
-        1.0
-    }
 }
