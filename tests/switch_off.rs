@@ -54,23 +54,25 @@ fn pendulum(rigid: bool, young: f64) -> Model {
     }))
 }
 
-/// q̇ of a rigid rotation at rate ω about the origin.
+/// q̇ of a rigid rotation at rate ω about the model's origin (the system
+/// works about the centre of mass, `sys.origin` in the model's frame).
 fn spin(sys: &System, omega: f64) -> Vec<f64> {
     let q = &sys.q0;
+    let o = [sys.origin.x, sys.origin.y];
     let mut v = vec![0.0; sys.ndof()];
     for b in &sys.beams {
         for k in 0..b.node_count() {
             let i = b.dof0 + 4 * k;
-            for j in [i, i + 2] {
-                v[j] = -omega * q[j + 1];
-                v[j + 1] = omega * q[j];
-            }
+            v[i] = -omega * (q[i + 1] + o[1]);
+            v[i + 1] = omega * (q[i] + o[0]);
+            v[i + 2] = -omega * q[i + 3];
+            v[i + 3] = omega * q[i + 2];
         }
     }
     for r in &sys.rigid_bodies {
         let i = r.dof0;
-        v[i] = -omega * q[i + 1];
-        v[i + 1] = omega * q[i];
+        v[i] = -omega * (q[i + 1] + o[1]);
+        v[i + 1] = omega * (q[i] + o[0]);
         v[i + 2] = omega;
     }
     v

@@ -313,7 +313,9 @@ fn a_damped_spring_decays_at_its_damping_ratio() {
     let mut samples: Vec<(f64, f64)> = Vec::new();
     integ
         .run(&mut st, |s| {
-            let stretch = s.q[0] - 0.01;
+            // The mass's x in the model's frame (the system works about
+            // its centre of mass).
+            let stretch = s.q[0] + sys.origin.x - 0.01;
             let energy =
                 0.5 * m * (s.v[0] * s.v[0] + s.v[1] * s.v[1]) + 0.5 * k * stretch * stretch;
             samples.push((s.t, energy.ln()));

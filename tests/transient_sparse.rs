@@ -71,7 +71,8 @@ fn first_mode_shape(sys: &System, amplitude: f64) -> Vec<f64> {
     let c = amplitude / phi(L);
     let slope = |x: f64| [(c * dphi(x)).cos(), (c * dphi(x)).sin()];
     let mut q = sys.q0.clone();
-    let mut r = [0.0f64; 2];
+    // From the clamped node 0 where the system has it (about the centre).
+    let mut r = [beam.start.x, beam.start.y];
     for (k, &x) in beam.node_s.iter().enumerate() {
         if k > 0 {
             let (x0, panels) = (beam.node_s[k - 1], 32);
