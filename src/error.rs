@@ -12,6 +12,28 @@
 use std::fmt;
 use std::path::PathBuf;
 
+/// The ids a model has of one kind (its sensors, beams, bodies …), listed
+/// in a message that names an unknown one: `a, b, c`, or `none`.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Ids(pub Vec<String>);
+
+impl Ids {
+    /// The ids, in the model's order.
+    pub fn of<'a>(ids: impl IntoIterator<Item = &'a String>) -> Self {
+        Ids(ids.into_iter().cloned().collect())
+    }
+}
+
+impl fmt::Display for Ids {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.is_empty() {
+            write!(f, "none")
+        } else {
+            write!(f, "{}", self.0.join(", "))
+        }
+    }
+}
+
 /// Where a model came from, for messages.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Source {
@@ -51,8 +73,12 @@ pub enum Problem {
     EmptyId,
     #[error("id `{id}` is used twice")]
     DuplicateId { id: String },
-    #[error("no {kind} with id `{id}`")]
-    UnknownId { kind: &'static str, id: String },
+    #[error("no {kind} with id `{id}` (the model's: {available})")]
+    UnknownId {
+        kind: &'static str,
+        id: String,
+        available: Ids,
+    },
     #[error(
         "give exactly one of `beam`, `body` or `ground` (this point gives {})",
         given_keys(given)

@@ -123,7 +123,7 @@ pub struct MeasuredArgs {
     #[arg(long, value_name = "LO:HI", value_parser = parse_band)]
     pub band: Option<(f64, f64)>,
     /// Highest model order of the stabilization diagram.
-    #[arg(long, default_value_t = 40, value_parser = clap::value_parser!(u64).range(2..=200))]
+    #[arg(long, default_value_t = 40, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 2, Some(200)))]
     pub max_order: u64,
 }
 

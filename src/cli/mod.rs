@@ -30,6 +30,7 @@ mod sweep;
 mod sweep_merge;
 mod switch_off;
 mod transient;
+mod values;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};

@@ -3,7 +3,7 @@
 //! (e.g. `joints[1].b.s`), so a user can go straight to the offending value.
 
 use super::types::*;
-use crate::error::Problem;
+use crate::error::{Ids, Problem};
 
 /// Two joint points closer than this [SI: m] coincide.
 pub const COINCIDENCE_TOLERANCE: f64 = 1e-9;
@@ -137,6 +137,7 @@ impl Model {
                     Problem::UnknownId {
                         kind: "beam",
                         id: id.clone(),
+                        available: Ids::of(self.beams.iter().map(|b| &b.id)),
                     },
                 )
             })?;
@@ -210,6 +211,12 @@ impl Model {
             Problem::UnknownId {
                 kind: "rigid body or point mass",
                 id: id.clone(),
+                available: Ids::of(
+                    self.rigid_bodies
+                        .iter()
+                        .map(|b| &b.id)
+                        .chain(self.point_masses.iter().map(|p| &p.id)),
+                ),
             },
         )
     }

@@ -83,7 +83,7 @@ pub fn frf_table(a: &FrfAnalysis, q: ResponseQuantity) -> String {
             "{} hit(s) of {} samples at {} Hz ({:.4} s, Δf = {:.4} Hz), {} window",
             e.averages,
             e.samples,
-            e.sample_rate_hz,
+            crate::output::number::significant(e.sample_rate_hz, 7),
             e.samples as f64 / e.sample_rate_hz,
             e.df(),
             e.window

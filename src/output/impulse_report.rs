@@ -29,7 +29,7 @@ pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f
         r.sensor,
         r.quantity,
         r.signal.len(),
-        r.sample_rate_hz,
+        crate::output::number::significant(r.sample_rate_hz, 7),
         r.spectrum.window.name()
     );
     let _ = writeln!(s, "spectrum peaks:");

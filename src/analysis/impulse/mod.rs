@@ -46,8 +46,11 @@ pub enum ImpulseError {
     Dispersion(#[from] DispersionError),
     #[error("the model has no sensor to record (add one under `sensors`)")]
     NoSensor,
-    #[error("the model has no sensor `{id}`")]
-    UnknownSensor { id: String },
+    #[error("the model has no sensor `{id}` (its sensors: {available})")]
+    UnknownSensor {
+        id: String,
+        available: crate::error::Ids,
+    },
     #[error("the model has no time-varying load to excite it (add a `half_sine` or `step` load)")]
     NoExcitation,
     #[error("--amplitude/--duration change half-sine loads, and the model has none")]
@@ -205,11 +208,12 @@ pub fn run_impulse(
     check_settings(&model, settings)?;
     let system = System::new(&model);
     let point = match &settings.sensor {
-        Some(id) => system
-            .sensors
-            .iter()
-            .find(|s| &s.id == id)
-            .ok_or_else(|| ImpulseError::UnknownSensor { id: id.clone() })?,
+        Some(id) => system.sensors.iter().find(|s| &s.id == id).ok_or_else(|| {
+            ImpulseError::UnknownSensor {
+                id: id.clone(),
+                available: crate::error::Ids::of(system.sensors.iter().map(|s| &s.id)),
+            }
+        })?,
         None => system.sensors.first().ok_or(ImpulseError::NoSensor)?,
     };
     let probe = SensorProbe::new(&system, point);
