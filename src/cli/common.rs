@@ -1,16 +1,59 @@
 //! Helpers every subcommand uses: loading the model, naming it in
-//! messages, writing output files.
+//! messages, warnings, writing output files.
 
 use ancf_modal::model::Model;
 use anyhow::Result;
 use std::path::Path;
+use std::sync::Mutex;
 
-/// The model file, or the built-in default when none is given.
+/// The warnings of this run, in the order given: each was printed on
+/// stderr as it came, and every `--json` document carries them all.
+static WARNINGS: Mutex<Vec<String>> = Mutex::new(Vec::new());
+
+/// Prints `text` as one `warning: …` line on stderr and keeps it for the
+/// JSON document. Never changes the exit code.
+pub fn warn(text: String) {
+    eprintln!("warning: {text}");
+    WARNINGS
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+        .push(text);
+}
+
+/// The warnings given so far.
+pub fn warnings() -> Vec<String> {
+    WARNINGS
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+        .clone()
+}
+
+/// Warns of the model's implausible units ([`Model::unit_warnings`]),
+/// naming the model file.
+pub fn check_units(model: &Model, path: Option<&Path>) {
+    for w in model.unit_warnings() {
+        warn(format!("{}: {w}", source_label(path)));
+    }
+}
+
+/// The model file, or the built-in default when none is given; its unit
+/// warnings are given ([`check_units`]).
 pub fn load_model(path: Option<&Path>) -> Result<Model> {
-    Ok(match path {
+    let model = match path {
         Some(p) => Model::from_file(p)?,
         None => Model::builtin(),
-    })
+    };
+    check_units(&model, path);
+    Ok(model)
+}
+
+/// `doc` (a JSON object) with the run's `warnings` array.
+pub fn with_warnings(doc: impl serde::Serialize) -> Result<serde_json::Value> {
+    let mut doc = serde_json::to_value(doc)?;
+    if let Some(map) = doc.as_object_mut() {
+        map.insert("warnings".into(), serde_json::json!(warnings()));
+    }
+    Ok(doc)
 }
 
 /// SHA-256 of the model's bytes (the file, or the built-in model's text),
@@ -31,9 +74,10 @@ pub fn print_json(doc: impl serde::Serialize, path: Option<&Path>) -> Result<()>
     print_json_sha(doc, &model_sha256(path)?)
 }
 
-/// Prints `doc` stamped with this build's version and `model_sha256`.
+/// Prints `doc` stamped with this build's version, `model_sha256` and the
+/// run's `warnings`.
 pub fn print_json_sha(doc: impl serde::Serialize, model_sha256: &str) -> Result<()> {
-    let mut doc = serde_json::to_value(doc)?;
+    let mut doc = with_warnings(doc)?;
     ancf_modal::output::provenance::stamp(&mut doc, model_sha256);
     outln!("{}", serde_json::to_string_pretty(&doc)?);
     Ok(())

@@ -65,6 +65,7 @@ fn model_overlay(
         std::fs::read(path).with_context(|| format!("{}: cannot read the file", path.display()))?;
     let sha = ancf_modal::output::provenance::sha256_hex(&bytes);
     let model = ancf_modal::Model::from_file(path)?;
+    super::common::check_units(&model, Some(path));
     let system = ancf_modal::System::new(&model);
     let modal = ancf_modal::analysis::modal_at_reference(
         &system,
@@ -233,6 +234,7 @@ pub fn run(args: FrfArgs) -> Result<()> {
         if let Some((_, _, _, info)) = &overlay {
             doc["model_frf"] = info.clone();
         }
+        let doc = super::common::with_warnings(doc)?;
         outln!("{}", serde_json::to_string_pretty(&doc)?);
     } else {
         out!("{}", frf_table(&a, q));

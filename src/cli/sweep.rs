@@ -122,6 +122,11 @@ pub fn run(args: SweepArgs) -> Result<()> {
         sweep.settings.quantity == Quantity::TimeToDistance,
     )?;
     let run = compute(&sweep, shard, args.threads)?;
+    for p in &run.points {
+        for w in &p.warnings {
+            super::common::warn(format!("point {}: {w}", p.index));
+        }
+    }
     let doc = SweepDocument {
         tool_version: Some(tool_version().to_string()),
         model_sha256: Some(sha),
@@ -179,7 +184,8 @@ pub fn emit(doc: &SweepDocument, out: &OutputArgs) -> Result<()> {
         write_sweep_figure(doc, path)?;
     }
     if out.json {
-        outln!("{}", serde_json::to_string_pretty(doc)?);
+        let doc = super::common::with_warnings(doc)?;
+        outln!("{}", serde_json::to_string_pretty(&doc)?);
     } else {
         out!("{}", sweep_table(doc));
     }

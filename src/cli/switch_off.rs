@@ -95,6 +95,7 @@ pub fn run(args: SwitchOffArgs) -> Result<()> {
         Some(p) => Model::from_file(p)?,
         None => Model::switch_off_builtin(),
     };
+    super::common::check_units(&model, args.model.as_deref());
     let settings = SwitchOffSettings {
         step: args.step,
         end_time: args.end_time,

@@ -4,10 +4,12 @@
 
 mod contact;
 mod rigid;
+pub mod sanity;
 mod types;
 pub mod validate;
 
 pub use contact::*;
+pub use sanity::UnitWarning;
 pub use types::*;
 pub use validate::PointTarget;
 

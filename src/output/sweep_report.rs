@@ -152,6 +152,7 @@ mod tests {
             mac: None,
             modes: None,
             node0: None,
+            warnings: Vec::new(),
         };
         let d = SweepDocument {
             model: "m".into(),
