@@ -130,6 +130,7 @@ pub fn run(args: SweepArgs) -> Result<()> {
     let doc = SweepDocument {
         tool_version: Some(tool_version().to_string()),
         model_sha256: Some(sha),
+        warnings: super::common::warnings(),
         ..run.document()
     };
     emit(&doc, &args.outputs)
@@ -184,8 +185,7 @@ pub fn emit(doc: &SweepDocument, out: &OutputArgs) -> Result<()> {
         write_sweep_figure(doc, path)?;
     }
     if out.json {
-        let doc = super::common::with_warnings(doc)?;
-        outln!("{}", serde_json::to_string_pretty(&doc)?);
+        outln!("{}", serde_json::to_string_pretty(doc)?);
     } else {
         out!("{}", sweep_table(doc));
     }

@@ -44,6 +44,10 @@ pub struct SweepDocument {
     pub tool_version: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub model_sha256: Option<String>,
+    /// The run's warnings (set by the command line): the model's unit
+    /// warnings and those of the points.
+    #[serde(default)]
+    pub warnings: Vec<String>,
     pub points: Vec<PointRecord>,
 }
 
@@ -182,6 +186,7 @@ impl SweepRun {
             }),
             tool_version: None,
             model_sha256: None,
+            warnings: Vec::new(),
             points,
         }
     }
