@@ -25,6 +25,7 @@
 //! its quantity (m, m/s or m/s²); an FRF is response per newton.
 
 pub mod analysis;
+pub mod band;
 pub mod csv;
 pub mod decimate;
 pub mod error;
