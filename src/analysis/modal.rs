@@ -127,6 +127,9 @@ pub struct Mode {
     /// Bound on the relative frequency error the eigen-solve and round-off
     /// leave [–]; `None` for rigid modes.
     pub error_bound: Option<f64>,
+    /// Estimated relative frequency change from Euler–Bernoulli to
+    /// Timoshenko theory (bending modes; set by [`super::shear::annotate`]).
+    pub shear_estimate: Option<f64>,
     /// Mass-normalized shape in the global coordinates (φᵀMφ = 1).
     #[serde(skip)]
     pub shape: Vec<f64>,
@@ -327,6 +330,7 @@ pub fn modal(
             kind: ModeKind::Rigid,
             energy: zero_fractions,
             error_bound: None,
+            shear_estimate: None,
             shape: shape.clone(),
         });
     }
@@ -341,6 +345,7 @@ pub fn modal(
             kind,
             energy,
             error_bound: Some(bounds[i]),
+            shear_estimate: None,
             shape: shapes[i].clone(),
         });
     }

@@ -252,6 +252,19 @@ impl Model {
             check_positive(b.section.width, &format!("{p}.section.width"))?;
             check_positive(b.material.young, &format!("{p}.material.young"))?;
             check_positive(b.material.density, &format!("{p}.material.density"))?;
+            if let Some(nu) = b.material.poisson {
+                // An isotropic solid has −1 < ν ≤ 0.5.
+                if !(nu > -1.0 && nu <= 0.5) {
+                    return Err((
+                        format!("{p}.material.poisson"),
+                        Problem::OutOfRange {
+                            value: nu,
+                            min: -1.0,
+                            max: 0.5,
+                        },
+                    ));
+                }
+            }
         }
         for (i, r) in self.rigid_bodies.iter().enumerate() {
             let p = format!("rigid_bodies[{i}]");
