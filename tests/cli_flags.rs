@@ -152,3 +152,40 @@ fn a_sample_rate_read_from_times_prints_with_its_digits() {
         "the rate prints as 10240 Hz:\n{stdout}"
     );
 }
+
+#[test]
+fn impulse_names_its_hammer_and_refuses_a_released_preload() {
+    let models = Path::new(env!("CARGO_MANIFEST_DIR")).join("models");
+    let dir = tempfile::tempdir().expect("a temp dir");
+    // The paper's assembly: its half-sine load `hammer` is the hammer.
+    let (code, stdout, stderr) = run(dir.path(), &["impulse", "--end-time", "0.001"]);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(
+        stdout.contains("hammer (half-sine loads): hammer"),
+        "{stdout}"
+    );
+    // The switch-off assembly has only released preloads F_x2 and F_c:
+    // not a hammer blow.
+    let model = models.join("rcbo_switch_off.json");
+    let line = fails(
+        &["impulse", model.to_str().unwrap(), "--end-time", "0.001"],
+        &["no half-sine load", "F_x2, F_c", "releases"],
+    );
+    assert!(!line.contains("panicked"), "{line}");
+    // The cantilever has a step load only: used, and said so.
+    let model = models.join("cantilever.json");
+    let (code, stdout, stderr) = run(
+        dir.path(),
+        &[
+            "impulse",
+            model.to_str().unwrap(),
+            "--end-time",
+            "0.001",
+            "--json",
+        ],
+    );
+    assert_eq!(code, Some(0), "{stderr}");
+    let doc: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(doc["excitation"], "step");
+    assert_eq!(doc["excitation_loads"], json!(["tip_load"]));
+}
