@@ -227,6 +227,29 @@ pub enum TransientError {
     OutOfMemory { size: usize },
 }
 
+/// A setting of a simulation, named in its errors (the command line maps
+/// each to its flag).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Setting {
+    Step,
+    EndTime,
+    Distance,
+    Direction,
+    SampleRate,
+}
+
+impl fmt::Display for Setting {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Setting::Step => "time step",
+            Setting::EndTime => "end time",
+            Setting::Distance => "travel distance",
+            Setting::Direction => "length of the travel direction",
+            Setting::SampleRate => "sample rate",
+        })
+    }
+}
+
 /// Why a simulation (`transient`, `switch-off`) failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SimulationError {
@@ -234,9 +257,13 @@ pub enum SimulationError {
     Equilibrium(#[from] AnalysisError),
     #[error("time integration: {0}")]
     Transient(#[from] TransientError),
-    #[error("{flag}: {value:?} must be positive and finite")]
-    InvalidSetting { flag: &'static str, value: f64 },
-    #[error("--point: {why}")]
+    #[error("the {setting} must be {allowed}, got {value:?}")]
+    InvalidSetting {
+        setting: Setting,
+        allowed: &'static str,
+        value: f64,
+    },
+    #[error("the tracked point: {why}")]
     InvalidPoint { why: String },
     #[error("joint `{joint}` is a released support: it lets go of the static equilibrium's hold, so start from the equilibrium (`transient --from-equilibrium`, `sweep --prestress`)")]
     ReleaseNeedsEquilibrium { joint: String },

@@ -125,3 +125,24 @@ pub fn add_damping(
         }
     }
 }
+
+/// A simulation error with the flag it concerns in front (`--point: …`,
+/// `--step: …`); the library names settings, not flags.
+pub fn simulation_error(e: ancf_modal::error::SimulationError) -> anyhow::Error {
+    use ancf_modal::error::{Setting, SimulationError};
+    let flag = match &e {
+        SimulationError::InvalidPoint { .. } => Some("--point"),
+        SimulationError::InvalidSetting { setting, .. } => Some(match setting {
+            Setting::Step => "--step",
+            Setting::EndTime => "--end-time",
+            Setting::Distance => "--distance",
+            Setting::Direction => "--direction",
+            Setting::SampleRate => "--sample-rate",
+        }),
+        _ => None,
+    };
+    match flag {
+        Some(flag) => anyhow::Error::new(e).context(flag),
+        None => anyhow::Error::new(e),
+    }
+}

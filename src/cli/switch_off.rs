@@ -107,8 +107,9 @@ pub fn run(args: SwitchOffArgs) -> Result<()> {
         halve_step: !args.no_step_check,
         ..SwitchOffSettings::default()
     };
-    let result =
-        run_switch_off(&model, &settings).with_context(|| source_label(args.model.as_deref()))?;
+    let result = run_switch_off(&model, &settings)
+        .map_err(super::common::simulation_error)
+        .with_context(|| source_label(args.model.as_deref()))?;
     if let Some(path) = &args.csv {
         write_output(path, &switch_off_csv(&result))?;
     }

@@ -79,8 +79,9 @@ pub fn run(args: TransientArgs) -> Result<()> {
     };
     settings.transient.validate()?;
     let system = System::new(&model);
-    let sim =
-        simulate(system, &[], &settings).with_context(|| source_label(args.model.as_deref()))?;
+    let sim = simulate(system, &[], &settings)
+        .map_err(super::common::simulation_error)
+        .with_context(|| source_label(args.model.as_deref()))?;
     if let Some(path) = &args.csv {
         write_output(path, &transient_csv(&sim))?;
     }
