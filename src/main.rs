@@ -14,9 +14,12 @@ fn main() {
         }
         Err(e) => e.exit(),
     };
-    if let Err(e) = cli::run(args) {
-        eprintln!("Error: {}", one_line(&e));
-        std::process::exit(1);
+    match cli::run(args) {
+        Ok(()) => cli::print_warnings(),
+        Err(e) => {
+            eprintln!("Error: {}", one_line(&e));
+            std::process::exit(1);
+        }
     }
 }
 

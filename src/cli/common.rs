@@ -6,18 +6,25 @@ use anyhow::Result;
 use std::path::Path;
 use std::sync::Mutex;
 
-/// The warnings of this run, in the order given: each was printed on
-/// stderr as it came, and every `--json` document carries them all.
+/// The warnings of this run, in the order given: every `--json` document
+/// carries them all, and a run that succeeds prints them on stderr at its
+/// end ([`print_warnings`]); a run that fails prints its one error line.
 static WARNINGS: Mutex<Vec<String>> = Mutex::new(Vec::new());
 
-/// Prints `text` as one `warning: …` line on stderr and keeps it for the
-/// JSON document. Never changes the exit code.
+/// Keeps `text` for the JSON document and the `warning: …` lines. Never
+/// changes the exit code.
 pub fn warn(text: String) {
-    eprintln!("warning: {text}");
     WARNINGS
         .lock()
         .unwrap_or_else(|poisoned| poisoned.into_inner())
         .push(text);
+}
+
+/// Prints each warning given as one `warning: …` line on stderr.
+pub fn print_warnings() {
+    for w in warnings() {
+        eprintln!("warning: {w}");
+    }
 }
 
 /// The warnings given so far.

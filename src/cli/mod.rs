@@ -73,6 +73,8 @@ pub enum Command {
     Frf(frf::FrfArgs),
 }
 
+pub use common::print_warnings;
+
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Identify(a) => identify::run(a),
