@@ -323,7 +323,10 @@ mod cli {
             let (code, _, stderr) = run(&args);
             assert_eq!(code, 1, "{args:?}: bad value exit code; stderr {stderr}");
             assert_eq!(stderr.lines().count(), 1, "{args:?}: one line: {stderr}");
-            assert!(stderr.starts_with(&format!("Error: {} `", args[1])), "{stderr}");
+            assert!(
+                stderr.starts_with(&format!("Error: {} `", args[1])),
+                "{stderr}"
+            );
         }
         // A flag without the one it needs is a usage error (clap, exit 2).
         let (code, _, stderr) = run(&["modal", "--load-scale", "2"]);
