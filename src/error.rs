@@ -12,6 +12,28 @@
 use std::fmt;
 use std::path::PathBuf;
 
+/// The ids a model has of one kind (its sensors, beams, bodies …), listed
+/// in a message that names an unknown one: `a, b, c`, or `none`.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Ids(pub Vec<String>);
+
+impl Ids {
+    /// The ids, in the model's order.
+    pub fn of<'a>(ids: impl IntoIterator<Item = &'a String>) -> Self {
+        Ids(ids.into_iter().cloned().collect())
+    }
+}
+
+impl fmt::Display for Ids {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.is_empty() {
+            write!(f, "none")
+        } else {
+            write!(f, "{}", self.0.join(", "))
+        }
+    }
+}
+
 /// Where a model came from, for messages.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Source {
@@ -51,8 +73,12 @@ pub enum Problem {
     EmptyId,
     #[error("id `{id}` is used twice")]
     DuplicateId { id: String },
-    #[error("no {kind} with id `{id}`")]
-    UnknownId { kind: &'static str, id: String },
+    #[error("no {kind} with id `{id}` (the model's: {available})")]
+    UnknownId {
+        kind: &'static str,
+        id: String,
+        available: Ids,
+    },
     #[error(
         "give exactly one of `beam`, `body` or `ground` (this point gives {})",
         given_keys(given)
@@ -201,6 +227,29 @@ pub enum TransientError {
     OutOfMemory { size: usize },
 }
 
+/// A setting of a simulation, named in its errors (the command line maps
+/// each to its flag).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Setting {
+    Step,
+    EndTime,
+    Distance,
+    Direction,
+    SampleRate,
+}
+
+impl fmt::Display for Setting {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Setting::Step => "time step",
+            Setting::EndTime => "end time",
+            Setting::Distance => "travel distance",
+            Setting::Direction => "length of the travel direction",
+            Setting::SampleRate => "sample rate",
+        })
+    }
+}
+
 /// Why a simulation (`transient`, `switch-off`) failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SimulationError {
@@ -208,9 +257,13 @@ pub enum SimulationError {
     Equilibrium(#[from] AnalysisError),
     #[error("time integration: {0}")]
     Transient(#[from] TransientError),
-    #[error("{flag}: {value:?} must be positive and finite")]
-    InvalidSetting { flag: &'static str, value: f64 },
-    #[error("--point: {why}")]
+    #[error("the {setting} must be {allowed}, got {value:?}")]
+    InvalidSetting {
+        setting: Setting,
+        allowed: &'static str,
+        value: f64,
+    },
+    #[error("the tracked point: {why}")]
     InvalidPoint { why: String },
     #[error("joint `{joint}` is a released support: it lets go of the static equilibrium's hold, so start from the equilibrium (`transient --from-equilibrium`, `sweep --prestress`)")]
     ReleaseNeedsEquilibrium { joint: String },

@@ -2,13 +2,24 @@
 
 mod cli;
 
+use clap::error::{ContextKind, ContextValue};
 use clap::Parser;
 
 fn main() {
-    let args = cli::Cli::parse();
-    if let Err(e) = cli::run(args) {
-        eprintln!("Error: {}", one_line(&e));
-        std::process::exit(1);
+    let args = match cli::Cli::try_parse() {
+        Ok(args) => args,
+        Err(e) if e.kind() == clap::error::ErrorKind::ValueValidation => {
+            eprintln!("Error: {}", bad_value_line(&e));
+            std::process::exit(1);
+        }
+        Err(e) => e.exit(),
+    };
+    match cli::run(args) {
+        Ok(()) => cli::print_warnings(),
+        Err(e) => {
+            eprintln!("Error: {}", one_line(&e));
+            std::process::exit(1);
+        }
     }
 }
 
@@ -28,4 +39,30 @@ fn one_line(e: &anyhow::Error) -> String {
         line.push_str(&text);
     }
     line
+}
+
+/// A flag's value out of its range, as one line: the flag, the value
+/// given and what is allowed (``--step `-1e-6`: must be a number > 0``). Bad input, like a bad model file: exit code 1. Unknown flags
+/// and commands stay clap's usage errors (exit code 2).
+fn bad_value_line(e: &clap::Error) -> String {
+    use std::error::Error;
+    let context = |kind| match e.get(kind) {
+        Some(ContextValue::String(s)) => Some(s.clone()),
+        _ => None,
+    };
+    let flag = context(ContextKind::InvalidArg)
+        .map(|a| a.split_whitespace().next().unwrap_or_default().to_string());
+    let value = context(ContextKind::InvalidValue);
+    let why = e.source().map(|s| s.to_string());
+    match (flag, value, why) {
+        (Some(flag), Some(value), Some(why)) => format!("{flag} `{value}`: {why}"),
+        _ => e
+            .render()
+            .to_string()
+            .lines()
+            .next()
+            .unwrap_or_default()
+            .trim_start_matches("error: ")
+            .to_string(),
+    }
 }

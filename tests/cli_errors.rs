@@ -861,8 +861,6 @@ fn usage_errors_exit_with_2() {
     let dir = TempDir::new().expect("a temp dir");
     for args in [
         &["modal", "--bogus", "--csv", "out.csv"][..],
-        &["modal", "--modes", "0", "--csv", "out.csv"][..],
-        &["modal", "--modes", "many", "--csv", "out.csv"][..],
         &["no-such-command"][..],
     ] {
         let (code, stdout, stderr) = run(args, dir.path());

@@ -50,14 +50,17 @@ fn fails_with(flags: &[&str], expect: &str) {
 
 #[test]
 fn bad_settings_are_one_line_errors() {
-    fails_with(&["--step", "0"], "time step must be positive");
-    fails_with(&["--step=-1e-6"], "time step must be positive");
+    fails_with(&["--step", "0"], "--step `0`: must be a number > 0");
+    fails_with(&["--step=-1e-6"], "--step `-1e-6`: must be a number > 0");
     fails_with(&["--end-time", "1e-6"], "end time");
     fails_with(&["--sample-rate", "2e6"], "sample rate");
     fails_with(&["--duration", "1e-6"], "shorter than two steps");
-    fails_with(&["--spectral-radius", "1.5"], "spectral radius");
-    fails_with(&["--amplitude", "0"], "amplitude");
-    fails_with(&["--sensor", "nope"], "no sensor `nope`");
+    fails_with(&["--spectral-radius", "1.5"], "--spectral-radius `1.5`");
+    fails_with(&["--amplitude", "0"], "--amplitude `0`");
+    fails_with(
+        &["--sensor", "nope"],
+        "no sensor `nope` (its sensors: vibrometer)",
+    );
 }
 
 #[test]

@@ -313,17 +313,25 @@ mod cli {
     }
 
     #[test]
-    fn bad_sweep_and_load_scale_flags_are_usage_errors() {
+    fn bad_sweep_and_load_scale_flags_are_errors() {
+        // A bad value is bad input: one line naming the flag, exit code 1.
         for args in [
             vec!["modal", "--sweep-load", "0:1"],
             vec!["modal", "--sweep-load", "0:1:0"],
             vec!["modal", "--sweep-load", "a:1:3"],
-            vec!["modal", "--load-scale", "2"],
             vec!["static", "--load-scale", "nan"],
         ] {
             let (code, _, stderr) = run(&args);
-            assert_eq!(code, 2, "{args:?}: usage error exit code; stderr {stderr}");
+            assert_eq!(code, 1, "{args:?}: bad value exit code; stderr {stderr}");
+            assert_eq!(stderr.lines().count(), 1, "{args:?}: one line: {stderr}");
+            assert!(
+                stderr.starts_with(&format!("Error: {} `", args[1])),
+                "{stderr}"
+            );
         }
+        // A flag without the one it needs is a usage error (clap, exit 2).
+        let (code, _, stderr) = run(&["modal", "--load-scale", "2"]);
+        assert_eq!(code, 2, "usage error exit code; stderr {stderr}");
     }
 }
 

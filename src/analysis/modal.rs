@@ -140,6 +140,9 @@ pub struct Mode {
     /// Bound on the relative frequency error the eigen-solve and round-off
     /// leave [–]; `None` for rigid modes.
     pub error_bound: Option<f64>,
+    /// Estimated relative frequency change from Euler–Bernoulli to
+    /// Timoshenko theory (bending modes; set by [`super::shear::annotate`]).
+    pub shear_estimate: Option<f64>,
     /// Mass-normalized shape in the global coordinates (φᵀMφ = 1).
     #[serde(skip)]
     pub shape: Vec<f64>,
@@ -362,6 +365,7 @@ pub fn modal(
             },
             energy: zero_fractions,
             error_bound: None,
+            shear_estimate: None,
             shape: shape.clone(),
         });
     }
@@ -376,6 +380,7 @@ pub fn modal(
             kind,
             energy,
             error_bound: Some(bounds[i]),
+            shear_estimate: None,
             shape: shapes[i].clone(),
         });
     }

@@ -126,7 +126,8 @@ pub fn simulate(
     let n = sys.ndof();
     if !(settings.sample_rate >= 0.0 && settings.sample_rate.is_finite()) {
         return Err(SimulationError::InvalidSetting {
-            flag: "--sample-rate",
+            setting: crate::error::Setting::SampleRate,
+            allowed: "zero (every step) or positive, and finite",
             value: settings.sample_rate,
         });
     }

@@ -15,7 +15,7 @@
 use super::simulate::{simulate, time_to_distance, EnergyBalance, SimulationSettings};
 use super::transient::contacts::ContactStats;
 use super::transient::TransientSettings;
-use crate::error::SimulationError;
+use crate::error::{Setting, SimulationError};
 use crate::model::{Model, PointSpec};
 use crate::system::System;
 
@@ -94,19 +94,24 @@ pub struct SwitchOffResult {
 
 impl SwitchOffSettings {
     fn validate(&self) -> Result<(), SimulationError> {
-        for (flag, value) in [
-            ("--step", self.step),
-            ("--end-time", self.end_time),
-            ("--distance", self.distance),
+        for (setting, value) in [
+            (Setting::Step, self.step),
+            (Setting::EndTime, self.end_time),
+            (Setting::Distance, self.distance),
         ] {
             if !(value > 0.0 && value.is_finite()) {
-                return Err(SimulationError::InvalidSetting { flag, value });
+                return Err(SimulationError::InvalidSetting {
+                    setting,
+                    allowed: "positive and finite",
+                    value,
+                });
             }
         }
         let [dx, dy] = self.direction;
         if !(dx.is_finite() && dy.is_finite()) || dx.hypot(dy) == 0.0 {
             return Err(SimulationError::InvalidSetting {
-                flag: "--direction",
+                setting: Setting::Direction,
+                allowed: "positive and finite",
                 value: dx.hypot(dy),
             });
         }
@@ -137,7 +142,7 @@ fn tracked(model: &Model, settings: &SwitchOffSettings) -> Result<PointSpec, Sim
                 .first()
                 .ok_or_else(|| SimulationError::InvalidPoint {
                     why: String::from(
-                        "the model has no beam, so there is no node 0 to track; give --point",
+                        "the model has no beam, so there is no node 0 to track; name a point",
                     ),
                 })?;
             PointSpec {

@@ -78,17 +78,17 @@ pub struct CalibrateArgs {
     /// Mode numbers (1-based, among the modes of --mode-kind), one per
     /// target; default 1, 2, ….
     #[arg(long, value_name = "N[,N...]", value_delimiter = ',',
-          value_parser = clap::value_parser!(u64).range(1..))]
+          allow_hyphen_values = true, value_parser = super::values::at_least_one)]
     pub mode: Vec<u64>,
     /// How each candidate is evaluated.
     #[arg(long, value_enum, default_value_t = MethodArg::Eigen)]
     pub method: MethodArg,
     /// Stop when every frequency is this close to its target [Hz]
     /// (default 1e-10 × target; 1e-3 Hz with --method impulse).
-    #[arg(long, value_name = "HZ")]
+    #[arg(long, value_name = "HZ", allow_hyphen_values = true, value_parser = super::values::positive)]
     pub tolerance: Option<f64>,
     /// Most model evaluations.
-    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u64).range(2..=10000))]
+    #[arg(long, default_value_t = 60, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 2, Some(10_000)))]
     pub max_evaluations: u64,
     /// Write the calibrated model (a valid model file) here.
     #[arg(long, value_name = "FITTED.json")]
@@ -208,11 +208,6 @@ pub fn request(args: &CalibrateArgs, model: &Model) -> Result<CalibrationRequest
 
 pub fn run(args: CalibrateArgs) -> Result<()> {
     let plot_format = args.plot.as_deref().map(Format::from_path).transpose()?;
-    if let Some(t) = args.tolerance {
-        if !(t > 0.0 && t.is_finite()) {
-            anyhow::bail!("--tolerance must be positive and finite, got {t} Hz");
-        }
-    }
     let model = load_model(args.model.as_deref())?;
     let request = request(&args, &model)?;
     let impulse = args.method == MethodArg::Impulse;

@@ -1,16 +1,66 @@
 //! Helpers every subcommand uses: loading the model, naming it in
-//! messages, writing output files.
+//! messages, warnings, writing output files.
 
 use ancf_modal::model::Model;
 use anyhow::Result;
 use std::path::Path;
+use std::sync::Mutex;
 
-/// The model file, or the built-in default when none is given.
+/// The warnings of this run, in the order given: every `--json` document
+/// carries them all, and a run that succeeds prints them on stderr at its
+/// end ([`print_warnings`]); a run that fails prints its one error line.
+static WARNINGS: Mutex<Vec<String>> = Mutex::new(Vec::new());
+
+/// Keeps `text` for the JSON document and the `warning: …` lines. Never
+/// changes the exit code.
+pub fn warn(text: String) {
+    WARNINGS
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+        .push(text);
+}
+
+/// Prints each warning given as one `warning: …` line on stderr.
+pub fn print_warnings() {
+    for w in warnings() {
+        eprintln!("warning: {w}");
+    }
+}
+
+/// The warnings given so far.
+pub fn warnings() -> Vec<String> {
+    WARNINGS
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+        .clone()
+}
+
+/// Warns of the model's implausible units ([`Model::unit_warnings`]),
+/// naming the model file.
+pub fn check_units(model: &Model, path: Option<&Path>) {
+    for w in model.unit_warnings() {
+        warn(format!("{}: {w}", source_label(path)));
+    }
+}
+
+/// The model file, or the built-in default when none is given; its unit
+/// warnings are given ([`check_units`]).
 pub fn load_model(path: Option<&Path>) -> Result<Model> {
-    Ok(match path {
+    let model = match path {
         Some(p) => Model::from_file(p)?,
         None => Model::builtin(),
-    })
+    };
+    check_units(&model, path);
+    Ok(model)
+}
+
+/// `doc` (a JSON object) with the run's `warnings` array.
+pub fn with_warnings(doc: impl serde::Serialize) -> Result<serde_json::Value> {
+    let mut doc = serde_json::to_value(doc)?;
+    if let Some(map) = doc.as_object_mut() {
+        map.insert("warnings".into(), serde_json::json!(warnings()));
+    }
+    Ok(doc)
 }
 
 /// SHA-256 of the model's bytes (the file, or the built-in model's text),
@@ -31,9 +81,10 @@ pub fn print_json(doc: impl serde::Serialize, path: Option<&Path>) -> Result<()>
     print_json_sha(doc, &model_sha256(path)?)
 }
 
-/// Prints `doc` stamped with this build's version and `model_sha256`.
+/// Prints `doc` stamped with this build's version, `model_sha256` and the
+/// run's `warnings`.
 pub fn print_json_sha(doc: impl serde::Serialize, model_sha256: &str) -> Result<()> {
-    let mut doc = serde_json::to_value(doc)?;
+    let mut doc = with_warnings(doc)?;
     ancf_modal::output::provenance::stamp(&mut doc, model_sha256);
     outln!("{}", serde_json::to_string_pretty(&doc)?);
     Ok(())
@@ -79,5 +130,26 @@ pub fn add_damping(
         if d.complex {
             entry["damped_frequency_hz"] = serde_json::json!(d.damped_frequency_hz);
         }
+    }
+}
+
+/// A simulation error with the flag it concerns in front (`--point: …`,
+/// `--step: …`); the library names settings, not flags.
+pub fn simulation_error(e: ancf_modal::error::SimulationError) -> anyhow::Error {
+    use ancf_modal::error::{Setting, SimulationError};
+    let flag = match &e {
+        SimulationError::InvalidPoint { .. } => Some("--point"),
+        SimulationError::InvalidSetting { setting, .. } => Some(match setting {
+            Setting::Step => "--step",
+            Setting::EndTime => "--end-time",
+            Setting::Distance => "--distance",
+            Setting::Direction => "--direction",
+            Setting::SampleRate => "--sample-rate",
+        }),
+        _ => None,
+    };
+    match flag {
+        Some(flag) => anyhow::Error::new(e).context(flag),
+        None => anyhow::Error::new(e),
     }
 }

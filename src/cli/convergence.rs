@@ -21,10 +21,10 @@ pub struct ConvergenceArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
     /// Finest mesh: elements per beam 2, 4, 8, … up to this number.
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u64).range(2..=256))]
+    #[arg(long, default_value_t = 64, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 2, Some(256)))]
     pub max_elements: u64,
     /// Number of bending modes compared.
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=10))]
+    #[arg(long, default_value_t = 3, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 1, Some(10)))]
     pub modes: u64,
     /// Also draw the errors (log-log) to this file (.svg or .png).
     #[arg(long, value_name = "FILE")]

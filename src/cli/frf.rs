@@ -65,6 +65,7 @@ fn model_overlay(
         std::fs::read(path).with_context(|| format!("{}: cannot read the file", path.display()))?;
     let sha = ancf_modal::output::provenance::sha256_hex(&bytes);
     let model = ancf_modal::Model::from_file(path)?;
+    super::common::check_units(&model, Some(path));
     let system = ancf_modal::System::new(&model);
     let modal = ancf_modal::analysis::modal_at_reference(
         &system,
@@ -123,7 +124,7 @@ pub struct MeasuredArgs {
     #[arg(long, value_name = "LO:HI", value_parser = parse_band)]
     pub band: Option<(f64, f64)>,
     /// Highest model order of the stabilization diagram.
-    #[arg(long, default_value_t = 40, value_parser = clap::value_parser!(u64).range(2..=200))]
+    #[arg(long, default_value_t = 40, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 2, Some(200)))]
     pub max_order: u64,
 }
 
@@ -233,6 +234,7 @@ pub fn run(args: FrfArgs) -> Result<()> {
         if let Some((_, _, _, info)) = &overlay {
             doc["model_frf"] = info.clone();
         }
+        let doc = super::common::with_warnings(doc)?;
         outln!("{}", serde_json::to_string_pretty(&doc)?);
     } else {
         out!("{}", frf_table(&a, q));

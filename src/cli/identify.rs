@@ -197,7 +197,7 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         rows.push(("paper, ANSYS BEAM188".into(), Some(table3.ansys_hz)));
     }
     let errors = |f: &Option<f64>| f.zip(experiment_hz).map(|(f, e)| Errors::new(f, e));
-    let mut summary = json!({
+    let summary = json!({
         "model": model.name,
         "supports": supports(&model),
         "experiment_hz": experiment_hz,
@@ -221,6 +221,7 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         "impulse": impulse_json(&model.name, &impulse, experiment_hz),
         "calibration": calibration.as_ref().map(|c| calibrate_json(&model.name, c)),
     });
+    let mut summary = super::common::with_warnings(summary)?;
     ancf_modal::output::provenance::stamp(
         &mut summary,
         &super::common::model_sha256(args.model.as_deref())?,

@@ -16,22 +16,22 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, Args)]
 pub struct ExperimentArgs {
     /// Pulse amplitude F0 [N] (default: the model's, 4 N for the paper's assembly).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = super::values::non_zero)]
     pub amplitude: Option<f64>,
     /// Pulse duration tF [s] (default: the model's, 1e-4 s).
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_hyphen_values = true, value_parser = super::values::positive)]
     pub duration: Option<f64>,
     /// End time [s].
-    #[arg(long, value_name = "S", default_value_t = 0.1)]
+    #[arg(long, value_name = "S", default_value_t = 0.1, allow_hyphen_values = true, value_parser = super::values::positive)]
     pub end_time: f64,
     /// Time step [s].
-    #[arg(long, value_name = "S", default_value_t = 1e-6)]
+    #[arg(long, value_name = "S", default_value_t = 1e-6, allow_hyphen_values = true, value_parser = super::values::positive)]
     pub step: f64,
     /// Spectral radius at infinity of generalized-α (1 = no numerical damping).
-    #[arg(long, value_name = "R", default_value_t = 0.9)]
+    #[arg(long, value_name = "R", default_value_t = 0.9, allow_hyphen_values = true, value_parser = super::values::unit_interval)]
     pub spectral_radius: f64,
     /// Sensor sampling rate [Hz]; 0 records every step.
-    #[arg(long, value_name = "HZ", default_value_t = 51_200.0)]
+    #[arg(long, value_name = "HZ", default_value_t = 51_200.0, allow_hyphen_values = true, value_parser = super::values::non_negative)]
     pub sample_rate: f64,
     /// Sensor id (default: the model's first sensor).
     #[arg(long)]

@@ -30,6 +30,7 @@ mod sweep;
 mod sweep_merge;
 mod switch_off;
 mod transient;
+mod values;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -71,6 +72,8 @@ pub enum Command {
     /// modes' frequencies and damping ratios (LSCF fit).
     Frf(frf::FrfArgs),
 }
+
+pub use common::print_warnings;
 
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {

@@ -29,8 +29,10 @@ pub fn run(args: ModalArgs) -> Result<()> {
     if args.prestress {
         return super::statics::run_prestress(&args, &model, &system, &settings);
     }
-    let result = modal_at_reference(&system, &settings)
+    let mut result = modal_at_reference(&system, &settings)
         .with_context(|| source_label(args.model.as_deref()))?;
+    ancf_modal::analysis::shear::annotate(&model, &system, &mut result);
+    warn_beam_theory(&result, args.model.as_deref());
     let mac = match &args.mac {
         Some(other) => Some(mac_against(&system, &result, other, &settings)?),
         None => None,
@@ -65,6 +67,8 @@ pub fn run(args: ModalArgs) -> Result<()> {
     let complex = damping.iter().any(|d| d.complex);
     if args.json {
         let mut doc = modal_json(&model.name, &result);
+        doc["poisson_assumed"] =
+            serde_json::json!(ancf_modal::analysis::shear::poisson_assumed(&model));
         if let Some(modes) = doc["modes"].as_array_mut() {
             add_damping(modes, &damping);
         }
@@ -77,6 +81,12 @@ pub fn run(args: ModalArgs) -> Result<()> {
         print_json(&doc, args.model.as_deref())?;
     } else {
         out!("{}", modal_table(&model.name, &result));
+        if ancf_modal::analysis::shear::poisson_assumed(&model) {
+            outln!(
+                "shear %: Timoshenko against Euler–Bernoulli, estimated from each bending mode's shape, with ν = {} where the material gives no `poisson`",
+                ancf_modal::analysis::shear::DEFAULT_POISSON
+            );
+        }
         let lines: Vec<String> = result
             .modes
             .iter()
@@ -208,4 +218,23 @@ fn mac_table(rows: &[f64], cols: &[f64], m: &nalgebra::DMatrix<f64>) -> String {
         s.push('\n');
     }
     s
+}
+
+/// A warning for each reported mode whose Euler–Bernoulli frequency is
+/// more than 1 % above Timoshenko theory's (estimate of
+/// [`ancf_modal::analysis::shear`]).
+fn warn_beam_theory(result: &ModalResult, path: Option<&Path>) {
+    use ancf_modal::analysis::shear::WARNING_LEVEL;
+    for m in &result.modes {
+        if let Some(e) = m.shear_estimate.filter(|e| e.abs() > WARNING_LEVEL) {
+            super::common::warn(format!(
+                "{}: mode {} ({:.1} Hz): beam theory limits it: shear and rotary inertia (Timoshenko) would lower it by about {:.1} %, more than the {:.0} %",
+                source_label(path),
+                m.index,
+                m.frequency_hz,
+                -100.0 * e,
+                100.0 * WARNING_LEVEL
+            ));
+        }
+    }
 }

@@ -42,14 +42,14 @@ pub struct SweepArgs {
     #[arg(long, value_name = "QUANTITY")]
     pub quantity: Option<String>,
     /// Time step of transient quantities [s] (default 1e-6).
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_hyphen_values = true, value_parser = super::values::positive)]
     pub step: Option<f64>,
     /// End time of transient quantities [s] (default 3e-3).
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_hyphen_values = true, value_parser = super::values::positive)]
     pub end_time: Option<f64>,
     /// Elastic modes tracked for frequency:K (at least K; all are drawn by
     /// --plot and written by --csv).
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_TRACKED_MODES)]
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_TRACKED_MODES, allow_hyphen_values = true, value_parser = super::values::at_least_one_usize)]
     pub modes: usize,
     /// Linearize at the static equilibrium under the model's constant loads
     /// and gravity (implied by a load_scale parameter).
@@ -63,7 +63,7 @@ pub struct SweepArgs {
     #[arg(long, value_name = "K/N")]
     pub shard: Option<String>,
     /// Worker threads (default: all cores; 1 runs the points serially).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = super::values::at_least_one_usize)]
     pub threads: Option<usize>,
     #[command(flatten)]
     pub outputs: OutputArgs,
@@ -96,25 +96,12 @@ pub fn run(args: SweepArgs) -> Result<()> {
         (None, Quantity::TimeToDistance) => ancf_modal::Model::switch_off_builtin(),
         _ => load_model(args.model.as_deref())?,
     };
-    for (flag, value) in [("--step", args.step), ("--end-time", args.end_time)] {
-        if let Some(v) = value {
-            if !(v > 0.0 && v.is_finite()) {
-                bail!("{flag}: {v:?} must be positive and finite");
-            }
-        }
-    }
     let shard = args
         .shard
         .as_deref()
         .map(Shard::parse)
         .transpose()
         .map_err(|e| anyhow!("--shard: {e}"))?;
-    if args.threads == Some(0) {
-        bail!("--threads: give at least 1 (default: all cores)");
-    }
-    if args.modes == 0 {
-        bail!("--modes: track at least 1 mode");
-    }
     let settings = SweepSettings {
         tracked_modes: args.modes,
         prestress: args.prestress,
@@ -135,9 +122,15 @@ pub fn run(args: SweepArgs) -> Result<()> {
         sweep.settings.quantity == Quantity::TimeToDistance,
     )?;
     let run = compute(&sweep, shard, args.threads)?;
+    for p in &run.points {
+        for w in &p.warnings {
+            super::common::warn(format!("point {}: {w}", p.index));
+        }
+    }
     let doc = SweepDocument {
         tool_version: Some(tool_version().to_string()),
         model_sha256: Some(sha),
+        warnings: super::common::warnings(),
         ..run.document()
     };
     emit(&doc, &args.outputs)

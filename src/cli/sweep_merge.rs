@@ -38,7 +38,19 @@ pub fn run(args: SweepMergeArgs) -> Result<()> {
     let doc = SweepDocument {
         tool_version: Some(tool_version().to_string()),
         model_sha256: docs[0].1.model_sha256.clone(),
+        warnings: shard_warnings(&docs),
         ..run.document()
     };
     emit(&doc, &args.outputs)
+}
+
+/// The shards' warnings, each once, in the order of the shards.
+fn shard_warnings(docs: &[(String, SweepDocument)]) -> Vec<String> {
+    let mut all: Vec<String> = Vec::new();
+    for w in docs.iter().flat_map(|(_, d)| &d.warnings) {
+        if !all.contains(w) {
+            all.push(w.clone());
+        }
+    }
+    all
 }

@@ -16,13 +16,13 @@ pub struct SwitchOffArgs {
     /// Model file (JSON); the built-in switch-off assembly when omitted.
     pub model: Option<PathBuf>,
     /// End time [s].
-    #[arg(long, value_name = "S", default_value_t = 3e-3)]
+    #[arg(long, value_name = "S", default_value_t = 3e-3, allow_hyphen_values = true, value_parser = super::values::positive)]
     pub end_time: f64,
     /// Time step [s].
-    #[arg(long, value_name = "S", default_value_t = 1e-6)]
+    #[arg(long, value_name = "S", default_value_t = 1e-6, allow_hyphen_values = true, value_parser = super::values::positive)]
     pub step: f64,
     /// Travel distance of the tracked point [m].
-    #[arg(long, value_name = "M", default_value_t = 2e-3)]
+    #[arg(long, value_name = "M", default_value_t = 2e-3, allow_hyphen_values = true, value_parser = super::values::positive)]
     pub distance: f64,
     /// Travel direction `DX,DY` (global).
     #[arg(long, value_name = "DX,DY", default_value = "1,0", value_parser = parse_pair, allow_hyphen_values = true)]
@@ -31,7 +31,7 @@ pub struct SwitchOffArgs {
     #[arg(long, value_name = "POINT", value_parser = parse_point)]
     pub point: Option<PointSpec>,
     /// Output sample rate [Hz] (the paper's camera: 67.2 kHz).
-    #[arg(long, value_name = "HZ", default_value_t = 67_200.0)]
+    #[arg(long, value_name = "HZ", default_value_t = 67_200.0, allow_hyphen_values = true, value_parser = super::values::non_negative)]
     pub sample_rate: f64,
     /// Also run the model with every beam rigid (the paper's rigid model).
     #[arg(long)]
@@ -95,6 +95,7 @@ pub fn run(args: SwitchOffArgs) -> Result<()> {
         Some(p) => Model::from_file(p)?,
         None => Model::switch_off_builtin(),
     };
+    super::common::check_units(&model, args.model.as_deref());
     let settings = SwitchOffSettings {
         step: args.step,
         end_time: args.end_time,
@@ -106,8 +107,9 @@ pub fn run(args: SwitchOffArgs) -> Result<()> {
         halve_step: !args.no_step_check,
         ..SwitchOffSettings::default()
     };
-    let result =
-        run_switch_off(&model, &settings).with_context(|| source_label(args.model.as_deref()))?;
+    let result = run_switch_off(&model, &settings)
+        .map_err(super::common::simulation_error)
+        .with_context(|| source_label(args.model.as_deref()))?;
     if let Some(path) = &args.csv {
         write_output(path, &switch_off_csv(&result))?;
     }

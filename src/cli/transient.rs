@@ -19,20 +19,20 @@ pub struct TransientArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
     /// End time [s].
-    #[arg(long, value_name = "S", default_value_t = 0.01)]
+    #[arg(long, value_name = "S", default_value_t = 0.01, allow_hyphen_values = true, value_parser = super::values::positive)]
     pub end_time: f64,
     /// Time step [s] (shortened automatically at contact onsets).
-    #[arg(long, value_name = "S", default_value_t = 1e-6)]
+    #[arg(long, value_name = "S", default_value_t = 1e-6, allow_hyphen_values = true, value_parser = super::values::positive)]
     pub step: f64,
     /// Spectral radius at infinity of generalized-α (1 = no numerical damping).
-    #[arg(long, value_name = "R", default_value_t = 0.9)]
+    #[arg(long, value_name = "R", default_value_t = 0.9, allow_hyphen_values = true, value_parser = super::values::unit_interval)]
     pub spectral_radius: f64,
     /// Start from the static equilibrium under the loads at t = 0 (else at
     /// rest in the reference configuration).
     #[arg(long)]
     pub from_equilibrium: bool,
     /// Output sample rate [Hz]; 0 keeps every step.
-    #[arg(long, value_name = "HZ", default_value_t = 51_200.0)]
+    #[arg(long, value_name = "HZ", default_value_t = 51_200.0, allow_hyphen_values = true, value_parser = super::values::non_negative)]
     pub sample_rate: f64,
     /// Model every beam as a rigid body.
     #[arg(long)]
@@ -79,8 +79,9 @@ pub fn run(args: TransientArgs) -> Result<()> {
     };
     settings.transient.validate()?;
     let system = System::new(&model);
-    let sim =
-        simulate(system, &[], &settings).with_context(|| source_label(args.model.as_deref()))?;
+    let sim = simulate(system, &[], &settings)
+        .map_err(super::common::simulation_error)
+        .with_context(|| source_label(args.model.as_deref()))?;
     if let Some(path) = &args.csv {
         write_output(path, &transient_csv(&sim))?;
     }

@@ -2,16 +2,20 @@
 //! coherence (or an FRF read as such) → the band the hammer excited → the
 //! modal fit ([`super::fit`]) of the chosen estimator.
 //!
-//! Default band: from the second bin to the lower of 0.8 × Nyquist (where
-//! acquisition anti-aliasing filters start to act) and the highest
-//! frequency at which the mean force spectrum is within 20 dB of its
-//! maximum (beyond it the hammer puts no energy in and H is noise).
+//! Default band: [`super::band::automatic_band`] (the force drop, the
+//! noise floor of the quiet tail, 0.8 × Nyquist, whichever comes first).
+//!
+//! No silent loss: the spectrum outside the band (up to the automatic
+//! band's end) is fitted too, and the modes found there are listed in [`FrfAnalysis::rejected`] as outside the
+//! band, beside the fit's own rejected poles.
 
 use std::path::PathBuf;
 
 use realfft::num_complex::Complex64;
 
-use super::fit::{fit, FitSettings, ModalFit};
+use super::band::automatic_band;
+pub use super::band::BandEnd;
+use super::fit::{fit, FitSettings, ModalFit, RejectReason, RejectedPole};
 use super::frf::{estimate, FrfEstimate};
 use super::window::Window;
 use super::{MeasuredError, Measurement};
@@ -58,8 +62,7 @@ impl Default for AnalysisSettings {
     }
 }
 
-/// Force level (dB below its maximum) that bounds the default band.
-pub const FORCE_BAND_DB: f64 = 20.0;
+pub use super::band::FORCE_BAND_DB;
 
 /// The result of [`analyse`].
 #[derive(Debug, Clone)]
@@ -75,7 +78,12 @@ pub struct FrfAnalysis {
     pub estimate: Option<FrfEstimate>,
     pub settings: AnalysisSettings,
     pub band: (f64, f64),
+    /// What ended the band.
+    pub band_end: BandEnd,
     pub fit: ModalFit,
+    /// Stable poles that are not modes: the fit's own and the modes found
+    /// outside the band, by frequency.
+    pub rejected: Vec<RejectedPole>,
 }
 
 impl FrfAnalysis {
@@ -88,19 +96,54 @@ impl FrfAnalysis {
     }
 }
 
-fn default_band(frequency_hz: &[f64], force_power: Option<&[f64]>) -> (f64, f64) {
-    let n = frequency_hz.len();
-    let lo = frequency_hz.get(1).copied().unwrap_or(0.0);
-    let top = frequency_hz[n - 1];
-    let mut hi = 0.8 * top;
-    if let Some(g) = force_power {
-        let max = g.iter().cloned().fold(0.0, f64::max);
-        let floor = max * 10f64.powf(-FORCE_BAND_DB / 10.0);
-        if let Some(k) = g.iter().rposition(|v| *v >= floor) {
-            hi = hi.min(frequency_hz[k]);
+/// Smallest width of a stretch outside the band worth fitting, in bins.
+const MIN_OUTSIDE_BINS: usize = 16;
+
+/// The modes of the spectrum outside `band` (below it, and above it up to
+/// `top`, the end of the automatic band: beyond it H is noise), as
+/// rejected poles; a pole within 0.5 % of one of `modes` (a mode at the
+/// band's edge) is left out.
+fn outside_band(
+    frequency_hz: &[f64],
+    h: &[Complex64],
+    (band, top): ((f64, f64), f64),
+    fit_settings: &FitSettings,
+    modes: &[f64],
+) -> Vec<RejectedPole> {
+    let first = frequency_hz.get(1).copied().unwrap_or(0.0);
+    let bins = |lo: f64, hi: f64| {
+        frequency_hz
+            .iter()
+            .filter(|f| **f >= lo && **f <= hi)
+            .count()
+    };
+    let mut out = Vec::new();
+    for (lo, hi) in [(first, band.0), (band.1, top)] {
+        if hi <= lo || bins(lo, hi) < MIN_OUTSIDE_BINS {
+            continue;
+        }
+        let outside = fit(
+            frequency_hz,
+            h,
+            &FitSettings {
+                f_lo: lo,
+                f_hi: hi,
+                ..*fit_settings
+            },
+        );
+        for m in &outside.modes {
+            let f = m.frequency_hz;
+            if modes.iter().any(|g| (f - g).abs() <= 0.005 * g) {
+                continue;
+            }
+            out.push(RejectedPole {
+                frequency_hz: f,
+                damping_ratio: m.damping_ratio,
+                reason: RejectReason::OutsideBand,
+            });
         }
     }
-    (lo, hi.max(lo))
+    out
 }
 
 /// Runs the pipeline on the measurements of one test (several hits, or
@@ -120,6 +163,7 @@ pub fn analyse(
             Measurement::Frf(f) => f.file.clone(),
         })
         .collect();
+    let mut records = Vec::new();
     let (frequency_hz, h1, h2, coherence, est) =
         if measurements.len() == 1 && matches!(measurements[0], Measurement::Frf(_)) {
             let Some(Measurement::Frf(f)) = measurements.into_iter().next() else {
@@ -127,7 +171,7 @@ pub fn analyse(
             };
             (f.frequency_hz, f.h, None, f.coherence, None)
         } else {
-            let mut records = Vec::with_capacity(measurements.len());
+            records = Vec::with_capacity(measurements.len());
             for m in measurements {
                 match m {
                     Measurement::Time(r) => records.push(r),
@@ -143,26 +187,36 @@ pub fn analyse(
                 Some(e),
             )
         };
-    let band = settings.band.unwrap_or_else(|| {
-        default_band(
-            &frequency_hz,
-            est.as_ref().map(|e| e.force_power.as_slice()),
-        )
-    });
+    let (automatic, automatic_end) = automatic_band(
+        &frequency_hz,
+        est.as_ref().map(|e| e.force_power.as_slice()),
+        &records,
+    );
+    let (band, band_end) = match settings.band {
+        Some(b) => (b, BandEnd::Given),
+        None => (automatic, automatic_end),
+    };
     let h = match (settings.estimator, &h2) {
         (Estimator::H2, Some(h2)) => h2,
         _ => &h1,
     };
-    let fit = fit(
+    let fit_settings = FitSettings {
+        f_lo: band.0,
+        f_hi: band.1,
+        max_order: settings.max_order,
+        window_decay_rate: est.as_ref().map_or(0.0, |e| e.window_decay_rate),
+    };
+    let fit = fit(&frequency_hz, h, &fit_settings);
+    let found: Vec<f64> = fit.modes.iter().map(|m| m.frequency_hz).collect();
+    let mut rejected = fit.rejected.clone();
+    rejected.extend(outside_band(
         &frequency_hz,
         h,
-        &FitSettings {
-            f_lo: band.0,
-            f_hi: band.1,
-            max_order: settings.max_order,
-            window_decay_rate: est.as_ref().map_or(0.0, |e| e.window_decay_rate),
-        },
-    );
+        (band, automatic.1),
+        &fit_settings,
+        &found,
+    ));
+    rejected.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
     Ok(FrfAnalysis {
         files,
         frequency_hz,
@@ -172,6 +226,8 @@ pub fn analyse(
         estimate: est,
         settings,
         band,
+        band_end,
         fit,
+        rejected,
     })
 }

@@ -32,6 +32,12 @@
 //! |R_r|/|Re s_r| is under 1 % of the band's largest |H| are noise and
 //! left out.
 //!
+//! **No silent loss.** Every group of stable poles that does not become a
+//! mode is kept in [`ModalFit::rejected`] with its reason: the refinement
+//! drove it unstable or to a negative frequency, or its modal peak is under
+//! the 1 % floor. (Modes outside the band are found by
+//! [`super::analysis::analyse`], which fits the rest of the spectrum too.)
+//!
 //! **Exponential window.** Its decay σ_w (see [`super::window`]) is added
 //! back to every pole, Re s_r += σ_w, before f and ζ are computed.
 
@@ -85,10 +91,45 @@ pub struct FittedMode {
     pub magnitude: f64,
 }
 
+/// Why a pole stable over the orders is not among the modes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RejectReason {
+    /// Stable in a fit of the spectrum outside the band.
+    OutsideBand,
+    /// Its modal peak |R|/|Re s| is under 1 % of the band's largest |H|.
+    BelowNoiseFloor,
+    /// The nonlinear refinement made it unstable or moved it off the
+    /// positive frequencies.
+    FailedRefinement,
+}
+
+impl RejectReason {
+    /// The reason in words.
+    pub fn describe(self) -> &'static str {
+        match self {
+            RejectReason::OutsideBand => "outside the fit band",
+            RejectReason::BelowNoiseFloor => "modal peak under 1 % of the band's largest |H|",
+            RejectReason::FailedRefinement => "failed the refinement",
+        }
+    }
+}
+
+/// A pole stable over the orders that is not a mode, with its reason.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct RejectedPole {
+    /// Undamped natural frequency, Hz (window-corrected).
+    pub frequency_hz: f64,
+    pub damping_ratio: f64,
+    pub reason: RejectReason,
+}
+
 /// Result of [`fit`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModalFit {
     pub modes: Vec<FittedMode>,
+    /// Stable poles that are not modes (module doc).
+    pub rejected: Vec<RejectedPole>,
     pub diagram: Vec<DiagramPole>,
     /// Residual terms U (FRF unit) and L (FRF unit × 1/s²).
     pub upper_residual: f64,
@@ -197,6 +238,7 @@ pub fn fit(frequency_hz: &[f64], h: &[Complex64], settings: &FitSettings) -> Mod
         .collect();
     let mut result = ModalFit {
         modes: Vec::new(),
+        rejected: Vec::new(),
         diagram: Vec::new(),
         upper_residual: 0.0,
         lower_residual: 0.0,
@@ -289,16 +331,38 @@ pub fn fit(frequency_hz: &[f64], h: &[Complex64], settings: &FitSettings) -> Mod
         d.damping_ratio = z;
     }
     let needed = all.len().div_ceil(3).max(2).min(all.len());
-    let mut chosen = clusters(&all, needed);
-    refine(&band, &mut chosen);
-    chosen.retain(|p| p.re < 0.0 && p.im > 0.0);
+    let initial = clusters(&all, needed);
+    let mut refined = initial.clone();
+    refine(&band, &mut refined);
+    let reject = |p: Complex64, reason| {
+        let (frequency_hz, damping_ratio) = physical(p);
+        RejectedPole {
+            frequency_hz,
+            damping_ratio,
+            reason,
+        }
+    };
+    let mut chosen = Vec::with_capacity(refined.len());
+    for (p0, p) in initial.iter().zip(&refined) {
+        if p.re < 0.0 && p.im > 0.0 {
+            chosen.push(*p);
+        } else {
+            result
+                .rejected
+                .push(reject(*p0, RejectReason::FailedRefinement));
+        }
+    }
     let (res, _, _) = residues(&band, &chosen);
-    let kept: Vec<Complex64> = chosen
-        .iter()
-        .zip(&res)
-        .filter(|(p, r)| r.norm() / (-p.re) >= MIN_PEAK * scale)
-        .map(|(p, _)| *p)
-        .collect();
+    let mut kept: Vec<Complex64> = Vec::with_capacity(chosen.len());
+    for (p, r) in chosen.iter().zip(&res) {
+        if r.norm() / (-p.re) >= MIN_PEAK * scale {
+            kept.push(*p);
+        } else {
+            result
+                .rejected
+                .push(reject(*p, RejectReason::BelowNoiseFloor));
+        }
+    }
     let (res, u, l) = residues(&band, &kept);
     result.upper_residual = u;
     result.lower_residual = l;

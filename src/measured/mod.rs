@@ -25,6 +25,7 @@
 //! its quantity (m, m/s or m/s²); an FRF is response per newton.
 
 pub mod analysis;
+pub mod band;
 pub mod csv;
 pub mod decimate;
 pub mod error;
@@ -134,7 +135,17 @@ pub fn read_measurement(path: &Path, channels: &Channels) -> Result<Measurement,
         file: path.to_path_buf(),
         io,
     })?;
-    let text = String::from_utf8_lossy(&bytes);
+    parse_measurement(path, &bytes, channels)
+}
+
+/// [`read_measurement`] on the bytes of a file already read; `path` names
+/// it in messages.
+pub fn parse_measurement(
+    path: &Path,
+    bytes: &[u8],
+    channels: &Channels,
+) -> Result<Measurement, MeasuredError> {
+    let text = String::from_utf8_lossy(bytes);
     let first = text.lines().map(str::trim).find(|l| !l.is_empty());
     let m = match first {
         None => {
@@ -142,7 +153,7 @@ pub fn read_measurement(path: &Path, channels: &Channels) -> Result<Measurement,
                 file: path.to_path_buf(),
             })
         }
-        Some("-1") => uff::measurement_from_uff(path, &bytes, channels)?,
+        Some("-1") => uff::measurement_from_uff(path, bytes, channels)?,
         Some(_) => Measurement::Time(csv::parse_csv(path, &text, channels)?),
     };
     if let Measurement::Time(r) = &m {

@@ -237,6 +237,9 @@ impl Model {
                         Problem::UnknownId {
                             kind: "rigid body",
                             id: id.clone(),
+                            available: crate::error::Ids::of(
+                                self.rigid_bodies.iter().map(|b| &b.id),
+                            ),
                         },
                     )
                 }),

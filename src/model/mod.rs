@@ -5,11 +5,13 @@
 mod contact;
 mod placement;
 mod rigid;
+pub mod sanity;
 mod types;
 pub mod validate;
 
 pub use contact::*;
 pub use placement::Placement;
+pub use sanity::UnitWarning;
 pub use types::*;
 pub use validate::PointTarget;
 

@@ -86,6 +86,10 @@ pub struct Material {
     pub young: f64,
     /// Density [SI: kg/m³].
     pub density: f64,
+    /// Poisson's ratio ν [–], for the shear modulus G = E/(2(1 + ν)) of
+    /// the beam-theory estimate (0.3 when left out).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub poisson: Option<f64>,
 }
 
 /// A planar rigid body; its reference point is its centre of mass.

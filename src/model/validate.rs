@@ -3,7 +3,7 @@
 //! (e.g. `joints[1].b.s`), so a user can go straight to the offending value.
 
 use super::types::*;
-use crate::error::Problem;
+use crate::error::{Ids, Problem};
 
 /// Two joint points closer than this [SI: m] coincide.
 pub const COINCIDENCE_TOLERANCE: f64 = 1e-9;
@@ -137,6 +137,7 @@ impl Model {
                     Problem::UnknownId {
                         kind: "beam",
                         id: id.clone(),
+                        available: Ids::of(self.beams.iter().map(|b| &b.id)),
                     },
                 )
             })?;
@@ -210,6 +211,12 @@ impl Model {
             Problem::UnknownId {
                 kind: "rigid body or point mass",
                 id: id.clone(),
+                available: Ids::of(
+                    self.rigid_bodies
+                        .iter()
+                        .map(|b| &b.id)
+                        .chain(self.point_masses.iter().map(|p| &p.id)),
+                ),
             },
         )
     }
@@ -245,6 +252,19 @@ impl Model {
             check_positive(b.section.width, &format!("{p}.section.width"))?;
             check_positive(b.material.young, &format!("{p}.material.young"))?;
             check_positive(b.material.density, &format!("{p}.material.density"))?;
+            if let Some(nu) = b.material.poisson {
+                // An isotropic solid has −1 < ν ≤ 0.5.
+                if !(nu > -1.0 && nu <= 0.5) {
+                    return Err((
+                        format!("{p}.material.poisson"),
+                        Problem::OutOfRange {
+                            value: nu,
+                            min: -1.0,
+                            max: 0.5,
+                        },
+                    ));
+                }
+            }
         }
         for (i, r) in self.rigid_bodies.iter().enumerate() {
             let p = format!("rigid_bodies[{i}]");

@@ -83,7 +83,7 @@ pub fn frf_table(a: &FrfAnalysis, q: ResponseQuantity) -> String {
             "{} hit(s) of {} samples at {} Hz ({:.4} s, Δf = {:.4} Hz), {} window",
             e.averages,
             e.samples,
-            e.sample_rate_hz,
+            crate::output::number::significant(e.sample_rate_hz, 7),
             e.samples as f64 / e.sample_rate_hz,
             e.df(),
             e.window
@@ -98,10 +98,26 @@ pub fn frf_table(a: &FrfAnalysis, q: ResponseQuantity) -> String {
         a.band.1,
         a.fit.settings.max_order
     );
+    let _ = writeln!(s, "the band ends {}", a.band_end.describe());
     if a.fit.modes.is_empty() {
         let _ = writeln!(s, "no stable mode found in the band");
-        return s;
+    } else {
+        mode_rows(&mut s, a);
     }
+    for r in &a.rejected {
+        let _ = writeln!(
+            s,
+            "not reported: a stable pole at {:.3} Hz, ζ {:.4} %: {}",
+            r.frequency_hz,
+            100.0 * r.damping_ratio,
+            r.reason.describe()
+        );
+    }
+    s
+}
+
+/// The table rows of the identified modes.
+fn mode_rows(s: &mut String, a: &FrfAnalysis) {
     let _ = writeln!(
         s,
         "{:>4}  {:>14}  {:>15}  {:>12}",
@@ -126,7 +142,6 @@ pub fn frf_table(a: &FrfAnalysis, q: ResponseQuantity) -> String {
             );
         }
     }
-    s
 }
 
 /// The JSON document of `frf --json` (DESIGN §9 keys).
@@ -144,6 +159,7 @@ pub fn frf_json(a: &FrfAnalysis, q: ResponseQuantity, model_sha256: Option<&str>
         "frf_unit": q.frf_unit(),
         "estimator": a.settings.estimator.name(),
         "band_hz": [a.band.0, a.band.1],
+        "band_end": a.band_end.key(),
         "method": "LSCF (z-domain common denominator) with stabilization, poles refined by nonlinear least squares",
         "frequency_hz": a.frequency_hz,
         "h1": a.h1.iter().map(pair).collect::<Vec<_>>(),
@@ -154,6 +170,12 @@ pub fn frf_json(a: &FrfAnalysis, q: ResponseQuantity, model_sha256: Option<&str>
             "damping_ratio": m.damping_ratio,
             "magnitude": m.magnitude,
             "residue": [m.residue.re, m.residue.im],
+        })).collect::<Vec<_>>(),
+        "rejected": a.rejected.iter().map(|r| json!({
+            "frequency_hz": r.frequency_hz,
+            "damping_ratio": r.damping_ratio,
+            "reason": r.reason,
+            "why": r.reason.describe(),
         })).collect::<Vec<_>>(),
         "stabilization": a.fit.diagram,
     })

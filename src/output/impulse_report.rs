@@ -1,6 +1,6 @@
 //! Impulse results as a table, a JSON document and CSV.
 
-use crate::analysis::impulse::ImpulseResult;
+use crate::analysis::impulse::{Excitation, ImpulseResult};
 use crate::reference::Errors;
 use serde_json::{json, Value};
 use std::fmt::Write;
@@ -25,11 +25,20 @@ pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f
     );
     let _ = writeln!(
         s,
+        "{}: {}",
+        match r.excitation {
+            Excitation::HalfSine => "hammer (half-sine loads)",
+            Excitation::Step => "excitation: the step loads (the model has no half-sine load)",
+        },
+        r.excitation_loads.join(", ")
+    );
+    let _ = writeln!(
+        s,
         "sensor `{}` ({:?}), {} samples at {} Hz, {} window",
         r.sensor,
         r.quantity,
         r.signal.len(),
-        r.sample_rate_hz,
+        crate::output::number::significant(r.sample_rate_hz, 7),
         r.spectrum.window.name()
     );
     let _ = writeln!(s, "spectrum peaks:");
@@ -112,6 +121,8 @@ pub fn impulse_json(model_name: &str, r: &ImpulseResult, reference_hz: Option<f6
         .map(|(f, e)| Errors::new(f.corrected_hz, e));
     json!({
         "model": model_name,
+        "excitation": r.excitation,
+        "excitation_loads": r.excitation_loads,
         "first_bending_hz": fb.map(|f| f.corrected_hz),
         "first_bending_raw_hz": fb.map(|f| f.raw_hz),
         "eigen_first_bending_hz": fb.map(|f| f.eigen_hz),

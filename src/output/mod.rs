@@ -7,6 +7,7 @@ pub mod frf_report;
 pub mod impulse_report;
 pub mod modal_report;
 pub mod modal_uff;
+pub mod number;
 pub mod plot;
 pub mod provenance;
 pub mod records_uff;

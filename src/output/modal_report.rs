@@ -28,8 +28,8 @@ pub fn modal_table(model_name: &str, r: &ModalResult) -> String {
     );
     let _ = writeln!(
         s,
-        "{:>5}  {:>14}  {:<8}  {:>7}  {:>7}  {:>7}  {:>11}",
-        "mode", "frequency [Hz]", "kind", "bend %", "axial %", "sprg %", "error bound"
+        "{:>5}  {:>14}  {:<8}  {:>7}  {:>7}  {:>7}  {:>11}  {:>7}",
+        "mode", "frequency [Hz]", "kind", "bend %", "axial %", "sprg %", "error bound", "shear %"
     );
     for m in &r.modes {
         if m.kind.is_zero() {
@@ -38,16 +38,20 @@ pub fn modal_table(model_name: &str, r: &ModalResult) -> String {
             let bound = m
                 .error_bound
                 .map_or(String::from("-"), |b| format!("{b:.1e}"));
+            let shear = m
+                .shear_estimate
+                .map_or(String::from("-"), |e| format!("{:+.2}", 100.0 * e));
             let _ = writeln!(
                 s,
-                "{:>5}  {:>14.3}  {:<8}  {:>7.2}  {:>7.2}  {:>7.2}  {:>11}",
+                "{:>5}  {:>14.3}  {:<8}  {:>7.2}  {:>7.2}  {:>7.2}  {:>11}  {:>7}",
                 m.index,
                 m.frequency_hz,
                 m.kind,
                 100.0 * m.energy.bending,
                 100.0 * m.energy.axial,
                 100.0 * m.energy.springs,
-                bound
+                bound,
+                shear
             );
         }
     }

@@ -152,6 +152,7 @@ mod tests {
             mac: None,
             modes: None,
             node0: None,
+            warnings: Vec::new(),
         };
         let d = SweepDocument {
             model: "m".into(),
@@ -170,6 +171,7 @@ mod tests {
             shard: None,
             tool_version: None,
             model_sha256: None,
+            warnings: Vec::new(),
             points: vec![
                 point(0, Some(4600.0), None),
                 point(1, None, Some("x, \"y\"")),

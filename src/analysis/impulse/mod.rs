@@ -11,6 +11,14 @@
 //! ([`super::dispersion::GenAlpha::true_frequency_from_observed`]); both
 //! the raw and the corrected values are reported.
 //!
+//! **The hammer** is the model's half-sine loads (all of them; the force
+//! record is the sum of their magnitudes, and `amplitude`/`duration`
+//! override theirs). A model without one is excited by its step loads, and
+//! the result says so ([`Excitation::Step`]); a model with neither is an
+//! error that names its other time-varying loads: a released preload is
+//! not a hammer blow. Every load still acts as the model says (constant,
+//! stepped or released); only the force record is the excitation's.
+//!
 //! The sensor is read at every step and, with a sample rate, resampled
 //! behind an anti-aliasing low-pass (band-limited interpolation,
 //! [`crate::measured::decimate`]), as an acquisition system filters before
@@ -46,12 +54,19 @@ pub enum ImpulseError {
     Dispersion(#[from] DispersionError),
     #[error("the model has no sensor to record (add one under `sensors`)")]
     NoSensor,
-    #[error("the model has no sensor `{id}`")]
-    UnknownSensor { id: String },
-    #[error("the model has no time-varying load to excite it (add a `half_sine` or `step` load)")]
+    #[error("the model has no sensor `{id}` (its sensors: {available})")]
+    UnknownSensor {
+        id: String,
+        available: crate::error::Ids,
+    },
+    #[error(
+        "the model has no time-varying load to excite it (add a `half_sine` load: the hammer)"
+    )]
     NoExcitation,
-    #[error("--amplitude/--duration change half-sine loads, and the model has none")]
-    NoPulseToOverride,
+    #[error("the model has no half-sine load to act as the hammer (nor a step load); its time-varying loads ({others}) are releases, not a hammer blow (add a load with \"time\": {{\"half_sine\": {{\"duration\": …}}}}, or simulate the release as a transient)")]
+    NoHammer { others: crate::error::Ids },
+    #[error("a pulse amplitude or duration applies to half-sine loads, and the model has none (it is excited by its step loads {loads})")]
+    NoPulseToOverride { loads: crate::error::Ids },
     #[error("the pulse amplitude must be finite and non-zero, got {value} N")]
     InvalidAmplitude { value: f64 },
     #[error("sample rate {rate} Hz must be positive and at most 1/step = {} Hz", 1.0 / .step)]
@@ -60,6 +75,58 @@ pub enum ImpulseError {
         "the pulse lasts {duration} s, shorter than two steps of {step} s: it cannot be resolved"
     )]
     PulseTooShort { duration: f64, step: f64 },
+}
+
+/// Which loads excite the experiment (module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Excitation {
+    /// The half-sine loads: the hammer.
+    HalfSine,
+    /// The step loads, for a model without a half-sine load.
+    Step,
+}
+
+impl Excitation {
+    fn matches(self, time: &TimeFunction) -> bool {
+        match self {
+            Excitation::HalfSine => matches!(time, TimeFunction::HalfSine { .. }),
+            Excitation::Step => matches!(time, TimeFunction::Step { .. }),
+        }
+    }
+}
+
+/// The excitation of `model` and its loads' names (id, or `loads[i]`).
+pub fn excitation(model: &Model) -> Result<(Excitation, Vec<String>), ImpulseError> {
+    let name = |i: usize| {
+        model.loads[i]
+            .id
+            .clone()
+            .unwrap_or_else(|| format!("loads[{i}]"))
+    };
+    let of = |kind: Excitation| -> Vec<String> {
+        (0..model.loads.len())
+            .filter(|&i| kind.matches(&model.loads[i].time))
+            .map(name)
+            .collect()
+    };
+    for kind in [Excitation::HalfSine, Excitation::Step] {
+        let loads = of(kind);
+        if !loads.is_empty() {
+            return Ok((kind, loads));
+        }
+    }
+    let others: Vec<String> = (0..model.loads.len())
+        .filter(|&i| !matches!(model.loads[i].time, TimeFunction::Constant))
+        .map(name)
+        .collect();
+    if others.is_empty() {
+        Err(ImpulseError::NoExcitation)
+    } else {
+        Err(ImpulseError::NoHammer {
+            others: crate::error::Ids(others),
+        })
+    }
 }
 
 /// Settings of the impulse experiment.
@@ -120,6 +187,9 @@ impl FirstBending {
 /// Everything the experiment produced.
 #[derive(Debug, Clone)]
 pub struct ImpulseResult {
+    /// What excited the model, and the loads (the hammer: half-sine).
+    pub excitation: Excitation,
+    pub excitation_loads: Vec<String>,
     pub sensor: String,
     pub quantity: SensorQuantity,
     /// Sample times [SI: s] and sensor values [SI: m, m/s or m/s²].
@@ -143,10 +213,8 @@ pub struct ImpulseResult {
 /// Apply the command-line overrides to the model's pulse loads.
 fn with_overrides(model: &Model, s: &ImpulseSettings) -> Result<Model, ImpulseError> {
     let mut m = model.clone();
-    let mut pulses = 0;
     for load in m.loads.iter_mut() {
         if let TimeFunction::HalfSine { duration } = &mut load.time {
-            pulses += 1;
             if let Some(d) = s.duration {
                 *duration = d;
             }
@@ -165,14 +233,11 @@ fn with_overrides(model: &Model, s: &ImpulseSettings) -> Result<Model, ImpulseEr
             return Err(ImpulseError::InvalidAmplitude { value: f0 });
         }
     }
-    if m.loads
-        .iter()
-        .all(|l| matches!(l.time, TimeFunction::Constant))
-    {
-        return Err(ImpulseError::NoExcitation);
-    }
-    if (s.amplitude.is_some() || s.duration.is_some()) && pulses == 0 {
-        return Err(ImpulseError::NoPulseToOverride);
+    let (kind, loads) = excitation(&m)?;
+    if (s.amplitude.is_some() || s.duration.is_some()) && kind != Excitation::HalfSine {
+        return Err(ImpulseError::NoPulseToOverride {
+            loads: crate::error::Ids(loads),
+        });
     }
     Ok(m)
 }
@@ -205,11 +270,12 @@ pub fn run_impulse(
     check_settings(&model, settings)?;
     let system = System::new(&model);
     let point = match &settings.sensor {
-        Some(id) => system
-            .sensors
-            .iter()
-            .find(|s| &s.id == id)
-            .ok_or_else(|| ImpulseError::UnknownSensor { id: id.clone() })?,
+        Some(id) => system.sensors.iter().find(|s| &s.id == id).ok_or_else(|| {
+            ImpulseError::UnknownSensor {
+                id: id.clone(),
+                available: crate::error::Ids::of(system.sensors.iter().map(|s| &s.id)),
+            }
+        })?,
         None => system.sensors.first().ok_or(ImpulseError::NoSensor)?,
     };
     let probe = SensorProbe::new(&system, point);
@@ -231,7 +297,8 @@ pub fn run_impulse(
             progress(done as f64 / total as f64);
         }
     })?;
-    let (time, signal, force) = recorder.finish(|t| pulse_magnitude(&system, t));
+    let (kind, excitation_loads) = excitation(&model)?;
+    let (time, signal, force) = recorder.finish(|t| pulse_magnitude(&system, kind, t));
     let sample_rate_hz = settings.sample_rate.unwrap_or(1.0 / h);
     let spectrum = spectrum::amplitude_spectrum(&signal, sample_rate_hz, &settings.spectrum)?;
     let peaks = spectrum::find_peaks(&spectrum, &settings.peaks);
@@ -240,6 +307,8 @@ pub fn run_impulse(
         .and_then(|band| identify_damping(&force, &signal, sample_rate_hz, &band));
     let frf = spectrum::frf_h1(&force, &signal, sample_rate_hz, &settings.spectrum).ok();
     Ok(ImpulseResult {
+        excitation: kind,
+        excitation_loads,
         sensor: probe.id().to_string(),
         quantity: probe.point.quantity,
         time,
@@ -257,12 +326,12 @@ pub fn run_impulse(
     })
 }
 
-/// Sum of the magnitudes of the time-varying loads at t [SI: N].
-fn pulse_magnitude(system: &System, t: f64) -> f64 {
+/// Sum of the magnitudes of the excitation's loads at t [SI: N].
+fn pulse_magnitude(system: &System, kind: Excitation, t: f64) -> f64 {
     system
         .loads
         .iter()
-        .filter(|l| !matches!(l.time, TimeFunction::Constant))
+        .filter(|l| kind.matches(&l.time))
         .map(|l| l.force_at(t).norm())
         .sum()
 }

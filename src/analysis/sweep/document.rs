@@ -44,6 +44,10 @@ pub struct SweepDocument {
     pub tool_version: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub model_sha256: Option<String>,
+    /// The run's warnings (set by the command line): the model's unit
+    /// warnings and those of the points.
+    #[serde(default)]
+    pub warnings: Vec<String>,
     pub points: Vec<PointRecord>,
 }
 
@@ -96,6 +100,10 @@ pub struct PointRecord {
     /// parameter).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub node0: Option<Trace>,
+    /// Unit-sanity warnings of the model at this point
+    /// ([`crate::model::UnitWarning`]), as text.
+    #[serde(default)]
+    pub warnings: Vec<String>,
 }
 
 /// What every point of a sweep shares.
@@ -137,6 +145,8 @@ pub struct RawPoint {
     pub values: Vec<f64>,
     /// The evaluation, or the error message.
     pub outcome: Result<Evaluation, String>,
+    /// Unit-sanity warnings of the model at this point, as text.
+    pub warnings: Vec<String>,
 }
 
 /// The points a run computed (all, or one shard's).
@@ -176,6 +186,7 @@ impl SweepRun {
             }),
             tool_version: None,
             model_sha256: None,
+            warnings: Vec::new(),
             points,
         }
     }
@@ -218,6 +229,7 @@ fn record(p: &RawPoint, tracked: Option<&[Option<TrackedMode>]>) -> PointRecord 
         mac: tracked.map(mac),
         modes: None,
         node0: p.outcome.as_ref().ok().and_then(|e| e.trace.clone()),
+        warnings: p.warnings.clone(),
     }
 }
 
@@ -314,6 +326,7 @@ pub fn merge(shards: &[(String, SweepDocument)]) -> Result<SweepRun, SweepError>
                 index: r.index,
                 values: r.values.clone(),
                 outcome,
+                warnings: r.warnings.clone(),
             };
             slots[r.index] = Some((point, file.as_str()));
         }

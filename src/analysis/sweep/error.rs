@@ -149,8 +149,11 @@ pub enum PointError {
     TooFewModes { wanted: usize, available: usize },
     #[error("the tracked point does not travel {distance:e} m within {end_time:e} s")]
     NotReached { distance: f64, end_time: f64 },
-    #[error("no sensor `{id}` in the model")]
-    UnknownSensor { id: String },
+    #[error("no sensor `{id}` in the model (its sensors: {available})")]
+    UnknownSensor {
+        id: String,
+        available: crate::error::Ids,
+    },
     #[error("{0}")]
     Simulation(#[from] crate::error::SimulationError),
 }

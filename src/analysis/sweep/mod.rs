@@ -183,14 +183,19 @@ impl Sweep {
             end_time: self.settings.end_time,
             keep_trace: self.grid.shape().len() == 1,
         };
+        let mut warnings = Vec::new();
         let outcome = self
             .model_at(&values)
-            .and_then(|m| evaluate(&self.settings.quantity, &m, &eval))
+            .and_then(|m| {
+                warnings = m.unit_warnings().iter().map(|w| w.to_string()).collect();
+                evaluate(&self.settings.quantity, &m, &eval)
+            })
             .map_err(|e| e.to_string());
         RawPoint {
             index,
             values,
             outcome,
+            warnings,
         }
     }
 

@@ -252,7 +252,10 @@ pub fn evaluate(
                 .sensors
                 .iter()
                 .position(|s| &s.id == sensor)
-                .ok_or_else(|| PointError::UnknownSensor { id: sensor.clone() })?;
+                .ok_or_else(|| PointError::UnknownSensor {
+                    id: sensor.clone(),
+                    available: crate::error::Ids::of(system.sensors.iter().map(|s| &s.id)),
+                })?;
             let defaults = SwitchOffSettings::default();
             let sim = simulate(
                 System::new(model),

@@ -1,0 +1,175 @@
+//! Unit sanity warnings (DESIGN §10): a beam with h/L > 0.1, E outside
+//! 1e5–1e13 Pa, ρ outside 10–25,000 kg/m³ or √(E/ρ) outside 5–20,000 m/s
+//! gives one `warning:` line on stderr and an entry of the JSON document's
+//! `warnings`, and never changes the exit code; a sweep records them per
+//! point. The shipped models give none.
+//!
+//! The cases are the issue's: a relay leaf of L = 18 mm, h = 0.3 mm,
+//! E = 127 GPa, ρ = 8940 kg/m³ (copper alloy) with the height typed as
+//! 0.3 (millimetres meant: h/L = 16.7), E typed in megapascals
+//! (127e3, caught by its wave speed) and ρ in g/cm³ (8.94).
+
+use assert_cmd::cargo::cargo_bin_cmd;
+use serde_json::{json, Value};
+use std::path::Path;
+
+/// The leaf, clamped at s = 0, with the height, E and ρ given.
+fn leaf(height: f64, young: f64, density: f64) -> Value {
+    json!({
+        "name": "leaf",
+        "beams": [{
+            "id": "leaf", "start": [0.0, 0.0], "angle_deg": 0.0, "length": 0.018,
+            "elements": 6,
+            "section": {"height": height, "width": 3e-3},
+            "material": {"young": young, "density": density}
+        }],
+        "joints": [{"type": "weld", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "leaf", "s": 0.0}}]
+    })
+}
+
+/// Runs the tool on `model` written to a temp dir; (exit code, stdout,
+/// stderr).
+fn run(model: &Value, args: &[&str]) -> (Option<i32>, String, String) {
+    let dir = tempfile::tempdir().expect("a temp dir");
+    let path = dir.path().join("leaf.json");
+    std::fs::write(&path, model.to_string()).unwrap();
+    run_on(&path, args)
+}
+
+fn run_on(path: &Path, args: &[&str]) -> (Option<i32>, String, String) {
+    let out = cargo_bin_cmd!("ancf-modal")
+        .args(&args[..1])
+        .arg(path)
+        .args(&args[1..])
+        .output()
+        .expect("the binary runs");
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// `modal --json` of `model`: asserts exit 0 and returns the `warnings`
+/// of the document and the `warning:` lines of stderr.
+fn modal_warnings(model: &Value) -> (Vec<String>, Vec<String>) {
+    let (code, stdout, stderr) = run(model, &["modal", "--json", "--modes", "3"]);
+    assert_eq!(code, Some(0), "a warning never fails the run: {stderr}");
+    let doc: Value = serde_json::from_str(&stdout).expect("JSON on stdout");
+    let in_json = doc["warnings"]
+        .as_array()
+        .expect("`warnings` is an array in every --json")
+        .iter()
+        .map(|w| w.as_str().expect("warnings are text").to_string())
+        .collect();
+    let lines = stderr
+        .lines()
+        .filter(|l| l.starts_with("warning: "))
+        .map(String::from)
+        .collect();
+    (in_json, lines)
+}
+
+#[test]
+fn a_plausible_leaf_gives_no_warning() {
+    let (json, lines) = modal_warnings(&leaf(0.3e-3, 127e9, 8940.0));
+    assert!(json.is_empty(), "no warning: {json:?}");
+    assert!(lines.is_empty(), "no warning line: {lines:?}");
+}
+
+#[test]
+fn the_height_in_millimetres_asks_for_metres() {
+    let (json, lines) = modal_warnings(&leaf(0.3, 127e9, 8940.0));
+    assert_eq!(json.len(), 1, "one warning: {json:?}");
+    assert_eq!(lines.len(), 1, "one line on stderr: {lines:?}");
+    let w = &json[0];
+    // h/L = 0.3 / 0.018.
+    let ratio = format!("{:.3}", 0.3 / 0.018);
+    assert!(
+        w.contains("beams[0].section.height") && w.contains(&ratio) && w.contains("metres"),
+        "names the beam's height, h/L = {ratio} and asks for metres: {w}"
+    );
+    assert!(lines[0].contains(w.as_str()), "the same text on stderr");
+}
+
+#[test]
+fn young_in_kilopascal_scale_and_density_in_grams_ask_for_si_units() {
+    // E = 127e3 Pa (MPa meant) is inside 1e5–1e13 Pa, but √(E/ρ) =
+    // 3.769 m/s is below 5 m/s.
+    let (json, _) = modal_warnings(&leaf(0.3e-3, 127e3, 8940.0));
+    let speed = format!("{:.3}", (127e3_f64 / 8940.0).sqrt());
+    assert_eq!(json.len(), 1, "{json:?}");
+    assert!(
+        json[0].contains("wave speed") && json[0].contains(&speed) && json[0].contains("SI units"),
+        "{json:?}"
+    );
+    // E = 5e4 Pa is below 1e5 Pa (and √(E/ρ) = 2.4 m/s below 5 m/s).
+    let (json, _) = modal_warnings(&leaf(0.3e-3, 5e4, 8940.0));
+    assert_eq!(json.len(), 2, "{json:?}");
+    assert!(json[0].contains("beams[0].material.young") && json[0].contains("SI units"));
+    let (json, _) = modal_warnings(&leaf(0.3e-3, 127e9, 8.94));
+    // ρ = 8.94 is below 10 kg/m³; √(E/ρ) = 119,000 m/s is above 20,000.
+    assert_eq!(json.len(), 2, "{json:?}");
+    assert!(json[0].contains("beams[0].material.density") && json[0].contains("SI units"));
+    assert!(json[1].contains("wave speed"), "{json:?}");
+}
+
+#[test]
+fn every_shipped_model_is_plausible() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("models");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "json") {
+            continue;
+        }
+        let (code, stdout, stderr) = run_on(&path, &["modal", "--json", "--modes", "4"]);
+        assert_eq!(code, Some(0), "{}: {stderr}", path.display());
+        // Unit warnings ask about metres or SI units (the beam-theory
+        // warning of a mode is another matter).
+        let unit = |w: &str| w.contains("metres?") || w.contains("SI units?");
+        assert!(!stderr.lines().any(unit), "{}: {stderr}", path.display());
+        let doc: Value = serde_json::from_str(&stdout).unwrap();
+        let warnings = doc["warnings"].as_array().expect("a warnings array");
+        assert!(
+            !warnings.iter().any(|w| unit(w.as_str().unwrap())),
+            "{}: {warnings:?}",
+            path.display()
+        );
+        seen += 1;
+    }
+    assert!(seen >= 5, "the shipped models were found ({seen})");
+}
+
+#[test]
+fn a_sweep_records_the_warnings_per_point() {
+    // Heights 0.3 mm, 1.2 mm, 2.1 mm: h/L = 0.017, 0.067, 0.117; only the
+    // last is above 0.1.
+    let (code, stdout, stderr) = run(
+        &leaf(0.3e-3, 127e9, 8940.0),
+        &[
+            "sweep",
+            "--param",
+            "height=0.3e-3:2.1e-3:3",
+            "--quantity",
+            "first_bending_hz",
+            "--json",
+        ],
+    );
+    assert_eq!(code, Some(0), "{stderr}");
+    let doc: Value = serde_json::from_str(&stdout).unwrap();
+    let points = doc["points"].as_array().unwrap();
+    let counts: Vec<usize> = points
+        .iter()
+        .map(|p| p["warnings"].as_array().expect("per-point warnings").len())
+        .collect();
+    assert_eq!(counts, [0, 0, 1], "{points:?}");
+    assert_eq!(
+        stderr
+            .lines()
+            .filter(|l| l.starts_with("warning: "))
+            .count(),
+        1,
+        "one line for the one point: {stderr}"
+    );
+}
