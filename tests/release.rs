@@ -68,6 +68,7 @@ fn run(m: &Model, end_time: f64) -> (Vec<f64>, Vec<f64>) {
         },
         from_equilibrium: true,
         sample_rate: 0.0,
+        keep_partial: false,
     };
     let sim = simulate(sys, &[anchor], &settings).unwrap();
     let [x, _] = sim.step_points.into_iter().next().unwrap();

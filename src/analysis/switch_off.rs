@@ -66,6 +66,10 @@ impl Default for SwitchOffSettings {
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct SwitchOffRun {
     pub time_to_distance_s: Option<f64>,
+    /// When the integration failed after the tracked point had reached
+    /// its distance: the last time reached [SI: s] (the samples end
+    /// there); `None` for a run to the end time.
+    pub ended_at_s: Option<f64>,
     pub time_s: Vec<f64>,
     /// Absolute coordinates of the tracked point [SI: m].
     pub x_m: Vec<f64>,
@@ -123,6 +127,7 @@ impl SwitchOffSettings {
             },
             from_equilibrium: true,
             sample_rate: self.sample_rate,
+            keep_partial: true,
         }
     }
 }
@@ -178,8 +183,16 @@ fn run_one(
         dir,
         settings.distance,
     );
+    // A failure before the point reached its distance loses the result; a
+    // later one ends the run where it stopped.
+    let ended_at_s = match (sim.failure, time_to) {
+        (None, _) => None,
+        (Some(_), Some(_)) => sim.step_time.last().copied(),
+        (Some(e), None) => return Err(e.into()),
+    };
     let [xs, ys] = sim.points.into_iter().next().expect("one tracked point");
     Ok(SwitchOffRun {
+        ended_at_s,
         time_to_distance_s: time_to,
         time_s: sim.time,
         x_m: xs,
