@@ -154,7 +154,10 @@ pub fn simulate(
     let sys = &sys;
     let mut integ = Integrator::new(sys, settings.transient)?;
     let (mut state, static_iterations) = match start {
-        Some(eq) => (integ.state_at(eq.q, vec![0.0; n])?, eq.iterations),
+        Some(eq) => (
+            integ.state_after_release(eq.q, vec![0.0; n])?,
+            eq.iterations,
+        ),
         None => (integ.initial_state()?, 0),
     };
     let probes: Vec<SensorProbe> = sys
