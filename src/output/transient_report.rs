@@ -6,8 +6,8 @@
 //! `energy`. The CSV has a column `contact_<id>_force_n` per contact.
 
 use crate::analysis::simulate::{Simulation, SimulationSettings};
-use crate::load::PointLoad;
-use crate::model::{SensorQuantity, TimeFunction};
+use crate::load::load_magnitudes;
+use crate::model::SensorQuantity;
 use crate::output::plot::{Legend, LineFigure, Panel, Scale, Series};
 use crate::output::records_uff::{records_uff, Record, RecordKind};
 use serde_json::{json, Map, Value};
@@ -80,20 +80,6 @@ pub fn transient_table(model: &str, settings: &SimulationSettings, sim: &Simulat
         );
     }
     s
-}
-
-/// The force magnitude |F₀|·f(t) [SI: N] at the times `time` of every
-/// time-varying load (released loads and supports among them), by label.
-pub fn load_magnitudes<'a>(loads: &'a [PointLoad], time: &[f64]) -> Vec<(&'a str, Vec<f64>)> {
-    loads
-        .iter()
-        .filter(|l| !matches!(l.time, TimeFunction::Constant))
-        .map(|l| {
-            let f0 = l.force.norm();
-            let v = time.iter().map(|&t| f0 * l.time.value(t)).collect();
-            (l.label.as_str(), v)
-        })
-        .collect()
 }
 
 /// UFF 58 time data of a run sampled at a uniform rate: the force
