@@ -1,0 +1,90 @@
+//! The switch-off's ON state over the design space of DESIGN §7: the
+//! torsional stiffness c_t 0.2–1000 N m/rad, the spring's ground point
+//! ±2 mm, the pre-stress (F_x² and the spring's preload together)
+//! × 0.5–3, the pad contact's stiffness 1e8–1e11 N/m^1.5, one at a time
+//! from the built-in model. Each must find its equilibrium with the pad
+//! against the fixed contact. Closed forms: with everything else fixed the
+//! pad force comes from the balance of the assembly about the pin, so it
+//! does not depend on the contact's stiffness, and it scales with the
+//! pre-stress (up to gravity, ~0.02 N, and the small change of geometry).
+
+use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
+use ancf_modal::spring::ForceElement;
+use ancf_modal::{Model, System};
+
+/// Paper, Table 4 [N].
+const PAPER_F_C: f64 = 2.92;
+
+/// The pad force [N] in the ON equilibrium of `m` (0 when the pad is off
+/// the fixed contact).
+fn pad_force(m: &Model) -> f64 {
+    let sys = System::new(m);
+    let eq = solve_equilibrium(&sys, &StaticSettings::default())
+        .unwrap_or_else(|e| panic!("{}: {e}", m.name));
+    let c = sys
+        .contacts
+        .iter()
+        .find(|c| c.label == "fixed_contact")
+        .unwrap_or_else(|| {
+            let labels: Vec<&str> = sys.contacts.iter().map(|c| c.label.as_str()).collect();
+            panic!("{}: contacts {labels:?}", m.name)
+        });
+    c.elastic_force(&eq.q)
+}
+
+fn variant(name: &str, edit: impl Fn(&mut Model)) -> Model {
+    let mut m = Model::switch_off_builtin();
+    m.name = name.to_string();
+    edit(&mut m);
+    m
+}
+
+fn contact_stiffness(m: &mut Model, k: f64) {
+    for c in &mut m.contacts {
+        if let ancf_modal::model::Contact::PointLine { law, .. } = c {
+            law.stiffness = k;
+        }
+    }
+}
+
+#[test]
+fn the_on_state_holds_over_the_design_space() {
+    let reference = pad_force(&Model::switch_off_builtin());
+    assert!(
+        ((reference - PAPER_F_C) / PAPER_F_C).abs() < 0.01,
+        "reference pad force {reference} N vs Table 4's {PAPER_F_C} N"
+    );
+    for ct in [0.2, 1.0, 50.0, 1000.0] {
+        let f = pad_force(&variant(&format!("c_t = {ct}"), |m| {
+            m.joints[0].torsion_stiffness = Some(ct);
+        }));
+        assert!(f > 0.0, "c_t = {ct} N m/rad: the pad is off the contact");
+    }
+    for dy in [-2e-3, -1e-3, 1e-3, 2e-3] {
+        let f = pad_force(&variant(&format!("ground y {dy:+}"), |m| {
+            m.springs[0].a.ground.as_mut().unwrap()[1] += dy;
+        }));
+        assert!(
+            f > 0.0,
+            "spring ground {dy:+} m: the pad is off the contact"
+        );
+    }
+    for k in [1e8, 1e9, 1e11] {
+        let f = pad_force(&variant(&format!("K = {k:e}"), |m| contact_stiffness(m, k)));
+        assert!(
+            ((f - reference) / reference).abs() < 1e-3,
+            "K = {k:e}: pad force {f} N vs {reference} N at 1e10 (statically determinate)"
+        );
+    }
+    for s in [0.5, 1.5, 2.0, 3.0] {
+        let f = pad_force(&variant(&format!("pre-stress × {s}"), |m| {
+            m.loads[0].force[0] *= s;
+            let p = m.springs[0].preload.as_mut().unwrap();
+            *p *= s;
+        }));
+        assert!(
+            ((f / s - reference) / reference).abs() < 0.01,
+            "pre-stress × {s}: pad force {f} N vs {s} × {reference} N"
+        );
+    }
+}
