@@ -187,12 +187,7 @@ fn transient_json_reports_sensors_and_contacts() {
     // the ON state's F_c (Table 4: 2.92 N) and falls to 0 as it opens.
     let pad = &doc["contacts"][1];
     assert_eq!(pad["id"], "fixed_contact");
-    let f: Vec<f64> = pad["force_n"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_f64().unwrap())
-        .collect();
+    let f: Vec<f64> = serde_json::from_value(pad["force_n"].clone()).unwrap();
     assert_eq!(f.len(), n);
     assert!(((f[0] - 2.92) / 2.92).abs() < 0.01, "ON pad force {}", f[0]);
     assert_eq!(*f.last().unwrap(), 0.0, "open after 0.5 ms");
