@@ -7,6 +7,10 @@
 //! pad force comes from the balance of the assembly about the pin, so it
 //! does not depend on the contact's stiffness, and it scales with the
 //! pre-stress (up to gravity, ~0.02 N, and the small change of geometry).
+//! The corners of the box combined are found by continuation in the
+//! design from the built-in one
+//! ([`ancf_modal::analysis::statics::design_path`]), or reported as having
+//! no equilibrium with the pad closed.
 
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf_modal::spring::ForceElement;
@@ -87,4 +91,61 @@ fn the_on_state_holds_over_the_design_space() {
             "pre-stress × {s}: pad force {f} N vs {s} × {reference} N"
         );
     }
+}
+
+/// The built-in model with c_t, the spring's ground offset dy [m], the
+/// pre-stress factor s and the pad contact's K, each a fraction τ of the
+/// way from the built-in value (K and s geometrically).
+fn design(tau: f64, [ct, dy, s, k]: [f64; 4]) -> Model {
+    let base = Model::switch_off_builtin();
+    let ct0 = base.joints[0].torsion_stiffness.unwrap();
+    let geo = |a: f64, b: f64| a * (b / a).powf(tau);
+    variant("corner", |m| {
+        m.joints[0].torsion_stiffness = Some(geo(ct0, ct));
+        m.springs[0].a.ground.as_mut().unwrap()[1] += tau * dy;
+        let scale = geo(1.0, s);
+        m.loads[0].force[0] *= scale;
+        *m.springs[0].preload.as_mut().unwrap() *= scale;
+        contact_stiffness(m, geo(1e10, k));
+    })
+}
+
+#[test]
+fn the_corners_of_the_design_space_are_found_or_have_no_closed_equilibrium() {
+    use ancf_modal::analysis::statics::design_path::{equilibrium_along, DesignPathError};
+    let mut report = Vec::new();
+    for ct in [0.2, 1000.0] {
+        for dy in [-2e-3, 2e-3] {
+            for s in [0.5, 3.0] {
+                let mut forces = Vec::new();
+                for k in [1e8, 1e11] {
+                    let p = [ct, dy, s, k];
+                    let r = equilibrium_along(
+                        |tau| System::new(&design(tau, p)),
+                        &StaticSettings::default(),
+                    );
+                    match r {
+                        Ok((eq, steps)) => {
+                            let sys = System::new(&design(1.0, p));
+                            let c = sys.contacts.iter().find(|c| c.label == "fixed_contact");
+                            let f = c.unwrap().elastic_force(&eq.q);
+                            assert!(f > 0.0, "{p:?}: the pad is off");
+                            forces.push(f);
+                            report.push(format!("{p:?}: pad {f:.4} N ({steps} steps)"));
+                        }
+                        Err(e @ DesignPathError::ContactOpens { .. }) => {
+                            report.push(format!("{p:?}: {e}"));
+                        }
+                        Err(e) => panic!("{p:?}: {e}"),
+                    }
+                }
+                // Statically determinate: the pad force does not depend on
+                // the contact's stiffness.
+                if let [a, b] = forces[..] {
+                    assert!(((a - b) / b).abs() < 1e-3, "{ct} {dy} {s}: {a} vs {b} N");
+                }
+            }
+        }
+    }
+    eprintln!("{}", report.join("\n"));
 }
