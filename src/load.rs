@@ -84,3 +84,17 @@ impl PointLoad {
             .position_hessian_dot(q, self.force_at(t) * scale, out);
     }
 }
+
+/// The force magnitude |F₀|·f(t) [SI: N] at the times `time` of every
+/// time-varying load (released loads and supports among them), by label.
+pub fn load_magnitudes<'a>(loads: &'a [PointLoad], time: &[f64]) -> Vec<(&'a str, Vec<f64>)> {
+    loads
+        .iter()
+        .filter(|l| !matches!(l.time, TimeFunction::Constant))
+        .map(|l| {
+            let f0 = l.force.norm();
+            let v = time.iter().map(|&t| f0 * l.time.value(t)).collect();
+            (l.label.as_str(), v)
+        })
+        .collect()
+}

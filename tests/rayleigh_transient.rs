@@ -210,6 +210,7 @@ fn energy_balance_closes_with_the_damping_dissipation() {
             },
             from_equilibrium: false,
             sample_rate: 0.0,
+            keep_partial: false,
         },
     )
     .unwrap();

@@ -442,25 +442,20 @@ fn cli_bad_flags_are_one_line_errors_naming_the_flag() {
     }
 }
 
-/// Fig. 10's first panel: a larger pre-stress (both released loads and the
-/// spring's preload, scaled together so that the ON state stays in
-/// equilibrium) opens the contact faster.
+/// Fig. 10's first panel: a larger pre-stress (the released F_x² and the
+/// spring's preload, scaled together; the contact force follows from the
+/// ON-state balance) opens the contact faster.
 #[test]
 fn switch_off_time_falls_with_rising_prestress() {
     let m = Model::switch_off_builtin();
     let s = sweep(
         &m,
-        &["load_scale:F_x2,F_c,helical_spring=1:2:3"],
+        &["load_scale:F_x2,helical_spring=1:2:3"],
         "time_to_distance_s",
         1,
     );
     let t = results(&complete(&s));
     assert_eq!(t.len(), 3);
-    assert!(
-        (t[0] - 1.75e-3).abs() < 0.1 * 1.75e-3,
-        "the calibrated point: {:.4e} s",
-        t[0]
-    );
     assert!(
         t[1] < t[0] && t[2] < t[1],
         "time to 2 mm falls with the pre-stress: {t:?}"
@@ -524,7 +519,7 @@ fn switch_off_sweeps_carry_node0_traces_that_cross_2_mm_at_their_time() {
         &m,
         &[
             "joints[hybrid].torsion_stiffness=2:8:2",
-            "load_scale:F_x2,F_c,helical_spring=1:1.5:2",
+            "load_scale:F_x2,helical_spring=1:1.5:2",
         ],
         "time_to_distance_s",
         1,

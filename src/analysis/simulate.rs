@@ -18,7 +18,7 @@ use super::statics::{solve_equilibrium, StaticSettings};
 use super::transient::contacts::ContactStats;
 use super::transient::{Integrator, RunStats, State, TransientSettings};
 use crate::anchor::Anchor;
-use crate::error::SimulationError;
+use crate::error::{SimulationError, TransientError};
 use crate::linalg::vector::dot;
 use crate::system::System;
 
@@ -31,6 +31,11 @@ pub struct SimulationSettings {
     pub from_equilibrium: bool,
     /// Output sample rate [SI: Hz]; 0 keeps every step.
     pub sample_rate: f64,
+    /// When the integration fails (a Newton failure, a singular iteration
+    /// matrix), return what was computed up to the last accepted step with
+    /// the failure in [`Simulation::failure`] instead of an error: the
+    /// caller decides whether the run served its purpose.
+    pub keep_partial: bool,
 }
 
 /// Energies at one time [SI: J].
@@ -83,7 +88,12 @@ pub struct Simulation {
     /// Every step: time and tracked points (for event times).
     pub step_time: Vec<f64>,
     pub step_points: Vec<[Vec<f64>; 2]>,
+    /// What each contact saw, with its normal force at the sample times.
     pub contacts: Vec<ContactStats>,
+    /// The failure that ended the run early (only with
+    /// [`SimulationSettings::keep_partial`]); the samples end at the last
+    /// accepted step, `step_time`'s last entry.
+    pub failure: Option<TransientError>,
     pub energy: EnergyBalance,
     pub stats: RunStats,
     /// Shortest step taken [SI: s].
@@ -145,7 +155,10 @@ pub fn simulate(
     let sys = &sys;
     let mut integ = Integrator::new(sys, settings.transient)?;
     let (mut state, static_iterations) = match start {
-        Some(eq) => (integ.state_at(eq.q, vec![0.0; n])?, eq.iterations),
+        Some(eq) => (
+            integ.state_after_release(eq.q, vec![0.0; n])?,
+            eq.iterations,
+        ),
         None => (integ.initial_state()?, 0),
     };
     let probes: Vec<SensorProbe> = sys
@@ -163,7 +176,8 @@ pub fn simulate(
     let mut work = 0.0;
     let mut last: Option<(f64, f64)> = None;
     let mut min_step = f64::INFINITY;
-    let stats = integ.run(&mut state, |st| {
+    let mut forces: Vec<Vec<f64>> = vec![Vec::new(); sys.contacts.len()];
+    let mut observe = |st: &State, contact_force: &[f64]| {
         let p = load_power(sys, st, &mut scratch);
         if let Some((t0, p0)) = last {
             work += 0.5 * (st.t - t0) * (p + p0);
@@ -179,7 +193,26 @@ pub fn simulate(
             track[0].push(r.x);
             track[1].push(r.y);
         }
-    })?;
+        for (f, &now) in forces.iter_mut().zip(contact_force) {
+            f.push(now);
+        }
+    };
+    // The integrator's `run`, with the contact forces observed and a
+    // failure kept when the caller asks.
+    observe(&state, &integ.contacts.force);
+    let t_end = state.t + settings.transient.steps() as f64 * settings.transient.step;
+    let mut failure = None;
+    while t_end - state.t > 1e-9 * settings.transient.step {
+        match integ.advance(&mut state, t_end) {
+            Ok(()) => observe(&state, &integ.contacts.force),
+            Err(e) if settings.keep_partial && step_time.len() > 1 => {
+                failure = Some(e);
+                break;
+            }
+            Err(e) => return Err(e.into()),
+        }
+    }
+    let stats = integ.stats;
     let end = energies(sys, &gravity, &state);
     let dissipated: f64 = integ.contacts.stats.iter().map(|c| c.dissipated).sum();
     let energy = EnergyBalance {
@@ -209,6 +242,10 @@ pub fn simulate(
         .map(|(p, r)| (p.id().to_string(), sample(r)))
         .collect();
     let sampled: Vec<[Vec<f64>; 2]> = tracks.iter().map(|[x, y]| [sample(x), sample(y)]).collect();
+    let mut contacts = integ.contacts.stats.clone();
+    for (c, f) in contacts.iter_mut().zip(&forces) {
+        c.force_n = sample(f);
+    }
     let count = sample(&step_time).len();
     let time: Vec<f64> = if settings.sample_rate > 0.0 && step_time.len() > 1 {
         (0..count)
@@ -224,7 +261,8 @@ pub fn simulate(
         points: sampled,
         step_time,
         step_points: tracks,
-        contacts: integ.contacts.stats.clone(),
+        contacts,
+        failure,
         energy,
         stats,
         min_step,

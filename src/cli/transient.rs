@@ -76,6 +76,7 @@ pub fn run(args: TransientArgs) -> Result<()> {
         },
         from_equilibrium: args.from_equilibrium,
         sample_rate: args.sample_rate,
+        keep_partial: false,
     };
     settings.transient.validate()?;
     let system = System::new(&model);

@@ -33,7 +33,7 @@ use crate::anchor::Anchor;
 use crate::joint::{Constraint, ConstraintJac, Slider};
 use crate::pair::{Pair, PairGrad, PairHess, PairJac2};
 use crate::spring::ForceElement;
-use law::NormalLaw;
+use law::{NormalForce, NormalLaw};
 use nalgebra::{Matrix2, Vector2};
 
 /// Which kind of contact, with its sizes.
@@ -250,12 +250,15 @@ impl ContactElement {
 
     /// The dissipative force (hysteresis damping beyond F_e, and friction)
     /// at (q, q̇), `qd` in local coordinates, with the impact speed
-    /// `impact` [SI: m/s]; `false` when the contact is open.
+    /// `impact` [SI: m/s]; `false` when the contact is open. `impact` is
+    /// `None` for a contact closed since the start that has not separated
+    /// yet (a pre-stressed contact has had no impact): its normal force is
+    /// the elastic F_e alone, so only friction (on F_e) remains.
     pub fn dissipation(
         &self,
         q: &[f64],
         qd: &PairGrad,
-        impact: f64,
+        impact: Option<f64>,
         out: &mut Dissipation,
     ) -> bool {
         let mut hess = PairHess::zeros();
@@ -266,12 +269,17 @@ impl ContactElement {
             return false;
         }
         let rate = g.grad.dot(qd);
-        let r = self.law.dissipative(g.delta, rate, impact);
+        let (r, total) = match impact {
+            Some(w) => (
+                self.law.dissipative(g.delta, rate, w),
+                self.law.total(g.delta, rate, w),
+            ),
+            None => (NormalForce::default(), self.law.elastic(g.delta)),
+        };
         let outer = g.grad * g.grad.transpose();
         out.force = g.grad * r.force;
         out.dv = outer * r.d_rate;
         out.dq = outer * r.d_delta + hess * r.force + g.grad * (hess * qd).transpose() * r.d_rate;
-        let total = self.law.total(g.delta, rate, impact);
         out.normal_force = total.force;
         if let Some((mu, vs)) = self.friction {
             if total.force > 0.0 && mu > 0.0 {

@@ -1,9 +1,13 @@
 //! Text, JSON and CSV of the switch-off experiment. JSON keys follow
-//! DESIGN §7: `model`, `distance_m`, `time_to_distance_s` (null when not
-//! reached), `node0` {`time_s`, `x_m`, `y_m`} (absolute coordinates),
-//! `max_penetration_m`, `energy`, `rigid` (the same for the rigid model, or
-//! null), plus the half-step check, the departure time and the paper's
-//! values.
+//! DESIGN §7: `model`, `tracked_point` (its name), `distance_m`,
+//! `time_to_distance_s` (null when not reached), `ended_at_s` (null unless
+//! the run failed after the distance), `node0` {`time_s`, `x_m`, `y_m`}
+//! (the tracked point's absolute coordinates [SI: m]), `max_penetration_m`,
+//! `contacts` [{…, `force_n`}] and `released_loads` {label: [N]} at the
+//! sample times, `energy`, `rigid` (the same for the rigid model with its
+//! `departure_s`, or null), `calibrated` [{`name`, `value`, `target`}]
+//! (empty: a prediction), `warnings`, the half-step check, and `paper`
+//! (the paper's values; null unless the model is the built-in one).
 
 use crate::analysis::switch_off::{SwitchOffResult, SwitchOffRun, DEPARTURE_FRACTION};
 use serde_json::{json, Value};
@@ -20,6 +24,8 @@ fn run_json(run: &SwitchOffRun) -> Value {
         "node0": {"time_s": run.time_s, "x_m": run.x_m, "y_m": run.y_m},
         "max_penetration_m": run.max_penetration_m,
         "contacts": run.contacts,
+        "released_loads": run.released_loads.iter().map(|(k, v)| (k.clone(), json!(v))).collect::<serde_json::Map<String, Value>>(),
+        "ended_at_s": run.ended_at_s,
         "energy": run.energy,
         "steps": run.steps,
         "newton_iterations": run.newton_iterations,
@@ -32,6 +38,9 @@ pub fn switch_off_json(r: &SwitchOffResult) -> Value {
     let mut doc = run_json(&r.flexible);
     let o = doc.as_object_mut().expect("an object");
     o.insert("model".into(), json!(r.model));
+    o.insert("tracked_point".into(), json!(r.point_label));
+    o.insert("calibrated".into(), json!(r.calibrated));
+    o.insert("warnings".into(), json!(r.warnings));
     o.insert("distance_m".into(), json!(r.settings.distance));
     o.insert("direction".into(), json!(r.settings.direction));
     o.insert("step_s".into(), json!(r.settings.step));
@@ -41,15 +50,18 @@ pub fn switch_off_json(r: &SwitchOffResult) -> Value {
         "half_step_time_to_distance_s".into(),
         json!(r.half_step_time_s),
     );
-    o.insert(
-        "rigid".into(),
-        r.rigid.as_ref().map_or(Value::Null, run_json),
-    );
-    o.insert("rigid_departure_s".into(), json!(r.departure_s));
-    o.insert(
-        "paper".into(),
-        json!({"time_to_distance_s": PAPER_TIME_TO_2MM_S, "rigid_departure_s": PAPER_RIGID_DEPARTURE_S}),
-    );
+    let rigid = r.rigid.as_ref().map_or(Value::Null, |run| {
+        let mut v = run_json(run);
+        v["departure_s"] = json!(r.departure_s);
+        v
+    });
+    o.insert("rigid".into(), rigid);
+    let paper = if r.builtin {
+        json!({"time_to_distance_s": PAPER_TIME_TO_2MM_S, "rigid_departure_s": PAPER_RIGID_DEPARTURE_S})
+    } else {
+        Value::Null
+    };
+    o.insert("paper".into(), paper);
     doc
 }
 
@@ -66,24 +78,38 @@ pub fn switch_off_table(r: &SwitchOffResult) -> String {
     let d = r.settings.distance * 1e3;
     let _ = writeln!(
         s,
-        "model {}: switch-off, node 0 travelling {d:.3} mm along ({}, {})",
-        r.model, r.settings.direction[0], r.settings.direction[1]
+        "model {}: switch-off, {} travelling {d:.3} mm along ({}, {})",
+        r.model, r.point_label, r.settings.direction[0], r.settings.direction[1]
     );
+    if r.calibrated.is_empty() {
+        let _ = writeln!(
+            s,
+            "calibrated: nothing; every time below is a prediction of the model"
+        );
+    }
+    for c in &r.calibrated {
+        let _ = writeln!(
+            s,
+            "CALIBRATED: {} = {} to reproduce {} (a fit, not agreement)",
+            c.name, c.value, c.target
+        );
+    }
+    for w in &r.warnings {
+        let _ = writeln!(s, "warning: {w}");
+    }
     let _ = writeln!(s, "{:<34}{:>16}", "", "time to distance");
-    let _ = writeln!(
-        s,
-        "{:<34}{:>16}",
-        "paper (Fig. 7, 2 mm)",
-        ms(Some(PAPER_TIME_TO_2MM_S))
-    );
-    let _ = writeln!(
-        s,
-        "{:<34}{:>16}",
-        "this tool, flexible",
-        ms(r.flexible.time_to_distance_s)
-    );
+    if r.builtin {
+        let _ = writeln!(
+            s,
+            "{:<34}{:>16}",
+            "paper (Fig. 7, 2 mm, measured)",
+            ms(Some(PAPER_TIME_TO_2MM_S))
+        );
+    }
+    let flexible = r.flexible.time_to_distance_s;
+    let _ = writeln!(s, "{:<34}{:>16}", "this tool, flexible", ms(flexible));
     if let Some(h) = r.half_step_time_s {
-        let change = match (h, r.flexible.time_to_distance_s) {
+        let change = match (h, flexible) {
             (a, Some(b)) => format!(" ({:+.2e} relative)", (a - b) / b),
             _ => String::new(),
         };
@@ -95,21 +121,34 @@ pub fn switch_off_table(r: &SwitchOffResult) -> String {
         );
     }
     if let Some(rigid) = &r.rigid {
+        let against = match (rigid.time_to_distance_s, flexible) {
+            (Some(a), Some(b)) => {
+                format!(" (rigid {:+.1} % against flexible)", 100.0 * (a - b) / b)
+            }
+            _ => String::new(),
+        };
         let _ = writeln!(
             s,
-            "{:<34}{:>16}",
+            "{:<34}{:>16}{against}",
             "this tool, rigid beams",
             ms(rigid.time_to_distance_s)
         );
+        let paper = if r.builtin {
+            format!(
+                " (paper: rigid model against the measurement ~{:.2} ms)",
+                PAPER_RIGID_DEPARTURE_S * 1e3
+            )
+        } else {
+            String::new()
+        };
         let _ = writeln!(
             s,
-            "rigid departs from flexible (> {:.0} % of the distance apart): {} (paper: ~{:.2} ms)",
+            "rigid departs from flexible (> {:.0} % of the distance apart): {}{paper}",
             100.0 * DEPARTURE_FRACTION,
             r.departure_s.map_or_else(
                 || String::from("not within the run"),
                 |t| format!("{:.4} ms", t * 1e3)
             ),
-            PAPER_RIGID_DEPARTURE_S * 1e3
         );
     }
     let e = &r.flexible.energy;
@@ -128,10 +167,18 @@ pub fn switch_off_table(r: &SwitchOffResult) -> String {
         e.error_j.abs() / e.stored_j.max(f64::MIN_POSITIVE),
         e.stored_j
     );
+    let t = &r.flexible.time_s;
     for c in &r.flexible.contacts {
+        let start = c.force_n.first().copied().unwrap_or(0.0);
+        let opens = (start > 0.0)
+            .then(|| c.force_n.iter().position(|&f| f == 0.0))
+            .flatten()
+            .map_or(String::new(), |k| {
+                format!(", opens by {:.1} µs", t[k] * 1e6)
+            });
         let _ = writeln!(
             s,
-            "contact {}: max penetration {:.3e} m, max force {:.3} N, {} impacts",
+            "contact {}: ON force {start:.4} N{opens}, max penetration {:.3e} m, max force {:.3} N, {} impacts",
             c.id, c.max_penetration, c.max_force, c.impacts
         );
     }
@@ -145,14 +192,21 @@ pub fn switch_off_table(r: &SwitchOffResult) -> String {
     s
 }
 
-/// Samples as CSV: time, flexible x, y and (if computed) rigid x, y.
+/// Samples as CSV: time, flexible x, y, (if computed) rigid x, y, then the
+/// flexible run's contact forces and released loads [SI: N].
 pub fn switch_off_csv(r: &SwitchOffResult) -> String {
     let mut s = String::from("time_s,x_m,y_m");
     if r.rigid.is_some() {
         s.push_str(",rigid_x_m,rigid_y_m");
     }
-    s.push('\n');
     let f = &r.flexible;
+    for c in &f.contacts {
+        let _ = write!(s, ",contact_{}_force_n", c.id);
+    }
+    for (label, _) in &f.released_loads {
+        let _ = write!(s, ",\"{label} force_n\"");
+    }
+    s.push('\n');
     for k in 0..f.time_s.len() {
         let _ = write!(s, "{:.9e},{:.9e},{:.9e}", f.time_s[k], f.x_m[k], f.y_m[k]);
         if let Some(rigid) = &r.rigid {
@@ -163,6 +217,10 @@ pub fn switch_off_csv(r: &SwitchOffResult) -> String {
                 x.map_or(String::new(), |v| format!("{v:.9e}")),
                 y.map_or(String::new(), |v| format!("{v:.9e}"))
             );
+        }
+        let forces = f.contacts.iter().map(|c| &c.force_n);
+        for v in forces.chain(f.released_loads.iter().map(|(_, v)| v)) {
+            let _ = write!(s, ",{:.9e}", v[k]);
         }
         s.push('\n');
     }

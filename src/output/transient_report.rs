@@ -1,11 +1,13 @@
 //! Text, JSON, CSV and figure of a general `transient` run
 //! ([`crate::analysis::simulate`]). JSON keys (DESIGN §7): `model`,
 //! `step_s`, `end_time_s`, `steps`, `time_s`, `sensors` {id: samples},
-//! `contacts` [{`id`, `max_penetration_m`, `max_force_n`, `impacts`}],
-//! `energy`.
+//! `contacts` [{`id`, `max_penetration_m`, `max_force_n`, `impacts`,
+//! `dissipated_j`, `force_n` (the normal force at the sample times [SI: N])}],
+//! `energy`. The CSV has a column `contact_<id>_force_n` per contact.
 
 use crate::analysis::simulate::{Simulation, SimulationSettings};
-use crate::model::{SensorQuantity, TimeFunction};
+use crate::load::load_magnitudes;
+use crate::model::SensorQuantity;
 use crate::output::plot::{Legend, LineFigure, Panel, Scale, Series};
 use crate::output::records_uff::{records_uff, Record, RecordKind};
 use serde_json::{json, Map, Value};
@@ -84,16 +86,7 @@ pub fn transient_table(model: &str, settings: &SimulationSettings, sim: &Simulat
 /// magnitude |F₀|·f(t) of every time-varying load (at the sample times),
 /// then every sensor (see [`super::records_uff`]).
 pub fn transient_uff(sim: &Simulation, provenance: &[String; 2]) -> String {
-    let forces: Vec<(&str, Vec<f64>)> = sim
-        .loads
-        .iter()
-        .filter(|l| !matches!(l.time, TimeFunction::Constant))
-        .map(|l| {
-            let f0 = l.force.norm();
-            let v = sim.time.iter().map(|&t| f0 * l.time.value(t)).collect();
-            (l.label.as_str(), v)
-        })
-        .collect();
+    let forces = load_magnitudes(&sim.loads, &sim.time);
     let mut records: Vec<Record> = forces
         .iter()
         .map(|(name, v)| Record {
@@ -120,11 +113,17 @@ pub fn transient_csv(sim: &Simulation) -> String {
     for (id, _) in &sim.sensors {
         let _ = write!(s, ",{id}");
     }
+    for c in &sim.contacts {
+        let _ = write!(s, ",contact_{}_force_n", c.id);
+    }
     s.push('\n');
     for (k, t) in sim.time.iter().enumerate() {
         let _ = write!(s, "{t:.9e}");
         for (_, v) in &sim.sensors {
             let _ = write!(s, ",{:.9e}", v[k]);
+        }
+        for c in &sim.contacts {
+            let _ = write!(s, ",{:.9e}", c.force_n[k]);
         }
         s.push('\n');
     }

@@ -269,6 +269,7 @@ pub fn evaluate(
                     },
                     from_equilibrium: settings.prestress,
                     sample_rate: 0.0,
+                    keep_partial: false,
                 },
             )?;
             let peak = sim.sensors[index]

@@ -7,7 +7,11 @@
 //! it takes the approach speed at the step's start, max(δ̇(t₀), 0); the
 //! value is then kept for the whole impact (the law floors it at its
 //! `min_impact_velocity`). A contact already closed at t = 0 (a pre-stressed
-//! equilibrium) starts at the floor.
+//! equilibrium) has had no impact: it is elastic, F = Kδⁿ with no
+//! hysteresis term (friction, if any, on that force), until it first
+//! separates (δ ≤ 0 at the end of an accepted step); every later closing is
+//! an impact with its measured approach speed. A contact that never opens
+//! stays elastic (the model's Rayleigh damping damps the structure).
 //!
 //! Step control (as DyS shortens the step at contact onset): a step in
 //! which a contact closes is accepted only if its first penetration δ₁ is at
@@ -46,6 +50,10 @@ pub struct ContactStats {
     /// Energy dissipated by its damping and friction [SI: J].
     #[serde(rename = "dissipated_j")]
     pub dissipated: f64,
+    /// The normal force F(δ, δ̇) at the output sample times [SI: N]
+    /// (filled by [`crate::analysis::simulate::simulate`]; empty from the
+    /// integrator alone).
+    pub force_n: Vec<f64>,
 }
 
 /// The contact state of a transient: which contacts are closed, their
@@ -53,8 +61,12 @@ pub struct ContactStats {
 #[derive(Debug, Clone)]
 pub struct ContactTracker {
     closed: Vec<bool>,
-    /// δ̇⁻ of each contact for the current step [SI: m/s].
-    pub impact: Vec<f64>,
+    /// δ̇⁻ of each contact for the current step [SI: m/s]; `None` while a
+    /// contact closed since the start has not separated (elastic).
+    pub impact: Vec<Option<f64>>,
+    /// Each contact's normal force F(δ, δ̇) at the last accepted state
+    /// [SI: N] (0 when open).
+    pub force: Vec<f64>,
     /// Effective masses [SI: kg] (step control).
     mass: Vec<f64>,
     pub stats: Vec<ContactStats>,
@@ -78,8 +90,10 @@ impl ContactTracker {
             impact: sys
                 .contacts
                 .iter()
-                .map(|c| c.law.min_impact_velocity)
+                .zip(&closed)
+                .map(|(c, &on)| (!on).then_some(c.law.min_impact_velocity))
                 .collect(),
+            force: sys.contacts.iter().map(|c| c.elastic_force(q)).collect(),
             mass: sys
                 .contacts
                 .iter()
@@ -106,7 +120,7 @@ impl ContactTracker {
     pub fn begin_step(&mut self, sys: &System, q: &[f64], v: &[f64]) {
         for (i, c) in sys.contacts.iter().enumerate() {
             if !self.closed[i] {
-                self.impact[i] = c.rate(q, v).max(0.0);
+                self.impact[i] = Some(c.rate(q, v).max(0.0));
             }
         }
     }
@@ -124,7 +138,7 @@ impl ContactTracker {
             if delta <= 0.0 {
                 continue;
             }
-            let speed = self.impact[i].max(c.law.min_impact_velocity);
+            let speed = self.impact[i].unwrap_or(0.0).max(c.law.min_impact_velocity);
             let allowed = ONSET_FRACTION * c.law.max_penetration(self.mass[i], speed);
             if delta > allowed {
                 shrink = shrink.min((allowed / delta).clamp(0.1, 0.5));
@@ -147,6 +161,7 @@ impl ContactTracker {
             self.closed[i] = closed;
             if !closed {
                 self.impact_start[i] = None;
+                self.force[i] = 0.0;
                 continue;
             }
             let local = local_velocity(c.pair().dofs(), v);
@@ -155,9 +170,10 @@ impl ContactTracker {
             s.max_penetration = s.max_penetration.max(delta);
             s.max_force = s.max_force.max(d.normal_force);
             s.dissipated += h * d.force.dot(&local);
+            self.force[i] = d.normal_force;
             // Short steps while an impact lasts (twice its expected
             // duration); a contact at rest keeps the nominal step.
-            let speed = self.impact[i].max(c.law.min_impact_velocity);
+            let speed = self.impact[i].unwrap_or(0.0).max(c.law.min_impact_velocity);
             let duration = 3.0 * c.law.max_penetration(self.mass[i], speed) / speed;
             if let Some(t0) = self.impact_start[i] {
                 if t - t0 < 2.0 * duration {
@@ -182,7 +198,7 @@ pub fn add_contact_dissipation<S: Scatter>(
     sys: &System,
     q: &[f64],
     v: &[f64],
-    impact: &[f64],
+    impact: &[Option<f64>],
     out: &mut [f64],
     mut matrix: Option<(f64, f64, &mut S)>,
 ) {

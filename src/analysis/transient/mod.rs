@@ -353,6 +353,30 @@ impl<'s> Integrator<'s> {
     /// multipliers: [M C_qᵀ; C_q 0][a; λ] = [Q_ext − Q_int − D; −(C_q q̇)_q q̇].
     /// The velocity term is evaluated by central differences of C_q along q̇.
     pub fn state_at(&mut self, q: Vec<f64>, v: Vec<f64>) -> Result<State, TransientError> {
+        self.consistent_state(q, v, 0.0)
+    }
+
+    /// [`Integrator::state_at`] with the loads' right limit t → 0⁺: a load
+    /// released at t = 0 (`{"until": 0}`) is already gone, so the state
+    /// starts with the released system's accelerations (a held equilibrium
+    /// would start at a = 0 and lag the release by about half a step).
+    /// The time functions are piecewise with their jumps at their
+    /// parameters, so the smallest positive time is their right limit at 0.
+    pub fn state_after_release(
+        &mut self,
+        q: Vec<f64>,
+        v: Vec<f64>,
+    ) -> Result<State, TransientError> {
+        self.consistent_state(q, v, f64::MIN_POSITIVE)
+    }
+
+    /// The state at t = 0 with the applied loads evaluated at `load_time`.
+    fn consistent_state(
+        &mut self,
+        q: Vec<f64>,
+        v: Vec<f64>,
+        load_time: f64,
+    ) -> Result<State, TransientError> {
         let (n, m) = (self.sys.ndof(), self.sys.constraint_count());
         // [M C_qᵀ; C_q 0] in the iteration matrix's storage (its pattern
         // covers these blocks); the next step refactors.
@@ -365,7 +389,7 @@ impl<'s> Integrator<'s> {
             .factor()
             .map_err(|f| factor_error(self.sys, f, 0.0))?;
         let mut rhs = vec![0.0; n + m];
-        self.sys.external_force(&q, 0.0, 1.0, &mut rhs[..n]);
+        self.sys.external_force(&q, load_time, 1.0, &mut rhs[..n]);
         self.sys.internal_force(&q, &mut self.force);
         let mut damping = vec![0.0; n];
         self.sys

@@ -1,0 +1,260 @@
+//! The switch-off as a prediction (DESIGN §7): the built-in model's ON
+//! state against the paper's measured contact force, nothing fitted in
+//! time; a released lever against the constant-moment closed form; a run
+//! whose integration fails after the distance keeps its result; a user's
+//! own release reads right (titles, no paper rows, the marker's panel).
+
+mod common;
+use ancf_modal::analysis::switch_off::{run_switch_off, SwitchOffSettings};
+use ancf_modal::model::{Contact, Model, PointSpec, TimeFunction};
+use ancf_modal::output::figures::switch_off::time_figure;
+use assert_cmd::Command;
+use common::model;
+use serde_json::{json, Value};
+
+/// Paper, Table 4: the measured contact force F_c [N].
+const PAPER_F_C: f64 = 2.92;
+
+#[test]
+fn builtin_on_state_carries_the_measured_contact_force_and_nothing_is_fitted() {
+    let m = Model::switch_off_builtin();
+    // No time function fitted: every load of the model is constant or a
+    // step release at t = 0, no joint is released over time.
+    for l in &m.loads {
+        assert!(
+            matches!(l.time, TimeFunction::Constant | TimeFunction::Until(0.0)),
+            "load {:?} has the time function {:?}",
+            l.id,
+            l.time
+        );
+    }
+    assert!(m.joints.iter().all(|j| j.release.is_none()), "no latch");
+    assert!(
+        m.contacts
+            .iter()
+            .any(|c| matches!(c, Contact::PointLine { id, .. } if id == "fixed_contact")),
+        "F_c is a contact"
+    );
+    let settings = SwitchOffSettings {
+        compare_rigid: true,
+        halve_step: true,
+        ..SwitchOffSettings::default()
+    };
+    let r = run_switch_off(&m, &settings).unwrap();
+    assert!(r.calibrated.is_empty(), "{:?}", r.calibrated);
+    assert!(r.builtin);
+    for (name, run) in [
+        ("flexible", &r.flexible),
+        ("rigid", r.rigid.as_ref().unwrap()),
+    ] {
+        let pad = run
+            .contacts
+            .iter()
+            .find(|c| c.id == "fixed_contact")
+            .unwrap();
+        let f0 = pad.force_n[0];
+        assert!(
+            ((f0 - PAPER_F_C) / PAPER_F_C).abs() < 0.01,
+            "{name}: ON pad force {f0} N vs the paper's F_c = {PAPER_F_C} N"
+        );
+        // It opens by itself, and stays open while node 0 travels 2 mm.
+        let t2 = run.time_to_distance_s.expect("node 0 reaches 2 mm");
+        let open = pad.force_n.iter().position(|&f| f == 0.0).expect("opens");
+        assert!(run.time_s[open] < t2, "{name}: opens before 2 mm");
+        let k2 = run.time_s.iter().position(|&t| t > t2).unwrap();
+        assert!(
+            pad.force_n[open..k2].iter().all(|&f| f == 0.0),
+            "{name}: no new impact on the fixed contact before 2 mm"
+        );
+    }
+    let t = r.flexible.time_to_distance_s.unwrap();
+    let half = r.half_step_time_s.expect("reached at half the step too");
+    assert!(
+        ((half - t) / t).abs() < 1e-3,
+        "time to 2 mm at half the step {half:.6e} vs {t:.6e}: not converged to 1e-3"
+    );
+    let e = &r.flexible.energy;
+    assert!(
+        e.error_j.abs() < 1e-4 * e.stored_j,
+        "energy balance error {:.3e} J vs 1e-4 of the stored {:.3e} J",
+        e.error_j,
+        e.stored_j
+    );
+    // The paper's finding (Figs. 7-8): the flexible blade, which carries
+    // the pre-stress, opens faster than a rigid one.
+    let rigid = r.rigid.as_ref().unwrap().time_to_distance_s.unwrap();
+    assert!(rigid > t, "rigid {rigid:.6e} s vs flexible {t:.6e} s");
+}
+
+const LEVER_J: f64 = 1e-5;
+const ARM: f64 = 0.02;
+const PRELOAD: f64 = 10.0;
+const SPRING_K: f64 = 100.0;
+
+const LEVER_MASS: f64 = 0.01;
+
+/// A rigid lever, its centre at (ARM, 0), pinned to the ground at the
+/// origin (J about the pin = J_c + m·ARM² = 1e-5 kg m²), held by a spring
+/// at its centre pushing up with PRELOAD against a hold load that is
+/// released at t = 0; gravity off. `extra`: more loads.
+fn lever(extra: &[Value]) -> Value {
+    let mut loads = vec![json!({"id": "hold", "at": {"body": "lever"},
+                                "force": [0.0, -PRELOAD], "time": {"until": 0.0}})];
+    loads.extend_from_slice(extra);
+    json!({
+        "name": "lever",
+        "rigid_bodies": [{"id": "lever", "mass": LEVER_MASS,
+                          "inertia": LEVER_J - LEVER_MASS * ARM * ARM,
+                          "position": [ARM, 0.0], "angle_deg": 0.0}],
+        "joints": [{"id": "pivot", "type": "pin", "a": {"ground": [0.0, 0.0]},
+                    "b": {"body": "lever", "local": [-ARM, 0.0]}}],
+        "springs": [{"id": "spring", "a": {"ground": [ARM, -0.01]}, "b": {"body": "lever"},
+                     "stiffness": SPRING_K, "preload": -PRELOAD}],
+        "loads": loads
+    })
+}
+
+/// Rotation θ [rad] whose time is measured: the moment P·ARM·cos θ minus
+/// the spring's stiffening k·ARM²·θ is constant to ~2e-4 up to it, which
+/// moves the time by ~kARM²θ/(12 M) = 1.7e-6.
+const THETA: f64 = 1e-3;
+
+fn lever_settings(end_time: f64) -> SwitchOffSettings {
+    SwitchOffSettings {
+        step: 1e-6,
+        end_time,
+        distance: ARM * THETA.sin(),
+        direction: [0.0, 1.0],
+        point: Some(PointSpec {
+            body: Some("lever".into()),
+            ..PointSpec::default()
+        }),
+        ..SwitchOffSettings::default()
+    }
+}
+
+/// √(2θJ/M): the time to θ under the constant released moment M.
+fn constant_moment_time() -> f64 {
+    (2.0 * THETA * LEVER_J / (PRELOAD * ARM)).sqrt()
+}
+
+#[test]
+fn a_released_lever_turns_as_under_a_constant_moment() {
+    let r = run_switch_off(&model(lever(&[])), &lever_settings(6e-4)).unwrap();
+    let t = r.flexible.time_to_distance_s.expect("θ reached");
+    let expected = constant_moment_time();
+    assert!(
+        ((t - expected) / expected).abs() < 1e-4,
+        "time to θ = {THETA}: {t:.9e} s vs √(2θJ/M) = {expected:.9e} s"
+    );
+    assert!(!r.builtin && r.calibrated.is_empty() && r.warnings.is_empty());
+}
+
+#[test]
+fn a_newton_failure_after_the_distance_keeps_the_result() {
+    // An absurd force switched on at 0.5 ms, after θ is reached (~0.32
+    // ms): the Newton iteration cannot follow it.
+    let absurd = json!({"at": {"body": "lever"},
+                        "force": [0.0, 1e300], "time": {"step": {"start": 5e-4}}});
+    let m = model(lever(std::slice::from_ref(&absurd)));
+    let r = run_switch_off(&m, &lever_settings(8e-4)).unwrap();
+    let t = r.flexible.time_to_distance_s.expect("θ reached before");
+    let expected = constant_moment_time();
+    assert!(
+        ((t - expected) / expected).abs() < 1e-4,
+        "{t} vs {expected}"
+    );
+    let end = r.flexible.ended_at_s.expect("the run ended early");
+    assert!(
+        (4.9e-4..5e-4).contains(&end),
+        "ended at {end:.6e} s, the last step before the force at 5e-4 s"
+    );
+    assert!(r.flexible.time_s.last().unwrap() <= &end);
+    assert_eq!(r.warnings.len(), 1, "{:?}", r.warnings);
+    // The command line writes every output and marks the run.
+    let cli = Cli::new(&lever(&[absurd]));
+    let doc: Value = serde_json::from_slice(&cli.run(&["--end-time", "8e-4", "--json"])).unwrap();
+    assert!(doc["ended_at_s"].as_f64().unwrap() < 5e-4);
+    assert!(doc["warnings"][0].as_str().unwrap().contains("ended at"));
+    assert!(cli.csv.exists() && cli.plot.exists());
+    // Before the distance a failure is an error.
+    let early = json!({"at": {"body": "lever"},
+                       "force": [0.0, 1e300], "time": {"step": {"start": 1e-4}}});
+    assert!(run_switch_off(&model(lever(&[early])), &lever_settings(8e-4)).is_err());
+}
+
+/// A model file in a temporary directory, and the `switch-off` command
+/// line on it with `--csv` and `--plot` beside it.
+struct Cli {
+    _dir: tempfile::TempDir,
+    file: std::path::PathBuf,
+    csv: std::path::PathBuf,
+    plot: std::path::PathBuf,
+}
+
+impl Cli {
+    fn new(model: &Value) -> Cli {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("lever.json");
+        std::fs::write(&file, serde_json::to_string(model).unwrap()).unwrap();
+        let (csv, plot) = (dir.path().join("x.csv"), dir.path().join("x.svg"));
+        Cli {
+            _dir: dir,
+            file,
+            csv,
+            plot,
+        }
+    }
+
+    /// `switch-off FILE --point lever --direction 0,1 --distance ARM·sin θ
+    /// ARGS` (exit code 0): its stdout.
+    fn run(&self, args: &[&str]) -> Vec<u8> {
+        let distance = format!("{}", ARM * THETA.sin());
+        let out = Command::cargo_bin("ancf-modal")
+            .unwrap()
+            .arg("switch-off")
+            .arg(&self.file)
+            .args([
+                "--point",
+                "lever",
+                "--direction",
+                "0,1",
+                "--distance",
+                &distance,
+            ])
+            .args(["--no-step-check"])
+            .args(args)
+            .arg("--csv")
+            .arg(&self.csv)
+            .arg("--plot")
+            .arg(&self.plot)
+            .assert()
+            .success();
+        out.get_output().stdout.clone()
+    }
+}
+
+#[test]
+fn a_user_release_along_y_reads_right() {
+    let cli = Cli::new(&lever(&[]));
+    let report = String::from_utf8(cli.run(&["--end-time", "6e-4"])).unwrap();
+    assert!(report.contains("body lever travelling"), "{report}");
+    assert!(!report.contains("paper"), "no paper rows: {report}");
+    assert!(!report.contains("node 0"), "{report}");
+    let svg = std::fs::read_to_string(&cli.plot).unwrap();
+    assert!(svg.contains("body lever along (0, 1)"), "title");
+    // The distance line and the time marker sit on the y panel.
+    let m = model(lever(&[]));
+    let r = run_switch_off(&m, &lever_settings(6e-4)).unwrap();
+    let fig = time_figure(&r);
+    let (x, y) = (&fig.panels[0], &fig.panels[1]);
+    assert!(x.hlines.is_empty() && x.vlines.is_empty());
+    assert_eq!(y.hlines.len(), 1);
+    assert!((y.hlines[0].at - ARM * THETA.sin()).abs() < 1e-15);
+    assert_eq!(y.vlines.len(), 1);
+    // JSON: no paper values.
+    let doc: Value = serde_json::from_slice(&cli.run(&["--end-time", "6e-4", "--json"])).unwrap();
+    assert!(doc["paper"].is_null());
+    assert_eq!(doc["tracked_point"], "body lever");
+    assert_eq!(doc["calibrated"], json!([]));
+}
