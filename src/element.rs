@@ -388,23 +388,24 @@ impl CableElement {
         // reference has ε = κ = 0 only up to ε·Σ|Sᵢ'||eᵢ|): a tension or
         // curvature of that size is not a stress, and the forms below are
         // uncertain by it times their second-order terms.
-        let axial: [(Vector2<f64>, Vector2<f64>, f64, f64, f64); AXIAL_POINTS] =
-            std::array::from_fn(|k| {
-                let d1 = &self.axial[k].d1;
-                let (r1, l, eps) = axial_strain(e, d1);
-                // The stretch term is axial; the tension term ε/l·|δr'⊥|²
-                // acts on transverse motion (a string's stiffness) and
-                // counts as bending.
-                let stretch = 0.5 * self.axial[k].w * ea;
-                let tension_noise = stretch * f64::EPSILON * size(e, d1) / (l * l);
-                (
-                    r1 / l,
-                    perp_neg(r1) / l,
-                    stretch,
-                    stretch * eps / l,
-                    tension_noise,
-                )
-            });
+        // (tangent, normal, ½wEA, tension factor, its round-off) per point.
+        type AxialPoint = (Vector2<f64>, Vector2<f64>, f64, f64, f64);
+        let axial: [AxialPoint; AXIAL_POINTS] = std::array::from_fn(|k| {
+            let d1 = &self.axial[k].d1;
+            let (r1, l, eps) = axial_strain(e, d1);
+            // The stretch term is axial; the tension term ε/l·|δr'⊥|²
+            // acts on transverse motion (a string's stiffness) and
+            // counts as bending.
+            let stretch = 0.5 * self.axial[k].w * ea;
+            let tension_noise = stretch * f64::EPSILON * size(e, d1) / (l * l);
+            (
+                r1 / l,
+                perp_neg(r1) / l,
+                stretch,
+                stretch * eps / l,
+                tension_noise,
+            )
+        });
         let bending: [(BendingPoint, f64, f64); BENDING_POINTS] = std::array::from_fn(|k| {
             let qp = &self.bending[k];
             let b = BendingPoint::new(e, qp);

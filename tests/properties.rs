@@ -149,7 +149,7 @@ fn build(spec: &Spec) -> Model {
         rigid_bodies.push(json!({"id": "body", "mass": 4e-4, "inertia": 2e-9,
             "position": [p[0] + 1e-3, p[1] - 2e-3], "angle_deg": 20.0}));
         let mut j = json!({"id": "body_joint", "type": if weld {"weld"} else {"pin"},
-            "a": {"body": "body", "local": rotate_back([1e-3 * -1.0, 2e-3], 20.0)},
+            "a": {"body": "body", "local": rotate_back([-1e-3, 2e-3], 20.0)},
             "b": {"beam": format!("b{i}"), "s": s}});
         if !weld && torsion {
             j["torsion_stiffness"] = json!(0.2);

@@ -278,7 +278,7 @@ fn rigid_first(system: &System, q: &[f64], z: Vec<Vec<f64>>) -> (Vec<Vec<f64>>, 
     let mut proj = nalgebra::DMatrix::<f64>::identity(k, k);
     for &i in &common {
         let c = u.column(i);
-        proj -= &c * c.transpose();
+        proj -= c * c.transpose();
     }
     let eig = nalgebra::SymmetricEigen::new(proj);
     for j in 0..k {

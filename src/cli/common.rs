@@ -54,11 +54,18 @@ pub fn load_model(path: Option<&Path>) -> Result<Model> {
     Ok(model)
 }
 
-/// `doc` (a JSON object) with the run's `warnings` array.
+/// `doc` (a JSON object) with the run's `warnings` array: the analysis's
+/// own warnings (a `warnings` array the document already has) first, then
+/// those given on the way (units, beam theory).
 pub fn with_warnings(doc: impl serde::Serialize) -> Result<serde_json::Value> {
     let mut doc = serde_json::to_value(doc)?;
     if let Some(map) = doc.as_object_mut() {
-        map.insert("warnings".into(), serde_json::json!(warnings()));
+        let mut all: Vec<serde_json::Value> = match map.remove("warnings") {
+            Some(serde_json::Value::Array(own)) => own,
+            _ => Vec::new(),
+        };
+        all.extend(warnings().into_iter().map(serde_json::Value::from));
+        map.insert("warnings".into(), serde_json::Value::Array(all));
     }
     Ok(doc)
 }

@@ -55,8 +55,7 @@ pub fn negative_eigenvalues(a: SparseColMatRef<'_, usize, f64>) -> Result<usize,
     // Each column of the simplicial factor starts with its diagonal: D_jj.
     let (col_ptr, row_idx) = (s.col_ptr(), s.row_idx());
     let mut negative = 0;
-    for j in 0..a.nrows() {
-        let p = col_ptr[j];
+    for (j, &p) in col_ptr.iter().take(a.nrows()).enumerate() {
         if row_idx[p] != j {
             return Err(EigenFailure::Factorization);
         }

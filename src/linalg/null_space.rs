@@ -146,9 +146,9 @@ impl NullSpace {
         d: &[f64],
     ) -> Self {
         let mut ns = NullSpace::new(m, n, entries.map(|(i, j, v)| (i, j, v * d[j])));
-        for g in 0..n {
+        for (g, &dg) in d.iter().enumerate().take(n) {
             for e in &mut ns.map[ns.start[g]..ns.start[g + 1]] {
-                e.1 *= d[g];
+                e.1 *= dg;
             }
         }
         ns.inv_scale2 = Some(d.iter().map(|x| 1.0 / (x * x)).collect());
