@@ -110,8 +110,8 @@ const BALANCE_TOLERANCE: f64 = 1e-6;
 
 /// `found` if it balances: ‖Q_int − Q_ext + C_qᵀλ‖∞ at most
 /// [`BALANCE_TOLERANCE`] of the larger of the applied forces and the
-/// multipliers. Checked here because a continuation to the load factor it
-/// starts at returns its starting state when Newton's method stalls.
+/// multipliers: every step of the path is checked on its own balance, not
+/// on the continuation's word.
 fn balanced(sys: &System, found: Equilibrium) -> Result<Equilibrium, AnalysisError> {
     let n = sys.ndof();
     let (mut r, mut ext) = (vec![0.0; n], vec![0.0; n]);

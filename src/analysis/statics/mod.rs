@@ -465,7 +465,12 @@ impl<'a> Solver<'a> {
                     residual,
                 }) => {
                     dt *= 0.25;
-                    if dt < self.settings.min_increment || tried >= self.settings.max_steps {
+                    // With nothing to ramp a smaller increment changes
+                    // nothing: the state did not converge where it is.
+                    if span == 0.0
+                        || dt < self.settings.min_increment
+                        || tried >= self.settings.max_steps
+                    {
                         return Err(AnalysisError::NotConverged {
                             load_factor: match which {
                                 Ramp::Loads => at(t_try),
