@@ -16,14 +16,24 @@
 //! ([`crate::system::EnergyBreakdown::roundoff`]): strain variations that
 //! cancel nodal terms of size s carry ε·s, so a rigid motion's form is
 //! ~ε²·(the energy of those sizes), and stress terms (tension, curvature,
-//! preloads, constraint forces) carry ε of their size. A stiffness μ = ω²
+//! preloads, constraint forces) carry ε of their size, and the state's own
+//! strain and curvature carry the rounding of the nodal values they are
+//! formed from (a straight reference is stress-free only to that rounding,
+//! which a tension EA·ε₀ makes visible). A stiffness μ = ω²
 //! of a candidate counts as zero when |μ| ≤ 64 R/m, m its mass. A pendulum
 //! under gravity sits at ~1/(64 ε) times its threshold (its stiffness is a
 //! stress term), a rigid motion of a free 2,000-element beam at ≤ R/m.
 //!
-//! The rank of C_q V is decided on unit-norm columns and rows (the
-//! coefficient space of V mixes translations and rotations) by the same
-//! grouped Gram–Schmidt/QR as the constraint null space.
+//! The rank of C_q V is decided on columns of unit kinetic energy
+//! (√(VᵀMV) = 1 each: translations and rotations, small and large bodies
+//! weigh alike) and unit-norm rows, by the same grouped Gram–Schmidt/QR as
+//! the constraint null space. Joints inside one weld cluster are left out:
+//! the cluster's rigid motions satisfy them by construction.
+//!
+//! Each zero mode is then labelled: the span of the zero modes is split
+//! into its intersection with the rigid motions of the whole assembly
+//! (`rigid`) and the M-orthogonal rest (`mechanism`: a lever free on its
+//! pin), by the principal angles between the two spaces.
 
 use crate::linalg::dense::solve_generalized_small;
 use crate::linalg::null_space::NullSpace;
