@@ -103,23 +103,10 @@ pub fn zero_modes(
     // rotation about a point the constraints do not move) then stays
     // round-off against the row's other terms and is dropped with them.
     let mass = system.mass();
-    let mut scratch = vec![0.0; n];
-    let col_norm: Vec<f64> = motions
-        .fields
-        .iter()
-        .map(|field| {
-            let mut v = vec![0.0; n];
-            for &(i, x) in field {
-                v[i] = x;
-            }
-            mass.mul_vec(&v, &mut scratch);
-            let m = dot(&v, &scratch);
-            if m > 0.0 {
-                m.sqrt()
-            } else {
-                1.0
-            }
-        })
+    let col_norm: Vec<f64> = mass
+        .sparse_quadratic_forms(&by_coord, c)
+        .into_iter()
+        .map(|m| if m > 0.0 { m.sqrt() } else { 1.0 })
         .collect();
     let kernel = NullSpace::new(
         cq.nrows(),
@@ -144,6 +131,7 @@ pub fn zero_modes(
         u.push(uk);
     }
     // Unit mass for every candidate, so the forms below are ω²-sized.
+    let mut scratch = vec![0.0; n];
     for uk in &mut u {
         mass.mul_vec(uk, &mut scratch);
         let m = dot(uk, &scratch);

@@ -120,6 +120,21 @@ impl MassMatrix {
         })
     }
 
+    /// The kinetic forms vᵀMv of many sparse vectors at once, in one pass
+    /// over the nonzeros: `by_coord[i]` lists (vector, value) of every
+    /// vector nonzero at coordinate i.
+    pub fn sparse_quadratic_forms(&self, by_coord: &[Vec<(usize, f64)>], count: usize) -> Vec<f64> {
+        let mut out = vec![0.0; count];
+        for &(i, j, w) in &self.lower {
+            for &(f, vi) in &by_coord[i] {
+                if let Some(&(_, vj)) = by_coord[j].iter().find(|e| e.0 == f) {
+                    out[f] += w * vi * vj;
+                }
+            }
+        }
+        out
+    }
+
     /// φᵀ M φ over the nonzeros (four partial sums).
     pub fn quadratic_form(&self, phi: &[f64]) -> f64 {
         let mut acc = [0.0; 4];
