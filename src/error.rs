@@ -204,6 +204,29 @@ pub enum AnalysisError {
     /// Statics: gravity alone, ramped up, makes the equilibrium unstable.
     #[error("the static equilibrium under gravity alone loses stability at {gravity_factor:.6} × g: the stiffness against a motion that moves {dof} most reaches zero there")]
     UnstableUnderGravity { gravity_factor: f64, dof: String },
+    /// Statics: the equilibrium continued from another design of the
+    /// assembly was not reached.
+    #[error("continued from the design of `{from}`: {reason}")]
+    FromDesign {
+        from: String,
+        reason: Box<DesignPathError>,
+    },
+}
+
+/// Why a continuation in the design did not reach the design
+/// ([`crate::analysis::statics::design_path`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum DesignPathError {
+    #[error("the starting design: {0}")]
+    Start(AnalysisError),
+    #[error("contact `{contact}` opens at {at:.4} of the way to the design: no equilibrium with it closed")]
+    ContactOpens { contact: String, at: f64 },
+    #[error("no equilibrium found beyond {at:.4} of the way to the design (steps below {min_step} of it): {source}")]
+    Stalled {
+        at: f64,
+        min_step: f64,
+        source: AnalysisError,
+    },
 }
 
 /// Why a time integration failed.

@@ -7,12 +7,15 @@
 //! pad force comes from the balance of the assembly about the pin, so it
 //! does not depend on the contact's stiffness, and it scales with the
 //! pre-stress (up to gravity, ~0.02 N, and the small change of geometry).
-//! The corners of the box combined are found by continuation in the
+//! The 16 corners of the box combined are found by continuation in the
 //! design from the built-in one
-//! ([`ancf_modal::analysis::statics::design_path`]), except the four with
-//! the pre-stress halved and K = 1e11 (a known limit: the path stalls); a
-//! design beyond the one where the pad lets go is reported as having no
-//! equilibrium with the pad closed, where the linear balance says.
+//! ([`ancf_modal::analysis::statics::design_path`]), on two different
+//! paths (geometric in c_t, K and the pre-stress; the straight line the
+//! switch-off uses) that must reach the same equilibrium; a design beyond
+//! the one where the pad lets go is reported as having no equilibrium with
+//! the pad closed, where the linear balance says.
+
+mod common;
 
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf_modal::spring::ForceElement;
@@ -112,18 +115,21 @@ fn design(tau: f64, [ct, dy, s, k]: [f64; 4]) -> Model {
     })
 }
 
-/// Newton's tolerance on the path: 1e-8 of the largest force (the default
-/// 1e-10 is below the round-off of a 1e11 N/m^1.5 contact along the way).
 fn path_settings() -> StaticSettings {
-    StaticSettings {
-        tolerance: 1e-8,
-        ..StaticSettings::default()
-    }
+    StaticSettings::default()
+}
+
+fn fixed_contact_force(sys: &System, q: &[f64]) -> f64 {
+    let c = sys.contacts.iter().find(|c| c.label == "fixed_contact");
+    c.expect("the built-in model's pad contact")
+        .elastic_force(q)
 }
 
 #[test]
 fn the_corners_of_the_design_space_are_found_or_have_no_closed_equilibrium() {
-    use ancf_modal::analysis::statics::design_path::{equilibrium_along, DesignPathError};
+    use ancf_modal::analysis::statics::design_path::{
+        equilibrium_along, on_state_equilibrium, DesignPathError,
+    };
     let mut report = Vec::new();
     for ct in [0.2, 1000.0] {
         for dy in [-2e-3, 2e-3] {
@@ -132,26 +138,26 @@ fn the_corners_of_the_design_space_are_found_or_have_no_closed_equilibrium() {
                 for k in [1e8, 1e11] {
                     let p = [ct, dy, s, k];
                     let r = equilibrium_along(|tau| System::new(&design(tau, p)), &path_settings());
-                    match r {
-                        Ok((eq, steps)) => {
-                            let sys = System::new(&design(1.0, p));
-                            let c = sys.contacts.iter().find(|c| c.label == "fixed_contact");
-                            let f = c.unwrap().elastic_force(&eq.q);
-                            assert!(f > 0.0, "{p:?}: the pad is off");
-                            forces.push(f);
-                            report.push(format!("{p:?}: pad {f:.4} N ({steps} steps)"));
-                        }
-                        Err(e @ DesignPathError::ContactOpens { .. }) => {
-                            report.push(format!("{p:?}: {e}"));
-                        }
-                        // Known limit (README): with the pre-stress halved
-                        // and the stiffest contact Newton's method stalls
-                        // about half-way, at an unbalanced force ~1e-5 N.
-                        Err(e @ DesignPathError::Stalled { .. }) if s == 0.5 && k == 1e11 => {
-                            report.push(format!("{p:?}: NOT FOUND {e}"));
-                        }
-                        Err(e) => panic!("{p:?}: {e}"),
-                    }
+                    let (eq, steps) = r.unwrap_or_else(|e| panic!("{p:?}: {e}"));
+                    let sys = System::new(&design(1.0, p));
+                    let f = fixed_contact_force(&sys, &eq.q);
+                    assert!(f > 0.0, "{p:?}: the pad is off");
+                    // The switch-off's own path: the straight line from
+                    // the built-in design, another way to the same state.
+                    let straight = on_state_equilibrium(
+                        &design(1.0, p),
+                        &Model::switch_off_builtin(),
+                        System::new,
+                        &path_settings(),
+                    )
+                    .unwrap_or_else(|e| panic!("{p:?}, straight path: {e}"));
+                    let g = fixed_contact_force(&sys, &straight.q);
+                    assert!(
+                        ((f - g) / f).abs() < 1e-6,
+                        "{p:?}: pad {f} N on the geometric path, {g} N on the straight one"
+                    );
+                    forces.push(f);
+                    report.push(format!("{p:?}: pad {f:.4} N ({steps} steps)"));
                 }
                 // Statically determinate: the pad force does not depend on
                 // the contact's stiffness.
@@ -192,4 +198,69 @@ fn the_corners_of_the_design_space_are_found_or_have_no_closed_equilibrium() {
         }
         other => panic!("preload × 2: {other:?}"),
     }
+}
+
+/// The command line at a corner whose ON state the load-factor
+/// continuation from the reference does not find (c_t = 0.2 N m/rad,
+/// ground −2 mm, pre-stress × 0.5, K = 1e11: "a mechanism"): `switch-off`
+/// on the model file and a one-point `sweep` from the built-in model both
+/// start from the equilibrium the design path finds (the pad force at
+/// t = 0 is the library's) and reach 2 mm at the same time.
+#[test]
+fn the_command_line_continues_a_changed_design_from_the_built_in_one() {
+    let p = [0.2, -2e-3, 0.5, 1e11];
+    let corner = design(1.0, p);
+    let sys = System::new(&corner);
+    assert!(
+        solve_equilibrium(&sys, &StaticSettings::default()).is_err(),
+        "the corner is not found from the reference (else this test shows nothing)"
+    );
+    let on = ancf_modal::analysis::statics::design_path::on_state_equilibrium(
+        &corner,
+        &Model::switch_off_builtin(),
+        System::new,
+        &StaticSettings::default(),
+    )
+    .unwrap();
+    let pad = fixed_contact_force(&sys, &on.q);
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("corner.json");
+    std::fs::write(&file, serde_json::to_string(&corner).unwrap()).unwrap();
+    let run = |args: &[&str]| -> serde_json::Value {
+        serde_json::from_slice(&common::run_ok(args)).unwrap()
+    };
+    let so = run(&["switch-off", file.to_str().unwrap(), "--json"]);
+    let contacts = so["contacts"].as_array().unwrap();
+    let fixed = contacts
+        .iter()
+        .find(|c| c["id"] == "fixed_contact")
+        .unwrap();
+    let f0 = fixed["force_n"][0].as_f64().unwrap();
+    assert!(
+        ((f0 - pad) / pad).abs() < 1e-9,
+        "{f0} N at t = 0 vs {pad} N"
+    );
+    let t = so["time_to_distance_s"].as_f64().expect("2 mm reached");
+    let sweep = run(&[
+        "sweep",
+        "--param",
+        "load_scale:F_x2,helical_spring=0.5:0.5:1",
+        "--param",
+        "joints[hybrid].torsion_stiffness=0.2:0.2:1",
+        "--param",
+        "springs[helical_spring].a.ground[1]+=-2e-3:-2e-3:1",
+        "--param",
+        "contacts[fixed_contact].law.stiffness=1e11:1e11:1",
+        "--quantity",
+        "time_to_distance_s",
+        "--json",
+    ]);
+    let point = &sweep["points"][0];
+    let ts = point["result"]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{point}"));
+    assert!(
+        ((ts - t) / t).abs() < 1e-9,
+        "sweep {ts} s vs switch-off {t} s"
+    );
 }

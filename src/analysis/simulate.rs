@@ -14,7 +14,7 @@
 
 use super::impulse::sensor::SensorProbe;
 use super::impulse::spectrum::resample_uniform;
-use super::statics::{solve_equilibrium, StaticSettings};
+use super::statics::{solve_equilibrium, Equilibrium, StaticSettings};
 use super::transient::contacts::ContactStats;
 use super::transient::{Integrator, RunStats, State, TransientSettings};
 use crate::anchor::Anchor;
@@ -115,6 +115,19 @@ fn energies(sys: &System, gravity: &[f64], st: &State) -> Energies {
     }
 }
 
+/// The output sample rate must be zero (every step) or positive and finite.
+fn check_sample_rate(settings: &SimulationSettings) -> Result<(), SimulationError> {
+    if settings.sample_rate >= 0.0 && settings.sample_rate.is_finite() {
+        Ok(())
+    } else {
+        Err(SimulationError::InvalidSetting {
+            setting: crate::error::Setting::SampleRate,
+            allowed: "zero (every step) or positive, and finite",
+            value: settings.sample_rate,
+        })
+    }
+}
+
 /// Power of the applied loads Q_loads(q, t)ᵀq̇ [SI: W].
 fn load_power(sys: &System, st: &State, scratch: &mut [f64]) -> f64 {
     scratch.fill(0.0);
@@ -133,24 +146,40 @@ pub fn simulate(
     points: &[Anchor],
     settings: &SimulationSettings,
 ) -> Result<Simulation, SimulationError> {
-    let n = sys.ndof();
-    if !(settings.sample_rate >= 0.0 && settings.sample_rate.is_finite()) {
-        return Err(SimulationError::InvalidSetting {
-            setting: crate::error::Setting::SampleRate,
-            allowed: "zero (every step) or positive, and finite",
-            value: settings.sample_rate,
-        });
-    }
-    let (sys, start) = if settings.from_equilibrium {
-        let eq = solve_equilibrium(&sys, &StaticSettings::default())?;
-        let released = sys.release_supports(&eq.q, &eq.lambda);
-        (released, Some(eq))
-    } else if let Some(r) = sys.released.first() {
-        return Err(SimulationError::ReleaseNeedsEquilibrium {
-            joint: sys.constraints[r.constraint].label().to_string(),
-        });
+    check_sample_rate(settings)?;
+    let start = if settings.from_equilibrium {
+        Some(solve_equilibrium(&sys, &StaticSettings::default())?)
     } else {
-        (sys, None)
+        None
+    };
+    simulate_from(sys, start, points, settings)
+}
+
+/// [`simulate`] from a static equilibrium of `sys` the caller found (e.g.
+/// continued from another design,
+/// [`super::statics::design_path::on_state_equilibrium`]), or from the
+/// reference at rest when `start` is `None`.
+pub fn simulate_from(
+    sys: System,
+    start: Option<Equilibrium>,
+    points: &[Anchor],
+    settings: &SimulationSettings,
+) -> Result<Simulation, SimulationError> {
+    check_sample_rate(settings)?;
+    let n = sys.ndof();
+    let (sys, start) = match start {
+        Some(eq) => {
+            let released = sys.release_supports(&eq.q, &eq.lambda);
+            (released, Some(eq))
+        }
+        None => match sys.released.first() {
+            Some(r) => {
+                return Err(SimulationError::ReleaseNeedsEquilibrium {
+                    joint: sys.constraints[r.constraint].label().to_string(),
+                })
+            }
+            None => (sys, None),
+        },
     };
     let sys = &sys;
     let mut integ = Integrator::new(sys, settings.transient)?;

@@ -22,7 +22,9 @@
 //! [`DEPARTURE_FRACTION`] × `distance` (the paper reads ~1.26 ms off
 //! Fig. 8).
 
-use super::simulate::{simulate, time_to_distance, EnergyBalance, SimulationSettings};
+use super::simulate::{simulate_from, time_to_distance, EnergyBalance, SimulationSettings};
+use super::statics::design_path::on_state_equilibrium;
+use super::statics::StaticSettings;
 use super::transient::contacts::ContactStats;
 use super::transient::TransientSettings;
 use crate::error::{Setting, SimulationError};
@@ -233,20 +235,25 @@ fn tracked(model: &Model, settings: &SwitchOffSettings) -> Result<PointSpec, Sim
     Ok(spec)
 }
 
+/// One run of `model` from its ON state (continued from `base`'s, see
+/// [`on_state_equilibrium`]).
 fn run_one(
     model: &Model,
+    base: &Model,
     point: &PointSpec,
     settings: &SwitchOffSettings,
     step: f64,
 ) -> Result<SwitchOffRun, SimulationError> {
     let spec = model.rigid_point(point);
+    let system = |m: &Model| System::new(&m.with_rigid_beams());
+    let on = on_state_equilibrium(model, base, system, &StaticSettings::default())?;
     let model = model.with_rigid_beams();
     let point = model.resolve(&spec, "point").expect("resolved above");
     let sys = System::new(&model);
     let anchor = sys.anchor_of(&point);
     let mut sim_settings = settings.simulation(step);
     sim_settings.transient.damping = model.damping;
-    let sim = simulate(sys, &[anchor], &sim_settings)?;
+    let sim = simulate_from(sys, Some(on), &[anchor], &sim_settings)?;
     let [x, y] = &sim.step_points[0];
     let n = settings.direction[0].hypot(settings.direction[1]);
     let dir = [settings.direction[0] / n, settings.direction[1] / n];
@@ -288,22 +295,44 @@ fn run_one(
     })
 }
 
-/// Run the switch-off experiment on `model`.
+/// Run the switch-off experiment on `model`; its ON state is continued
+/// from the built-in model's when `model` is a design of that assembly
+/// (see [`run_switch_off_from`]).
 pub fn run_switch_off(
     model: &Model,
     settings: &SwitchOffSettings,
 ) -> Result<SwitchOffResult, SimulationError> {
+    run_switch_off_from(model, &Model::switch_off_builtin(), settings)
+}
+
+/// Run the switch-off experiment on `model`, its ON state continued from
+/// the equilibrium of `base` when `model` is a design of base's assembly
+/// (differs only in real numbers; [`on_state_equilibrium`]): the ON state
+/// of a changed design is the one its contacts hold, or the error says
+/// where a contact lets go. Otherwise the ON state is solved from the
+/// reference.
+pub fn run_switch_off_from(
+    model: &Model,
+    base: &Model,
+    settings: &SwitchOffSettings,
+) -> Result<SwitchOffResult, SimulationError> {
     settings.validate()?;
     let point = tracked(model, settings)?;
-    let flexible = run_one(model, &point, settings, settings.step)?;
-    let rigid_model = model.all_beams_rigid();
+    let flexible = run_one(model, base, &point, settings, settings.step)?;
     let rigid = if settings.compare_rigid {
-        Some(run_one(&rigid_model, &point, settings, settings.step)?)
+        let (rigid_model, rigid_base) = (model.all_beams_rigid(), base.all_beams_rigid());
+        Some(run_one(
+            &rigid_model,
+            &rigid_base,
+            &point,
+            settings,
+            settings.step,
+        )?)
     } else {
         None
     };
     let half_step_time_s = if settings.halve_step {
-        run_one(model, &point, settings, 0.5 * settings.step)?.time_to_distance_s
+        run_one(model, base, &point, settings, 0.5 * settings.step)?.time_to_distance_s
     } else {
         None
     };

@@ -3,6 +3,7 @@
 //! offending value; [`Model::validate`] then checks physics and references.
 
 mod contact;
+mod interpolate;
 mod placement;
 mod rigid;
 pub mod sanity;
@@ -10,6 +11,7 @@ mod types;
 pub mod validate;
 
 pub use contact::*;
+pub use interpolate::DesignPath;
 pub use placement::Placement;
 pub use sanity::UnitWarning;
 pub use types::*;

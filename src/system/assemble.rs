@@ -272,10 +272,15 @@ impl System {
 
     /// Adds the contacts' regularizing stiffness of static Newton
     /// iterations into `out` (see [`crate::contact::ContactElement::regularization`]).
-    pub fn add_contact_regularization(&self, q: &[f64], out: &mut impl Scatter) {
+    pub fn add_contact_regularization(
+        &self,
+        q: &[f64],
+        which: crate::contact::Regularize,
+        out: &mut impl Scatter,
+    ) {
         let mut h = PairHess::zeros();
         for c in &self.contacts {
-            if c.regularization(q, &mut h) {
+            if c.regularization(q, which, &mut h) {
                 let dofs: Vec<usize> = crate::spring::ForceElement::pair(c).dofs().collect();
                 scatter_mat(&dofs, &h, out);
             }

@@ -17,9 +17,16 @@
 //! independently): a contact that opens, or whose force has faded below
 //! [`FADED`] of its start where the path stalls, means that the design has
 //! no equilibrium with it closed (the answer, not a failure of the method).
+//!
+//! [`on_state_equilibrium`] is what the switch-off uses: the path is the
+//! straight line between two designs of one assembly
+//! ([`Model::path_to`]), from a known design (the built-in model, or the
+//! swept one) to the wanted one.
 
 use super::{continue_equilibrium, solve_equilibrium, Equilibrium, StaticSettings};
 use crate::error::AnalysisError;
+pub use crate::error::DesignPathError;
+use crate::model::Model;
 use crate::spring::ForceElement;
 use crate::system::System;
 
@@ -32,17 +39,6 @@ pub const MIN_STEP: f64 = 1.0 / 4096.0;
 const FADED: f64 = 0.05;
 /// First step in τ.
 const FIRST_STEP: f64 = 0.25;
-
-/// Why the path did not reach τ = 1.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum DesignPathError {
-    #[error("the starting design: {0}")]
-    Start(AnalysisError),
-    #[error("contact `{contact}` opens at {at:.4} of the way to the design: no equilibrium with it closed")]
-    ContactOpens { contact: String, at: f64 },
-    #[error("no equilibrium found beyond {at:.4} of the way to the design (steps below {MIN_STEP} of it): {source}")]
-    Stalled { at: f64, source: AnalysisError },
-}
 
 /// The equilibrium at τ = 1 of the systems `build(τ)`, by continuation from
 /// τ = 0 (see the module doc); also the number of path steps taken.
@@ -96,13 +92,43 @@ pub fn equilibrium_along(
                             contact: sys.contacts[i].label.clone(),
                             at: tau,
                         },
-                        None => DesignPathError::Stalled { at: tau, source },
+                        None => DesignPathError::Stalled {
+                            at: tau,
+                            min_step: MIN_STEP,
+                            source,
+                        },
                     });
                 }
             }
         }
     }
     Ok((eq, steps))
+}
+
+/// The ON-state equilibrium of `model` (its systems built by `system`,
+/// e.g. with its beams made rigid): continued along the straight path
+/// ([`Model::path_to`]) from `base` when `model` is a design of base's
+/// assembly, so that the contacts closed in base's equilibrium stay
+/// closed or the answer says where one opens; solved from the reference
+/// (load-factor continuation) when it is not, or when base's own
+/// equilibrium is not found.
+pub fn on_state_equilibrium(
+    model: &Model,
+    base: &Model,
+    system: impl Fn(&Model) -> System,
+    settings: &StaticSettings,
+) -> Result<Equilibrium, AnalysisError> {
+    let Some(path) = base.path_to(model) else {
+        return solve_equilibrium(&system(model), settings);
+    };
+    match equilibrium_along(|tau| system(&path.at(tau)), settings) {
+        Ok((eq, _)) => Ok(eq),
+        Err(DesignPathError::Start(_)) => solve_equilibrium(&system(model), settings),
+        Err(reason) => Err(AnalysisError::FromDesign {
+            from: base.name.clone(),
+            reason: Box::new(reason),
+        }),
+    }
 }
 
 /// Relative unbalanced force accepted by [`balanced`].

@@ -56,6 +56,7 @@ pub mod design_path;
 pub mod prestress;
 mod reduced_tangent;
 
+use crate::contact::Regularize;
 use crate::error::AnalysisError;
 use crate::linalg::null_space::{symmetrize, NullSpace, Projected};
 use crate::linalg::sparse::mul_vec;
@@ -217,6 +218,16 @@ pub(crate) struct State {
     pub(crate) residual: f64,
     pub(crate) violation: f64,
 }
+
+/// The Newton solves a load step tries, in turn, while the previous one
+/// stalls: whole steps, then a line search, then a line search with the
+/// closed contacts' exact tangents (a stiff contact closed at a small
+/// force, where the regularized matrix converges only linearly).
+const NEWTON_MODES: [(Damping, Regularize); 3] = [
+    (Damping::Full, Regularize::OpenOnly),
+    (Damping::LineSearch, Regularize::OpenOnly),
+    (Damping::LineSearch, Regularize::OpenAndBarelyClosed),
+];
 
 /// How Newton steps are damped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -440,12 +451,17 @@ impl<'a> Solver<'a> {
             tried += 1;
             let t_try = (t + dt).min(1.0);
             let mut trial = state.clone();
-            set(&mut trial, at(t_try));
-            let mut outcome = self.newton(&mut trial, Damping::Full);
-            if let Err(NewtonFailure::Stalled { .. }) = outcome {
+            let mut outcome = Err(NewtonFailure::Stalled {
+                iterations: 0,
+                residual: f64::INFINITY,
+            });
+            for (damping, contacts) in NEWTON_MODES {
                 trial = state.clone();
                 set(&mut trial, at(t_try));
-                outcome = self.newton(&mut trial, Damping::LineSearch);
+                outcome = self.newton(&mut trial, damping, contacts);
+                if !matches!(outcome, Err(NewtonFailure::Stalled { .. })) {
+                    break;
+                }
             }
             match outcome {
                 Ok(iterations) => {
@@ -499,8 +515,15 @@ impl<'a> Solver<'a> {
     /// reject it. [`Damping::LineSearch`] backtracks on the merit
     /// ‖r‖ + ‖C‖/length (Armijo), for problems where whole steps overshoot
     /// (rigid rotations, mechanisms with springs); the continuation tries it
-    /// before it cuts the load increment.
-    pub(crate) fn newton(&self, state: &mut State, mode: Damping) -> Result<usize, NewtonFailure> {
+    /// before it cuts the load increment. `contacts` says which contacts'
+    /// regularizing stiffness the Newton matrix gets (see
+    /// [`crate::contact::ContactElement::regularization`]).
+    pub(crate) fn newton(
+        &self,
+        state: &mut State,
+        mode: Damping,
+        contacts: Regularize,
+    ) -> Result<usize, NewtonFailure> {
         let (g, l) = (state.gravity, state.loads);
         let mut snap = self.snapshot(&state.q, g, l);
         let f_ref = self.force_reference(&snap, &state.q, g, l);
@@ -518,7 +541,7 @@ impl<'a> Solver<'a> {
                 });
             }
             iterations += 1;
-            let step = self.tangent_solver(&state.q, &snap, l)?;
+            let step = self.tangent_solver(&state.q, &snap, l, contacts)?;
             let dq = step.correction(&snap, f_ref, true, self)?;
             let size = self.scaled_norm(&dq);
             let mut alpha = 1.0;
@@ -574,6 +597,7 @@ impl<'a> Solver<'a> {
         q: &[f64],
         snap: &Snapshot,
         loads: f64,
+        contacts: Regularize,
     ) -> Result<TangentSolver, NewtonFailure> {
         let sys = self.system;
         let n = sys.ndof();
@@ -585,14 +609,14 @@ impl<'a> Solver<'a> {
         };
         let mut k = Triplets::new(n, n);
         sys.add_tangent_stiffness(&at, &mut k);
-        sys.add_contact_regularization(q, &mut k);
+        sys.add_contact_regularization(q, contacts, &mut k);
         let d = snap.ns.dim();
         let factor = if d == 0 {
             Factor::Empty
         } else if d > crate::analysis::modal::DENSE_MAX {
             let mut kr = Triplets::new(d, d);
             sys.add_tangent_stiffness(&at, &mut Projected::new(&snap.ns, &mut kr));
-            sys.add_contact_regularization(q, &mut Projected::new(&snap.ns, &mut kr));
+            sys.add_contact_regularization(q, contacts, &mut Projected::new(&snap.ns, &mut kr));
             // Large: the reduced tangent stays sparse; Cholesky when it is
             // definite, LU past a loss of stability (the stability check
             // then finds the critical load), an error when it is singular
@@ -615,7 +639,7 @@ impl<'a> Solver<'a> {
         } else {
             let mut kr = Mat::zeros(d, d);
             sys.add_tangent_stiffness(&at, &mut Projected::new(&snap.ns, &mut kr));
-            sys.add_contact_regularization(q, &mut Projected::new(&snap.ns, &mut kr));
+            sys.add_contact_regularization(q, contacts, &mut Projected::new(&snap.ns, &mut kr));
             symmetrize(&mut kr);
             if let Some(llt) = definite_factor(&kr) {
                 Factor::Cholesky(llt)

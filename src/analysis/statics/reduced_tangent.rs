@@ -17,6 +17,7 @@ use super::{
     argmax_abs, dot, norm2, norm_inf, Damping, NewtonFailure, Ramp, Snapshot, Solver, State,
 };
 use crate::anchor::Anchor;
+use crate::contact::Regularize;
 use crate::error::AnalysisError;
 use crate::linalg::dense::solve_generalized;
 use crate::linalg::krylov::{lowest_modes, KrylovSettings};
@@ -205,7 +206,10 @@ impl Solver<'_> {
                 Ramp::Gravity => c.gravity = sc,
                 Ramp::Loads => c.loads = sc,
             }
-            if self.newton(&mut c, Damping::Full).is_err() {
+            if self
+                .newton(&mut c, Damping::Full, Regularize::OpenAndBarelyClosed)
+                .is_err()
+            {
                 break;
             }
             let Some(m) = self.lowest_mode(&c, true)? else {

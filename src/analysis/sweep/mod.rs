@@ -81,6 +81,8 @@ fn margin(tracked: usize) -> usize {
 pub struct Sweep {
     /// The model's JSON form, into which each point writes its values.
     base: serde_json::Value,
+    /// The swept model itself.
+    model: Model,
     pub parameters: Vec<Parameter>,
     pub grid: Grid,
     pub settings: SweepSettings,
@@ -148,6 +150,7 @@ impl Sweep {
         };
         Ok(Sweep {
             base,
+            model: model.clone(),
             parameters,
             grid,
             settings,
@@ -188,7 +191,7 @@ impl Sweep {
             .model_at(&values)
             .and_then(|m| {
                 warnings = m.unit_warnings().iter().map(|w| w.to_string()).collect();
-                evaluate(&self.settings.quantity, &m, &eval)
+                evaluate(&self.settings.quantity, &m, &self.model, &eval)
             })
             .map_err(|e| e.to_string());
         RawPoint {

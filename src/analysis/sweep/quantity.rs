@@ -11,7 +11,9 @@
 //!
 //! * `time_to_distance_s` — the switch-off ([`crate::analysis::switch_off`]
 //!   with its defaults: equilibrium, release, node 0 of the first beam
-//!   travelling 2 mm along x) [s];
+//!   travelling 2 mm along x) [s]; each point's ON state is continued from
+//!   the swept model's (the contacts that hold it stay closed, or the
+//!   point reports where one lets go);
 //! * `peak:SENSOR` — the largest |reading| of a sensor over a `transient`
 //!   run (from the static equilibrium when the sweep is pre-stressed) [SI
 //!   unit of the sensor].
@@ -27,7 +29,7 @@ use super::error::{PointError, SweepError};
 use crate::analysis::modal::{modal, ModalResult, ModalSettings};
 use crate::analysis::simulate::{simulate, SimulationSettings};
 use crate::analysis::statics::{solve_equilibrium, StaticSettings};
-use crate::analysis::switch_off::{run_switch_off, SwitchOffSettings};
+use crate::analysis::switch_off::{run_switch_off_from, SwitchOffSettings};
 use crate::analysis::transient::TransientSettings;
 use crate::analysis::EigenMethod;
 use crate::model::Model;
@@ -177,10 +179,13 @@ pub struct EvalSettings {
     pub keep_trace: bool,
 }
 
-/// Computes `quantity` on `model`.
+/// Computes `quantity` on `model`, a point of a sweep of `base` (the
+/// switch-off's ON state is continued from base's,
+/// [`crate::analysis::switch_off::run_switch_off_from`]).
 pub fn evaluate(
     quantity: &Quantity,
     model: &Model,
+    base: &Model,
     settings: &EvalSettings,
 ) -> Result<Evaluation, PointError> {
     let system = System::new(model);
@@ -228,7 +233,7 @@ pub fn evaluate(
                 end_time: settings.end_time.unwrap_or(defaults.end_time),
                 ..defaults
             };
-            let r = run_switch_off(model, &so)?;
+            let r = run_switch_off_from(model, base, &so)?;
             let t = r
                 .flexible
                 .time_to_distance_s
