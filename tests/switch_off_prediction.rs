@@ -86,6 +86,50 @@ fn builtin_on_state_carries_the_measured_contact_force_and_nothing_is_fitted() {
     assert!(rigid > t, "rigid {rigid:.6e} s vs flexible {t:.6e} s");
 }
 
+/// The pad contact, closed in the ON state, is elastic until it first
+/// separates: at every step before, its force is K·δ^1.5 with δ from the
+/// pad's position against the fixed line (the pad is pinned to node 0,
+/// the tracked point), and it dissipates nothing; after, its force is 0
+/// (no new impact while node 0 travels 2 mm).
+#[test]
+fn the_closed_pad_contact_is_elastic_until_it_first_separates() {
+    let m = Model::switch_off_builtin();
+    let Some(Contact::PointLine {
+        radius, line, law, ..
+    }) = m.contacts.iter().find(|c| c.id() == "fixed_contact")
+    else {
+        panic!("the built-in model's pad contact")
+    };
+    assert_eq!(line.from[0], line.to[0], "a vertical line");
+    let settings = SwitchOffSettings {
+        sample_rate: 0.0,
+        ..SwitchOffSettings::default()
+    };
+    let r = run_switch_off(&m, &settings).unwrap();
+    let run = &r.flexible;
+    let pad = run
+        .contacts
+        .iter()
+        .find(|c| c.id == "fixed_contact")
+        .unwrap();
+    assert_eq!(pad.dissipated, 0.0, "elastic: no dissipation");
+    let open = pad.force_n.iter().position(|&f| f == 0.0).expect("opens");
+    assert!(open > 10, "closed for {open} samples");
+    for k in 0..open {
+        let delta = radius - (run.x_m[k] - line.from[0]);
+        let elastic = law.stiffness * delta.powf(law.exponent());
+        assert!(
+            (pad.force_n[k] - elastic).abs() <= 1e-6 * PAPER_F_C,
+            "t = {:.3e} s: {} N vs K δ^n = {elastic} N",
+            run.time_s[k],
+            pad.force_n[k]
+        );
+    }
+    let t2 = run.time_to_distance_s.unwrap();
+    let k2 = run.time_s.iter().position(|&t| t > t2).unwrap();
+    assert!(pad.force_n[open..k2].iter().all(|&f| f == 0.0));
+}
+
 const LEVER_J: f64 = 1e-5;
 const ARM: f64 = 0.02;
 const PRELOAD: f64 = 10.0;
