@@ -25,6 +25,7 @@ mod frf;
 mod identify;
 mod impulse;
 mod modal;
+mod report;
 mod statics;
 mod sweep;
 mod sweep_merge;
@@ -66,6 +67,8 @@ pub enum Command {
     Transient(transient::TransientArgs),
     /// The paper's switch-off: pre-stressed equilibrium, release, node-0 travel (Figs. 7–9).
     SwitchOff(switch_off::SwitchOffArgs),
+    /// One self-contained HTML file: the assembly, animated modes, the impulse test.
+    Report(report::ReportArgs),
     /// Print the JSON Schema of the model file.
     Schema,
     /// Measured hammer records (CSV, UFF 58) in: H1, H2, coherence, and the
@@ -78,6 +81,7 @@ pub use common::print_warnings;
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Identify(a) => identify::run(a),
+        Command::Report(a) => report::run(a),
         Command::Impulse(a) => impulse::run(a),
         Command::Modal(a) => modal::run(a),
         Command::Calibrate(a) => calibrate::run(a),

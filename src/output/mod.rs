@@ -11,6 +11,7 @@ pub mod number;
 pub mod plot;
 pub mod provenance;
 pub mod records_uff;
+pub mod report;
 pub mod static_report;
 pub mod sweep_report;
 pub mod switch_off_report;

@@ -50,3 +50,48 @@ pub fn header_lines(model_sha256: &str) -> [String; 2] {
         format!("model_sha256 {model_sha256}"),
     ]
 }
+
+/// The current time in UTC, ISO 8601 to the second
+/// (`2026-11-25T11:52:50Z`).
+pub fn utc_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    utc_timestamp(secs)
+}
+
+/// Seconds since 1970-01-01T00:00:00Z as ISO 8601 (proleptic Gregorian
+/// calendar; the civil-from-days conversion of H. Hinnant's date
+/// algorithms).
+pub fn utc_timestamp(secs: u64) -> String {
+    let (days, rest) = ((secs / 86_400) as i64, secs % 86_400);
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}Z",
+        rest / 3600,
+        rest / 60 % 60,
+        rest % 60
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::utc_timestamp;
+
+    #[test]
+    fn timestamps_match_known_dates() {
+        assert_eq!(utc_timestamp(0), "1970-01-01T00:00:00Z");
+        // 2000-02-29 (a leap day of a century leap year), 12:34:56.
+        assert_eq!(utc_timestamp(951_827_696), "2000-02-29T12:34:56Z");
+        // 2026-11-25T00:00:00Z = 20 782 days after the epoch.
+        assert_eq!(utc_timestamp(20_782 * 86_400), "2026-11-25T00:00:00Z");
+    }
+}

@@ -1,0 +1,247 @@
+//! The HTML report: well formed (every SVG part parses as XML, ids
+//! unique), self-contained (no http:// or https:// outside XML namespace
+//! declarations), within 2 MB for the paper's assembly; and the animated
+//! mode shapes draw q₀ ± a·φ: the pixel coordinates, mapped back to the
+//! model through the affine map fitted on the undeformed drawing, equal
+//! the element interpolation of q₀ + a·φ at phase 0 and of q₀ − a·φ at
+//! half the period, with the largest displacement 15 % of the bounding
+//! box's diagonal (computed here, not by the library).
+
+use ancf_modal::analysis::impulse::{run_impulse, ImpulseSettings};
+use ancf_modal::analysis::modal::{modal, ModalSettings};
+use ancf_modal::output::figures::{assembly_geometry, response_figure, spectrum_figure};
+use ancf_modal::output::plot::{Figure, PlotSize};
+use ancf_modal::output::report::animate::PHASES;
+use ancf_modal::output::report::{report_html, ModeSet, Provenance, ReportInput, Section};
+use ancf_modal::{Model, System};
+
+fn paper_report() -> (System, String) {
+    let model = Model::builtin();
+    let system = System::new(&model);
+    let settings = ModalSettings {
+        modes: Some(9),
+        ..ModalSettings::default()
+    };
+    let r = modal(&system, &system.reference(), &settings).unwrap();
+    let imp = run_impulse(&model, &ImpulseSettings::default(), &mut |_| {}).unwrap();
+    let size = PlotSize {
+        width: 900,
+        height: 560,
+    };
+    let input = ReportInput {
+        provenance: Provenance {
+            tool_version: "test".into(),
+            model_name: model.name.clone(),
+            model_sha256: "0".repeat(64),
+            command_line: "ancf-modal report <&>".into(),
+            date: "2026-11-25".into(),
+        },
+        description: &model.description,
+        mode_sets: vec![ModeSet {
+            title: "Modes at the reference",
+            system: &system,
+            q: &system.q0,
+            modal: &r,
+        }],
+        sections: vec![Section {
+            id: "impulse".into(),
+            title: "Impulse test".into(),
+            notes: vec!["a < b & c".into()],
+            tables: Vec::new(),
+            figures: vec![
+                (response_figure(&model.name, &imp), size),
+                (Figure::Line(spectrum_figure(&model, &imp)), size),
+            ],
+        }],
+    };
+    let html = report_html(&input).unwrap();
+    (system, html)
+}
+
+/// Every `<svg …>…</svg>` part (none nested in this page).
+fn svg_parts(html: &str) -> Vec<&str> {
+    let mut parts = Vec::new();
+    let mut rest = html;
+    while let Some(a) = rest.find("<svg") {
+        let b = a + rest[a..].find("</svg>").expect("closed") + "</svg>".len();
+        parts.push(&rest[a..b]);
+        rest = &rest[b..];
+    }
+    parts
+}
+
+#[test]
+fn the_report_is_well_formed_self_contained_and_small() {
+    let (_, html) = paper_report();
+    assert!(html.len() <= 2 << 20, "{} bytes", html.len());
+    let parts = svg_parts(&html);
+    assert!(parts.len() >= 1 + 6 + 2, "{} SVG parts", parts.len());
+    for p in &parts {
+        roxmltree::Document::parse(p).unwrap_or_else(|e| panic!("{e}: {}", &p[..200]));
+    }
+    let mut ids: Vec<&str> = html
+        .split(" id=\"")
+        .skip(1)
+        .map(|s| s.split('"').next().unwrap())
+        .collect();
+    let n = ids.len();
+    ids.sort_unstable();
+    ids.dedup();
+    assert_eq!(ids.len(), n, "duplicate ids");
+    for scheme in ["http://", "https://"] {
+        for (i, _) in html.match_indices(scheme) {
+            let before = &html[i.saturating_sub(12)..i];
+            assert!(
+                before.ends_with("xmlns=\"") || before.contains("xmlns:"),
+                "external reference at {i}: {}",
+                &html[i.saturating_sub(40)..i + 40]
+            );
+        }
+    }
+    assert!(html.contains("ancf-modal report &lt;&amp;&gt;"), "escaped");
+}
+
+/// The pixel pairs of a `points` list.
+fn pixels(points: &str) -> Vec<[f64; 2]> {
+    points
+        .split_whitespace()
+        .map(|p| {
+            let (x, y) = p.split_once(',').unwrap();
+            [x.parse().unwrap(), y.parse().unwrap()]
+        })
+        .collect()
+}
+
+#[test]
+fn animated_modes_draw_q0_plus_and_minus_a_phi() {
+    let (system, html) = paper_report();
+    let r = modal(
+        &system,
+        &system.reference(),
+        &ModalSettings {
+            modes: Some(9),
+            ..ModalSettings::default()
+        },
+    )
+    .unwrap();
+    let per = 8;
+    let undeformed = assembly_geometry(&system, &system.q0, per);
+    let beam0 = &undeformed.beams[0];
+    let panels: Vec<&str> = svg_parts(&html)
+        .into_iter()
+        .filter(|p| p.contains("class=\"mode-shape\""))
+        .collect();
+    let elastic: Vec<_> = r.modes.iter().filter(|m| !m.kind.is_zero()).collect();
+    assert_eq!(panels.len(), elastic.len());
+    for (panel, mode) in panels.iter().zip(elastic) {
+        let doc = roxmltree::Document::parse(panel).unwrap();
+        let group = |class: &str| {
+            doc.descendants()
+                .find(|n| n.attribute("class") == Some(class))
+                .unwrap()
+        };
+        let grey = pixels(
+            group("undeformed")
+                .children()
+                .find(|n| n.has_tag_name("polyline"))
+                .unwrap()
+                .attribute("points")
+                .unwrap(),
+        );
+        assert_eq!(grey.len(), beam0.len());
+        // The affine map x' = s·x + a, y' = −s·y + b from the two ends.
+        let (p0, p1) = (beam0[0], beam0[beam0.len() - 1]);
+        let (g0, g1) = (grey[0], grey[grey.len() - 1]);
+        let s = (g1[0] - g0[0]).hypot(g1[1] - g0[1]) / (p1[0] - p0[0]).hypot(p1[1] - p0[1]);
+        let to_model = |g: [f64; 2]| [p0[0] + (g[0] - g0[0]) / s, p0[1] - (g[1] - g0[1]) / s];
+        for (g, p) in grey.iter().zip(beam0) {
+            let m = to_model(*g);
+            assert!(
+                (m[0] - p[0]).hypot(m[1] - p[1]) <= 0.01 / s,
+                "undeformed drawn to scale"
+            );
+        }
+        let values = group("deformed anim")
+            .descendants()
+            .find(|n| n.has_tag_name("animate"))
+            .unwrap()
+            .attribute("values")
+            .unwrap();
+        let frames: Vec<Vec<[f64; 2]>> = values.split(';').map(pixels).collect();
+        assert_eq!(
+            frames.len(),
+            PHASES + 1,
+            "a period and the first frame again"
+        );
+        assert_eq!(frames[0], frames[PHASES]);
+        // The drawn displacement at phase 0 against the interpolation of φ.
+        let plus = assembly_geometry(&system, &mode.shape, per).beams[0].clone();
+        let shift = [system.origin.x, system.origin.y];
+        let d: Vec<[f64; 2]> = plus
+            .iter()
+            .map(|p| [p[0] - shift[0], p[1] - shift[1]])
+            .collect();
+        let (k, dk) = d
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1[0].hypot(a.1[1]).total_cmp(&b.1[0].hypot(b.1[1])))
+            .unwrap();
+        let drawn = to_model(frames[0][k]);
+        let a = ((drawn[0] - beam0[k][0]) * dk[0] + (drawn[1] - beam0[k][1]) * dk[1])
+            / (dk[0] * dk[0] + dk[1] * dk[1]);
+        for (half, sign) in [(0, 1.0), (PHASES / 2, -1.0)] {
+            for ((g, p), di) in frames[half].iter().zip(beam0).zip(&d) {
+                let m = to_model(*g);
+                let want = [p[0] + sign * a * di[0], p[1] + sign * a * di[1]];
+                assert!(
+                    (m[0] - want[0]).hypot(m[1] - want[1]) <= 0.02 / s,
+                    "mode {} phase {half}: {m:?} vs {want:?}",
+                    mode.index
+                );
+            }
+        }
+        // Largest displacement of a drawn point: 15 % of the diagonal.
+        // Beam points and bodies move linearly in q; joint anchors by a
+        // finite difference of their drawn positions.
+        let eps = 1e-7;
+        let q_eps: Vec<f64> = system
+            .q0
+            .iter()
+            .zip(&mode.shape)
+            .map(|(q, p)| q + eps * p)
+            .collect();
+        let moved = assembly_geometry(&system, &q_eps, per);
+        let points = |g: &ancf_modal::output::plot::Geometry| -> Vec<[f64; 2]> {
+            g.beams
+                .iter()
+                .flatten()
+                .chain(&g.bodies)
+                .chain(&g.joints)
+                .copied()
+                .collect()
+        };
+        let (before, after) = (points(&undeformed), points(&moved));
+        let unit = before
+            .iter()
+            .zip(&after)
+            .map(|(b, a)| (a[0] - b[0]).hypot(a[1] - b[1]) / eps)
+            .fold(0.0f64, f64::max);
+        let (lo, hi) = before.iter().fold(
+            ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+            |(lo, hi), p| {
+                (
+                    [lo[0].min(p[0]), lo[1].min(p[1])],
+                    [hi[0].max(p[0]), hi[1].max(p[1])],
+                )
+            },
+        );
+        let diagonal = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+        let largest = a.abs() * unit;
+        assert!(
+            (largest / diagonal - 0.15).abs() < 1e-3,
+            "mode {}: largest displacement {:.4} of the diagonal",
+            mode.index,
+            largest / diagonal
+        );
+    }
+}
