@@ -3,7 +3,9 @@
 
 use super::{Section, Table};
 use crate::analysis::impulse::{Excitation, ImpulseResult};
-use crate::model::Model;
+use crate::analysis::switch_off::SwitchOffResult;
+use crate::model::{Model, TimeFunction};
+use crate::output::figures::switch_off::{time_figure, trajectory_figure};
 use crate::output::figures::{response_figure, spectrum_figure};
 use crate::output::plot::{Figure, PlotSize};
 
@@ -67,6 +69,70 @@ pub fn impulse_section(model: &Model, r: &ImpulseResult) -> Section {
         figures: vec![
             (response_figure(&model.name, r), FIGURE_SIZE),
             (Figure::Line(spectrum_figure(model, r)), FIGURE_SIZE),
+        ],
+    }
+}
+
+/// Whether `model` lets go of something in time (a load that ends or
+/// ramps down, a released support): then the report has a switch-off.
+pub fn has_release(model: &Model) -> bool {
+    let ends =
+        |t: &TimeFunction| matches!(t, TimeFunction::Until(_) | TimeFunction::RampDown { .. });
+    model.loads.iter().any(|l| ends(&l.time)) || model.joints.iter().any(|j| j.release.is_some())
+}
+
+/// The switch-off: time to the distance, flexible against rigid, what was
+/// calibrated (nothing for the built-in model), and the figures of
+/// `switch-off --plot` (the tracked point against time with the contact
+/// forces and released loads, and the trajectory).
+pub fn switch_off_section(r: &SwitchOffResult) -> Section {
+    let ms = |t: Option<f64>| t.map_or("not reached".to_string(), |t| format!("{:.4} ms", t * 1e3));
+    let mut rows = vec![vec![
+        "this model, flexible".to_string(),
+        ms(r.flexible.time_to_distance_s),
+    ]];
+    if let Some(rigid) = &r.rigid {
+        rows.push(vec![
+            "this model, rigid beams".into(),
+            ms(rigid.time_to_distance_s),
+        ]);
+    }
+    if r.builtin {
+        rows.push(vec!["paper (Fig. 7, measured)".into(), "1.7500 ms".into()]);
+    }
+    let mut notes = vec![if r.calibrated.is_empty() {
+        "Calibrated: nothing; every time is a prediction of the model.".to_string()
+    } else {
+        let list: Vec<String> = r
+            .calibrated
+            .iter()
+            .map(|c| format!("{} = {} (to match {})", c.name, c.value, c.target))
+            .collect();
+        format!("Calibrated: {}.", list.join("; "))
+    }];
+    if let Some(d) = r.departure_s {
+        notes.push(format!(
+            "The rigid run departs from the flexible one (paths more than 5 % of the distance apart) at {:.4} ms.",
+            d * 1e3
+        ));
+    }
+    notes.extend(r.warnings.iter().cloned());
+    Section {
+        id: "switch-off".into(),
+        title: "Switch-off".into(),
+        notes,
+        tables: vec![Table {
+            caption: format!(
+                "Time for {} to travel {} mm",
+                r.point_label,
+                r.settings.distance * 1e3
+            ),
+            header: vec!["run".into(), "time".into()],
+            rows,
+        }],
+        figures: vec![
+            (Figure::Line(time_figure(r)), FIGURE_SIZE),
+            (Figure::Line(trajectory_figure(r)), FIGURE_SIZE),
         ],
     }
 }
