@@ -185,7 +185,7 @@ pub fn request(args: &CalibrateArgs, model: &Model) -> Result<CalibrationRequest
     } else if args.target.is_empty() {
         match &model.reference {
             Some(r) => vec![r.first_bending_hz],
-            None => return Err(CalibrationError::NoTargets.into()),
+            None => return Err(flagged(CalibrationError::NoTargets)),
         }
     } else {
         args.target.clone()
@@ -217,12 +217,12 @@ pub fn run(args: CalibrateArgs) -> Result<()> {
         ..CalibrationSettings::default()
     };
     let result = match args.method {
-        MethodArg::Eigen => calibrate(&model, &request, &settings)?,
+        MethodArg::Eigen => calibrate(&model, &request, &settings).map_err(flagged)?,
         MethodArg::Impulse => {
             let experiment = args.experiment.settings();
             experiment.transient.validate()?;
-            let eval = ImpulseFrequency::new(&request.modes, experiment)?;
-            calibrate_with(&model, &request, &settings, &eval, &[1])?
+            let eval = ImpulseFrequency::new(&request.modes, experiment).map_err(flagged)?;
+            calibrate_with(&model, &request, &settings, &eval, &[1]).map_err(flagged)?
         }
     };
     // Everything is computed before any file is written.
@@ -298,4 +298,24 @@ pub fn equivalent_height(model: &Model, target_hz: f64) -> Result<CalibrationRes
         keep_mass: false,
     };
     Ok(calibrate(model, &request, &CalibrationSettings::default())?)
+}
+
+/// A calibration error with the flag it concerns in front (`--param: …`);
+/// the library names quantities, not flags.
+fn flagged(e: CalibrationError) -> anyhow::Error {
+    use CalibrationError as E;
+    let flag = match &e {
+        E::NoParameters
+        | E::UnknownParameter { .. }
+        | E::AmbiguousParameter { .. }
+        | E::DuplicateParameter { .. }
+        | E::InvalidBounds { .. }
+        | E::Unreachable { .. } => "--param",
+        E::NoTargets | E::TargetNotPositive { .. } => "--target",
+        E::DensityWithKeepMass { .. } => "--keep-mass",
+        E::ModeCount { .. } | E::ModeNotFound { .. } => "--mode",
+        E::ImpulseMode { .. } | E::NeedsSensitivities { .. } => "--method",
+        _ => return e.into(),
+    };
+    anyhow::Error::new(e).context(flag)
 }

@@ -81,7 +81,12 @@ pub fn run(args: TransientArgs) -> Result<()> {
     settings.transient.validate()?;
     let system = System::new(&model);
     let sim = simulate(system, &[], &settings)
-        .map_err(super::common::simulation_error)
+        .map_err(|e| match e {
+            ancf_modal::error::SimulationError::ReleaseNeedsEquilibrium { .. } => {
+                anyhow::anyhow!("{e} (--from-equilibrium)")
+            }
+            e => super::common::simulation_error(e),
+        })
         .with_context(|| source_label(args.model.as_deref()))?;
     if let Some(path) = &args.csv {
         write_output(path, &transient_csv(&sim))?;

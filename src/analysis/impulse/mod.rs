@@ -48,9 +48,9 @@ pub enum ImpulseError {
     Transient(#[from] TransientError),
     #[error(transparent)]
     Analysis(#[from] AnalysisError),
-    #[error("spectrum: {0}")]
+    #[error("spectrum")]
     Spectrum(#[from] SpectrumError),
-    #[error("integrator correction: {0}")]
+    #[error("integrator correction")]
     Dispersion(#[from] DispersionError),
     #[error("the model has no sensor to record (add one under `sensors`)")]
     NoSensor,
