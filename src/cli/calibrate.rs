@@ -10,10 +10,11 @@ use ancf_modal::analysis::calibrate::{
 };
 use ancf_modal::analysis::ModeKind;
 use ancf_modal::model::Model;
-use ancf_modal::output::calibrate_report::{calibrate_json, calibrate_table, calibration_plot};
+use ancf_modal::output::calibrate_report::{calibrate_table, calibration_plot};
 use ancf_modal::output::plot::{
     calibration_figure, render, write_atomic, Figure, Format, PlotSize,
 };
+use ancf_modal::results::CalibrationOutput;
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
@@ -241,7 +242,10 @@ pub fn run(args: CalibrateArgs) -> Result<()> {
         write_atomic(path, &bytes)?;
     }
     if args.json {
-        print_json(calibrate_json(&model.name, &result), args.model.as_deref())?;
+        print_json(
+            CalibrationOutput::new(&model.name, &result),
+            args.model.as_deref(),
+        )?;
     } else {
         out!("{}", calibrate_table(&model.name, &result));
         if let Some(path) = &args.out {

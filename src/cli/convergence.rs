@@ -5,14 +5,14 @@
 use super::common::{load_model, print_json};
 use ancf_modal::analysis::convergence::{
     euler_bernoulli_free_free, mesh_convergence_with, with_elements, ConvergenceData, Reference,
-    ReferenceKind,
 };
 use ancf_modal::error::{ModelError, Source};
 use ancf_modal::output::figures::{convergence_figure, write_figure};
 use ancf_modal::output::plot::{Format, PlotSize};
+use ancf_modal::results::fit::{last_orders, reference_note};
+use ancf_modal::results::ConvergenceOutput;
 use anyhow::Result;
 use clap::Args;
-use serde_json::json;
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -74,50 +74,11 @@ pub fn run(args: ConvergenceArgs) -> Result<()> {
         write_figure(&convergence_figure(&data).into(), path, PlotSize::default())?;
     }
     if args.json {
-        print_json(document(&data), args.model.as_deref())?;
+        print_json(ConvergenceOutput::new(&data), args.model.as_deref())?;
     } else {
         out!("{}", table(&data));
     }
     Ok(())
-}
-
-fn reference_note(data: &ConvergenceData) -> String {
-    match data.reference_kind {
-        ReferenceKind::Exact => String::from(
-            "Euler–Bernoulli free-free beam, f = (βL)²/(2πL²)·√(EI/ρA)",
-        ),
-        ReferenceKind::FinestMesh => format!(
-            "the finest mesh ({} elements): the model has no analytic solution, so the errors are estimates",
-            data.elements.last().copied().unwrap_or_default()
-        ),
-    }
-}
-
-/// Observed orders between the two finest meshes with a positive error.
-fn last_orders(data: &ConvergenceData) -> Vec<f64> {
-    (0..data.errors.len())
-        .map(|k| {
-            (0..data.elements.len().saturating_sub(1))
-                .rev()
-                .map(|i| data.observed_order(k, i))
-                .find(|p| p.is_finite())
-                .unwrap_or(f64::NAN)
-        })
-        .collect()
-}
-
-fn document(data: &ConvergenceData) -> serde_json::Value {
-    json!({
-        "model": data.model,
-        "reference": data.reference_kind,
-        "reference_note": reference_note(data),
-        "reference_hz": data.reference_hz,
-        "elements": data.elements,
-        "coordinates": data.coordinates,
-        "frequencies_hz": data.frequencies_hz,
-        "relative_errors": data.errors,
-        "observed_order": last_orders(data),
-    })
 }
 
 fn table(data: &ConvergenceData) -> String {

@@ -5,19 +5,18 @@ use super::common::{load_model, source_label, write_output};
 use super::impulse::{experiment, ExperimentArgs};
 use ancf_modal::analysis::convergence::{mesh_convergence_with, with_elements, Reference};
 use ancf_modal::analysis::impulse::ImpulseResult;
-use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings};
-use ancf_modal::output::calibrate_report::calibrate_json;
+use ancf_modal::analysis::{ModalResult, ModalSettings};
 use ancf_modal::output::figures::{
     convergence_figure, response_figure, spectrum_figure, write_figure, write_mode_shapes,
 };
-use ancf_modal::output::impulse_report::{impulse_json, signal_csv, spectrum_csv};
-use ancf_modal::output::modal_report::{modal_csv, modal_json};
+use ancf_modal::output::impulse_report::{signal_csv, spectrum_csv};
+use ancf_modal::output::modal_report::modal_csv;
 use ancf_modal::output::plot::{Figure, PlotSize};
-use ancf_modal::reference::{self, Errors};
+use ancf_modal::results::identify::{choose_experiment, IDENTIFY_MODES};
+use ancf_modal::results::IdentifyOutput;
 use ancf_modal::{Model, System};
 use anyhow::{Context, Result};
 use clap::Args;
-use serde_json::json;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -51,42 +50,6 @@ pub struct IdentifyArgs {
     /// Fit band of the measured records, LO:HI in Hz (see `frf --band`).
     #[arg(long, value_name = "LO:HI", requires = "measured", value_parser = super::frf::parse_band)]
     pub measured_band: Option<(f64, f64)>,
-}
-
-/// How the model is held: "free-free", or the kinds of its ground
-/// connections ("clamped", "pinned", "roller", "spring-supported").
-fn supports(model: &Model) -> String {
-    let mut kinds: Vec<&str> = Vec::new();
-    let grounded = |a: &ancf_modal::model::PointSpec, b: &ancf_modal::model::PointSpec| {
-        a.ground.is_some() || b.ground.is_some()
-    };
-    for j in &model.joints {
-        if grounded(&j.a, &j.b) {
-            kinds.push(match j.kind {
-                ancf_modal::model::JointType::Weld => "clamped",
-                ancf_modal::model::JointType::Pin => "pinned",
-                ancf_modal::model::JointType::Slider => "roller",
-            });
-        }
-    }
-    if model.springs.iter().any(|s| grounded(&s.a, &s.b)) {
-        kinds.push("spring-supported");
-    }
-    kinds.dedup();
-    if kinds.is_empty() {
-        "free-free".into()
-    } else {
-        kinds.join(", ")
-    }
-}
-
-/// Whether the model's reference is the paper's Table 3 (then the paper's
-/// own model rows belong in the comparison).
-fn names_the_paper(model: &Model) -> bool {
-    model
-        .reference
-        .as_ref()
-        .is_some_and(|r| r.source.to_ascii_lowercase().contains("paper"))
 }
 
 /// Figures `--out-dir` holds, each as .svg and .png.
@@ -124,17 +87,13 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
     let model = load_model(args.model.as_deref())?;
     args.experiment.settings().transient.validate()?;
     let system = System::new(&model);
-    let modal = modal_at_reference(
-        &system,
-        &ModalSettings {
-            modes: Some(12),
-            ..ModalSettings::default()
-        },
-    )
-    .with_context(|| source_label(args.model.as_deref()))?;
+    let settings = ModalSettings {
+        modes: Some(IDENTIFY_MODES),
+        ..ModalSettings::default()
+    };
+    let (modal, modal_output) = ancf_modal::results::modal::modal(&model, &system, &settings)
+        .with_context(|| source_label(args.model.as_deref()))?;
     let impulse = experiment(&model, args.model.as_deref(), &args.experiment)?;
-    let table3 = reference::table3();
-    let eigen = modal.first_bending().map(|m| m.frequency_hz);
     let measured = if args.measured.is_empty() {
         None
     } else {
@@ -149,83 +108,27 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         };
         Some(m.analyse(&args.measured)?)
     };
-    let paper = names_the_paper(&model) && measured.is_none();
-    // The experiment: the measured mode nearest the model's first bending
-    // frequency, or the model's reference; none without either.
-    let experiment: Option<(String, f64)> = match (&measured, &model.reference) {
-        (Some(a), _) => {
-            let near = eigen.unwrap_or(0.0);
-            a.fit
-                .modes
-                .iter()
-                .min_by(|x, y| {
-                    (x.frequency_hz - near)
-                        .abs()
-                        .total_cmp(&(y.frequency_hz - near).abs())
-                })
-                .map(|m| ("measured (frf fit)".to_string(), m.frequency_hz))
-        }
-        (None, Some(r)) if paper => Some(("experiment (paper Table 3)".into(), r.first_bending_hz)),
-        (None, Some(r)) if !r.source.trim().is_empty() => Some((
-            format!("experiment ({})", r.source.trim()),
-            r.first_bending_hz,
-        )),
-        (None, Some(r)) => Some(("experiment (model reference)".into(), r.first_bending_hz)),
-        (None, None) => None,
-    };
-    let experiment_hz = experiment.as_ref().map(|e| e.1);
-    let calibration = match (args.calibrate, experiment_hz) {
-        (true, Some(f)) => Some(super::calibrate::equivalent_height(&model, f)?),
+    let (experiment, paper) =
+        choose_experiment(&model, modal_output.first_bending_hz, measured.as_ref());
+    let calibration = match (args.calibrate, &experiment) {
+        (true, Some(e)) => Some(super::calibrate::equivalent_height(&model, e.frequency_hz)?),
         (true, None) => anyhow::bail!(
             "--calibrate needs an experiment: the model has no `reference` and no --measured records were given"
         ),
         _ => None,
     };
-    let fft = impulse.first_bending.map(|f| f.corrected_hz);
-    let mut rows: Vec<(String, Option<f64>)> = Vec::new();
-    if let Some((label, f)) = &experiment {
-        rows.push((label.clone(), Some(*f)));
-    }
-    rows.push(("this tool, eigenvalue".into(), eigen));
-    rows.push(("this tool, impulse + FFT (corrected)".into(), fft));
-    rows.push((
-        "this tool, impulse + FFT (raw)".into(),
-        impulse.first_bending.map(|f| f.raw_hz),
-    ));
-    if paper {
-        rows.push(("paper, ANCF".into(), Some(table3.ancf_hz)));
-        rows.push(("paper, ANSYS BEAM188".into(), Some(table3.ansys_hz)));
-    }
-    let errors = |f: &Option<f64>| f.zip(experiment_hz).map(|(f, e)| Errors::new(f, e));
-    let summary = json!({
-        "model": model.name,
-        "supports": supports(&model),
-        "experiment_hz": experiment_hz,
-        "table": rows.iter().map(|(name, f)| json!({
-            "source": name,
-            "first_bending_hz": f,
-            "error_percent": errors(f).map(|e| e.error_percent),
-            "paper_error_percent": errors(f).map(|e| e.paper_error_percent),
-        })).collect::<Vec<_>>(),
-        "reference_source": if paper { Some(reference::source()) } else { model.reference.as_ref().map(|r| r.source.clone()) },
-        "measured": measured.as_ref().map(|a| json!({
-            "files": a.files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
-            "band_hz": [a.band.0, a.band.1],
-            "peaks": a.fit.modes.iter().map(|m| json!({
-                "frequency_hz": m.frequency_hz,
-                "damping_ratio": m.damping_ratio,
-                "magnitude": m.magnitude,
-            })).collect::<Vec<_>>(),
-        })),
-        "modal": modal_json(&model.name, &modal),
-        "impulse": impulse_json(&model.name, &impulse, experiment_hz),
-        "calibration": calibration.as_ref().map(|c| calibrate_json(&model.name, c)),
-    });
-    let mut summary = super::common::with_warnings(summary)?;
-    ancf_modal::output::provenance::stamp(
-        &mut summary,
-        &super::common::model_sha256(args.model.as_deref())?,
+    let output = IdentifyOutput::new(
+        &model,
+        modal_output,
+        &impulse,
+        measured.as_ref(),
+        calibration.as_ref(),
     );
+    let summary = ancf_modal::results::document(
+        &output,
+        Some(&super::common::model_sha256(args.model.as_deref())?),
+        &super::common::warnings(),
+    )?;
     if let Some(dir) = &args.out_dir {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("{}: cannot create the output directory", dir.display()))?;
@@ -253,7 +156,7 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         s,
         "model {}: first bending frequency, {}{}",
         model.name,
-        supports(&model),
+        output.supports,
         if paper { " (paper Table 3)" } else { "" }
     );
     let _ = writeln!(
@@ -261,19 +164,20 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         "{:<40} {:>12} {:>14} {:>16}",
         "", "f [Hz]", "(f−exp)/exp", "paper: (exp−f)/f"
     );
-    for (name, f) in &rows {
-        match (f, errors(f)) {
-            (Some(f), Some(e)) => {
-                let _ = writeln!(
-                    s,
-                    "{name:<40} {f:>12.2} {:>13.2}% {:>15.2}%",
-                    e.error_percent, e.paper_error_percent
-                );
+    for row in &output.table {
+        let name = &row.source;
+        match (
+            row.first_bending_hz,
+            row.error_percent,
+            row.paper_error_percent,
+        ) {
+            (Some(f), Some(e), Some(p)) => {
+                let _ = writeln!(s, "{name:<40} {f:>12.2} {e:>13.2}% {p:>15.2}%");
             }
-            (Some(f), None) => {
+            (Some(f), _, _) => {
                 let _ = writeln!(s, "{name:<40} {f:>12.2}");
             }
-            (None, _) => {
+            (None, _, _) => {
                 let _ = writeln!(s, "{name:<40} {:>12}", "–");
             }
         }

@@ -5,8 +5,9 @@ use ancf_modal::analysis::impulse::{run_impulse, ImpulseResult, ImpulseSettings}
 use ancf_modal::analysis::spectrum::Window;
 use ancf_modal::model::Model;
 use ancf_modal::output::figures::{response_path, write_impulse_figures};
-use ancf_modal::output::impulse_report::{impulse_json, impulse_table, signal_csv, spectrum_csv};
+use ancf_modal::output::impulse_report::{impulse_table, signal_csv, spectrum_csv};
 use ancf_modal::output::plot::{Format, PlotSize};
+use ancf_modal::results::ImpulseOutput;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::io::{IsTerminal, Write};
@@ -143,7 +144,7 @@ pub fn run(args: ImpulseArgs) -> Result<()> {
     }
     if args.json {
         print_json(
-            impulse_json(&model.name, &result, reference),
+            ImpulseOutput::new(&model.name, &result, reference),
             args.model.as_deref(),
         )?;
     } else {

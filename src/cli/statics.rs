@@ -7,15 +7,13 @@
 
 use super::args::{finite, ModalArgs};
 use super::common::{load_model, print_json, source_label, write_output};
-use ancf_modal::analysis::damped_modes::mode_damping;
-use ancf_modal::analysis::prestress::prestressed_modal;
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf_modal::analysis::ModalSettings;
 use ancf_modal::output::figures::{write_figure, write_mode_shapes};
 use ancf_modal::output::modal_report::modal_csv;
 use ancf_modal::output::plot::PlotSize;
 use ancf_modal::output::static_report::{
-    equilibrium_figure, prestress_json, prestress_table, static_report, static_table,
+    equilibrium_figure, prestress_table, static_report, static_table,
 };
 use ancf_modal::{Model, System};
 use anyhow::{Context, Result};
@@ -76,8 +74,9 @@ pub fn run_prestress(
         load_scale: args.load_scale.unwrap_or(1.0),
         ..StaticSettings::default()
     };
-    let result = prestressed_modal(system, &statics, settings)
-        .with_context(|| source_label(args.model.as_deref()))?;
+    let (result, output) =
+        ancf_modal::results::modal::prestressed(model, system, &statics, settings)
+            .with_context(|| source_label(args.model.as_deref()))?;
     if let Some(path) = &args.csv {
         write_output(path, &modal_csv(&result.prestressed))?;
     }
@@ -85,18 +84,7 @@ pub fn run_prestress(
         write_mode_shapes(system, &result.equilibrium.q, &result.prestressed, path)?;
     }
     if args.json {
-        let damping = mode_damping(
-            system,
-            &result.equilibrium.linearization(),
-            &result.prestressed,
-            model.damping,
-        )
-        .with_context(|| source_label(args.model.as_deref()))?;
-        let mut doc = prestress_json(&model.name, &result);
-        if let Some(modes) = doc["modes"].as_array_mut() {
-            super::common::add_damping(modes, &damping);
-        }
-        print_json(doc, args.model.as_deref())?;
+        print_json(&output, args.model.as_deref())?;
     } else {
         out!("{}", prestress_table(&model.name, &result));
     }

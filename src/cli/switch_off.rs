@@ -6,7 +6,8 @@ use ancf_modal::analysis::switch_off::{run_switch_off, SwitchOffSettings};
 use ancf_modal::model::{Model, PointSpec};
 use ancf_modal::output::figures::switch_off::write_switch_off_figures;
 use ancf_modal::output::plot::{Format, PlotSize};
-use ancf_modal::output::switch_off_report::{switch_off_csv, switch_off_json, switch_off_table};
+use ancf_modal::output::switch_off_report::{switch_off_csv, switch_off_table};
+use ancf_modal::results::SwitchOffOutput;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -121,7 +122,7 @@ pub fn run(args: SwitchOffArgs) -> Result<()> {
             args.model.as_deref(),
             ancf_modal::model::SWITCH_OFF_MODEL_JSON,
         )?;
-        super::common::print_json_sha(switch_off_json(&result), &sha)?;
+        super::common::print_json_sha(SwitchOffOutput::new(&result), &sha)?;
     } else {
         out!("{}", switch_off_table(&result));
     }

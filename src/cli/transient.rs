@@ -7,7 +7,7 @@ use ancf_modal::analysis::transient::TransientSettings;
 use ancf_modal::output::figures::write_figure;
 use ancf_modal::output::plot::{Format, PlotSize};
 use ancf_modal::output::transient_report::{
-    transient_csv, transient_figure, transient_json, transient_table, transient_uff,
+    transient_csv, transient_figure, transient_table, transient_uff,
 };
 use ancf_modal::System;
 use anyhow::{Context, Result};
@@ -106,7 +106,7 @@ pub fn run(args: TransientArgs) -> Result<()> {
     }
     if args.json {
         print_json(
-            transient_json(&model.name, &settings, &sim),
+            ancf_modal::results::TransientOutput::new(&model.name, &settings, &sim),
             args.model.as_deref(),
         )?;
     } else {

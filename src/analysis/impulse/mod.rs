@@ -78,7 +78,7 @@ pub enum ImpulseError {
 }
 
 /// Which loads excite the experiment (module doc).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Excitation {
     /// The half-sine loads: the hammer.
