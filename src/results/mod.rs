@@ -39,7 +39,7 @@ pub use time::{ImpulseOutput, SwitchOffOutput, TransientOutput};
 
 use schemars::JsonSchema;
 use serde::Serialize;
-use serde_json::{json, Value};
+use serde_json::Value;
 
 /// The provenance block every `--json` document carries beside its result.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
@@ -174,9 +174,9 @@ pub fn document(
         map.insert("warnings".into(), Value::Array(all));
         map.insert(
             "tool_version".into(),
-            json!(crate::output::provenance::tool_version()),
+            Value::from(crate::output::provenance::tool_version()),
         );
-        map.insert("model_sha256".into(), json!(model_sha256));
+        map.insert("model_sha256".into(), Value::from(model_sha256));
     }
     Ok(doc)
 }
