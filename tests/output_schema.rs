@@ -262,3 +262,22 @@ fn plain_schema_is_still_the_model_schema() {
     assert_eq!(plain, ancf_modal::Model::json_schema());
     assert!(ancf_modal::results::output_schema("no-such-command").is_none());
 }
+
+/// `modal --json` is the library's result plus the provenance block, no
+/// more and no less.
+#[test]
+fn modal_json_is_the_library_result_and_the_provenance() {
+    let model = ancf_modal::Model::builtin();
+    let system = ancf_modal::System::new(&model);
+    let settings = ancf_modal::analysis::ModalSettings {
+        modes: Some(12),
+        ..Default::default()
+    };
+    let (_, output) = ancf_modal::results::modal::modal(&model, &system, &settings).unwrap();
+    let mut cli = json(&["modal", "--json"]);
+    let map = cli.as_object_mut().unwrap();
+    for key in ["tool_version", "model_sha256", "warnings"] {
+        assert!(map.remove(key).is_some(), "no {key}");
+    }
+    assert_eq!(cli, serde_json::to_value(&output).unwrap());
+}

@@ -3,6 +3,7 @@
 
 use super::common::{load_model, print_json, write_output};
 use super::impulse::ExperimentArgs;
+use super::output::Output;
 use ancf_modal::analysis::calibrate::{
     calibrate, calibrate_with, sweep, CalibrationError, CalibrationRequest, CalibrationResult,
     CalibrationSettings, EigenFrequencies, ImpulseFrequency, ModeSelection, ParameterSet,
@@ -51,6 +52,8 @@ pub enum MethodArg {
 pub struct CalibrateArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
+    #[command(flatten)]
+    pub output: super::output::OutputArgs,
     /// Measured frequencies [Hz], comma-separated, one per mode; default:
     /// the model's `reference.first_bending_hz`.
     #[arg(
@@ -94,13 +97,6 @@ pub struct CalibrateArgs {
     /// Write the calibrated model (a valid model file) here.
     #[arg(long, value_name = "FITTED.json")]
     pub out: Option<PathBuf>,
-    /// Print one JSON document instead of the table.
-    #[arg(long)]
-    pub json: bool,
-    /// Draw frequency against the (first) parameter with the iteration path
-    /// (.svg or .png).
-    #[arg(long, value_name = "FILE")]
-    pub plot: Option<PathBuf>,
     /// Settings of the experiment for --method impulse.
     #[command(flatten, next_help_heading = "Impulse method (--method impulse)")]
     pub experiment: ExperimentArgs,
@@ -208,7 +204,14 @@ pub fn request(args: &CalibrateArgs, model: &Model) -> Result<CalibrationRequest
 }
 
 pub fn run(args: CalibrateArgs) -> Result<()> {
-    let plot_format = args.plot.as_deref().map(Format::from_path).transpose()?;
+    args.output
+        .only("calibrate", &[Output::Json, Output::Plot])?;
+    let plot_format = args
+        .output
+        .plot
+        .as_deref()
+        .map(Format::from_path)
+        .transpose()?;
     let model = load_model(args.model.as_deref())?;
     let request = request(&args, &model)?;
     let impulse = args.method == MethodArg::Impulse;
@@ -227,7 +230,7 @@ pub fn run(args: CalibrateArgs) -> Result<()> {
         }
     };
     // Everything is computed before any file is written.
-    let plot_bytes = match (&args.plot, plot_format) {
+    let plot_bytes = match (&args.output.plot, plot_format) {
         (Some(_), Some(format)) => {
             let data = plot_data(&model, &request, &settings, &result)?;
             let figure = calibration_figure(&calibration_plot(&model.name, &result, data));
@@ -238,10 +241,10 @@ pub fn run(args: CalibrateArgs) -> Result<()> {
     if let Some(path) = &args.out {
         write_output(path, &(result.fitted_model.to_json() + "\n"))?;
     }
-    if let (Some(path), Some(bytes)) = (&args.plot, plot_bytes) {
+    if let (Some(path), Some(bytes)) = (&args.output.plot, plot_bytes) {
         write_atomic(path, &bytes)?;
     }
-    if args.json {
+    if args.output.json {
         print_json(
             CalibrationOutput::new(&model.name, &result),
             args.model.as_deref(),

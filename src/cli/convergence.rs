@@ -3,6 +3,7 @@
 //! against the finest mesh of the study.
 
 use super::common::{load_model, print_json};
+use super::output::Output;
 use ancf_modal::analysis::convergence::{
     euler_bernoulli_free_free, mesh_convergence_with, with_elements, ConvergenceData, Reference,
 };
@@ -20,18 +21,14 @@ use std::path::PathBuf;
 pub struct ConvergenceArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
+    #[command(flatten)]
+    pub output: super::output::OutputArgs,
     /// Finest mesh: elements per beam 2, 4, 8, … up to this number.
     #[arg(long, default_value_t = 64, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 2, Some(256)))]
     pub max_elements: u64,
     /// Number of bending modes compared.
     #[arg(long, default_value_t = 3, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 1, Some(10)))]
     pub modes: u64,
-    /// Also draw the errors (log-log) to this file (.svg or .png).
-    #[arg(long, value_name = "FILE")]
-    pub plot: Option<PathBuf>,
-    /// Print one JSON document instead of the table.
-    #[arg(long)]
-    pub json: bool,
 }
 
 /// 2, 4, 8, … ≤ `max`, and `max` itself.
@@ -46,7 +43,9 @@ fn element_counts(max: usize) -> Vec<usize> {
 }
 
 pub fn run(args: ConvergenceArgs) -> Result<()> {
-    if let Some(path) = &args.plot {
+    args.output
+        .only("convergence", &[Output::Json, Output::Plot])?;
+    if let Some(path) = &args.output.plot {
         Format::from_path(path)?;
     }
     let model = load_model(args.model.as_deref())?;
@@ -70,10 +69,10 @@ pub fn run(args: ConvergenceArgs) -> Result<()> {
         reference,
         &element_counts(max),
     )?;
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.output.plot {
         write_figure(&convergence_figure(&data).into(), path, PlotSize::default())?;
     }
-    if args.json {
+    if args.output.json {
         print_json(ConvergenceOutput::new(&data), args.model.as_deref())?;
     } else {
         out!("{}", table(&data));

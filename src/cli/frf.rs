@@ -19,20 +19,9 @@ pub struct FrfArgs {
     #[arg(required = true, value_name = "SIGNALS")]
     pub files: Vec<PathBuf>,
     #[command(flatten)]
+    pub output: super::output::OutputArgs,
+    #[command(flatten)]
     pub measured: MeasuredArgs,
-    /// Print one JSON document instead of the table.
-    #[arg(long)]
-    pub json: bool,
-    /// Also write frequency, H1, H2, coherence and the fitted FRF as CSV.
-    #[arg(long, value_name = "FILE")]
-    pub csv: Option<PathBuf>,
-    /// Also draw the FRF with the fitted modes, the coherence and the
-    /// stabilization diagram (.svg or .png).
-    #[arg(long, value_name = "FILE")]
-    pub plot: Option<PathBuf>,
-    /// Also write H1 and the coherence as UFF 58 (complex double).
-    #[arg(long, value_name = "FILE")]
-    pub uff: Option<PathBuf>,
     /// Overlay this model's FRF (modal superposition, its Rayleigh damping
     /// or 0.5 % if it has none) at the sensor --at, per newton of its first
     /// load.
@@ -171,7 +160,7 @@ pub fn run(args: FrfArgs) -> Result<()> {
     let label = overlay.as_ref().map(|o| o.0.label());
     // Everything is rendered before anything is written: an error leaves
     // no output file behind.
-    let plot = match &args.plot {
+    let plot = match &args.output.plot {
         Some(p) => {
             let ov = overlay
                 .as_ref()
@@ -188,8 +177,8 @@ pub fn run(args: FrfArgs) -> Result<()> {
         }
         None => None,
     };
-    let csv = args.csv.as_ref().map(|p| (p, frf_csv(&a)));
-    let uff = args.uff.as_ref().map(|p| (p, frf_uff(&a, q, sha)));
+    let csv = args.output.csv.as_ref().map(|p| (p, frf_csv(&a)));
+    let uff = args.output.uff.as_ref().map(|p| (p, frf_uff(&a, q, sha)));
     if let Some((p, bytes)) = plot {
         ancf_modal::output::files::write_atomic(p, &bytes)?;
     }
@@ -199,7 +188,7 @@ pub fn run(args: FrfArgs) -> Result<()> {
     if let Some((p, text)) = uff {
         write_output(p, &text)?;
     }
-    if args.json {
+    if args.output.json {
         let sha = sha.map(str::to_string);
         let doc = FrfOutput::new(&a, q, overlay.map(|o| o.0));
         let doc = ancf_modal::results::document(&doc, sha.as_deref(), &super::common::warnings())?;

@@ -3,6 +3,7 @@
 
 use super::common::{load_model, source_label, write_output};
 use super::impulse::{experiment, ExperimentArgs};
+use super::output::Output;
 use ancf_modal::analysis::convergence::{mesh_convergence_with, with_elements, Reference};
 use ancf_modal::analysis::impulse::ImpulseResult;
 use ancf_modal::analysis::{ModalResult, ModalSettings};
@@ -24,6 +25,8 @@ use std::path::{Path, PathBuf};
 pub struct IdentifyArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
+    #[command(flatten)]
+    pub output: super::output::OutputArgs,
     /// Directory for the data files and figures (created if missing):
     /// summary.json, modes.csv, signal.csv, spectrum.csv and modes,
     /// response, spectrum, convergence as .svg and .png.
@@ -31,9 +34,6 @@ pub struct IdentifyArgs {
     pub out_dir: Option<PathBuf>,
     #[command(flatten)]
     pub experiment: ExperimentArgs,
-    /// Print one JSON document instead of the report.
-    #[arg(long)]
-    pub json: bool,
     /// Also fit the equivalent beam height that matches the experiment's
     /// first bending frequency (eigenvalue-based `calibrate`); with
     /// --out-dir the calibrated model is written as calibrated.json.
@@ -84,6 +84,7 @@ fn write_figures(
 }
 
 pub fn run(args: IdentifyArgs) -> Result<()> {
+    args.output.only("identify", &[Output::Json])?;
     let model = load_model(args.model.as_deref())?;
     args.experiment.settings().transient.validate()?;
     let system = System::new(&model);
@@ -147,7 +148,7 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         }
         write_figures(dir, &model, &system, &modal, &impulse)?;
     }
-    if args.json {
+    if args.output.json {
         outln!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());
     }

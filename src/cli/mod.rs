@@ -25,6 +25,7 @@ mod frf;
 mod identify;
 mod impulse;
 mod modal;
+mod output;
 mod statics;
 mod sweep;
 mod sweep_merge;

@@ -36,16 +36,16 @@ pub fn run(args: ModalArgs) -> Result<()> {
         Some(other) => Some(mac_against(&system, &result, other, &settings)?),
         None => None,
     };
-    if let Some(path) = &args.csv {
+    if let Some(path) = &args.output.csv {
         write_output(path, &modal_csv(&result))?;
     }
-    if let Some(path) = &args.uff {
+    if let Some(path) = &args.output.uff {
         let provenance = ancf_modal::output::provenance::header_lines(
             &super::common::model_sha256(args.model.as_deref())?,
         );
         write_output(path, &modal_uff(&system, &result, &provenance))?;
     }
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.output.plot {
         ancf_modal::output::figures::write_mode_shapes(&system, &system.q0, &result, path)?;
     }
     if let (Some(path), Some((_, _, m))) = (&args.mac_plot, &mac) {
@@ -62,7 +62,7 @@ pub fn run(args: ModalArgs) -> Result<()> {
         )?;
     }
     let complex = output.complex_modes;
-    if args.json {
+    if args.output.json {
         output.mac = mac.as_ref().map(|(rows, cols, m)| MacTable {
             rows_hz: rows.clone(),
             columns_hz: cols.clone(),
