@@ -152,11 +152,19 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         outln!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());
     }
+    out!("{}", report(&output, paper, args.out_dir.as_deref()));
+    Ok(())
+}
+
+/// The printed report: the comparison table, the measured modes, the
+/// FFT's agreement with the eigenvalue, the calibration and the run's
+/// figures, all from the typed result.
+fn report(output: &IdentifyOutput, paper: bool, out_dir: Option<&Path>) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
         "model {}: first bending frequency, {}{}",
-        model.name,
+        output.model,
         output.supports,
         if paper { " (paper Table 3)" } else { "" }
     );
@@ -183,41 +191,39 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
             }
         }
     }
-    if experiment.is_none() {
+    if output.experiment_hz.is_none() {
         let _ = writeln!(
             s,
             "no experiment to compare with: give the model a `reference` or measured records with --measured"
         );
     }
-    if let Some(a) = &measured {
+    if let Some(m) = &output.measured {
         let _ = writeln!(
             s,
             "measured modes ({} over {:.0}–{:.0} Hz): {}",
-            a.files.len(),
-            a.band.0,
-            a.band.1,
-            a.fit
-                .modes
+            m.files.len(),
+            m.band_hz[0],
+            m.band_hz[1],
+            m.peaks
                 .iter()
-                .map(|m| format!(
+                .map(|p| format!(
                     "{:.1} Hz (ζ {:.3} %)",
-                    m.frequency_hz,
-                    100.0 * m.damping_ratio
+                    p.frequency_hz,
+                    100.0 * p.damping_ratio
                 ))
                 .collect::<Vec<_>>()
                 .join(", ")
         );
     }
-    if let Some(fb) = impulse.first_bending {
+    let i = &output.impulse;
+    if let (Some(raw), Some(corrected)) = (i.raw_vs_eigen, i.corrected_vs_eigen) {
         let _ = writeln!(
             s,
-            "FFT vs eigenvalue: raw {:+.2e}, corrected {:+.2e} (integrator period error removed)",
-            fb.raw_error(),
-            fb.corrected_error()
+            "FFT vs eigenvalue: raw {raw:+.2e}, corrected {corrected:+.2e} (integrator period error removed)"
         );
     }
-    if let Some(c) = &calibration {
-        let p = &c.parameters[0];
+    if let Some(c) = &output.calibration {
+        let p = &c.result.parameters[0];
         let _ = writeln!(
             s,
             "equivalent geometry: {} = {:.4} mm ({:+.2} % on {:.4} mm) gives {:.3} Hz (eigenvalue, {} evaluations)",
@@ -225,25 +231,24 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
             1e3 * p.fitted,
             p.change_percent,
             1e3 * p.initial,
-            c.achieved_hz[0],
-            c.evaluations
+            c.result.achieved_hz[0],
+            c.result.evaluations
         );
     }
-    let st = &impulse.stats;
     let _ = writeln!(
         s,
         "impulse: {} steps of {:.1e} s, {:.2} Newton iterations/step, joints held to {:.1e} m",
-        st.steps,
-        args.experiment.step,
-        st.newton_iterations as f64 / st.steps.max(1) as f64,
-        st.max_length_residual
+        i.steps,
+        i.step_s,
+        i.newton_iterations as f64 / i.steps.max(1) as f64,
+        i.max_joint_residual_m
     );
-    if let Some(dir) = &args.out_dir {
+    if let Some(dir) = out_dir {
         let _ = writeln!(
             s,
             "data written to {}: summary.json, modes.csv, signal.csv, spectrum.csv{}, {}",
             dir.display(),
-            if calibration.is_some() {
+            if output.calibration.is_some() {
                 ", calibrated.json"
             } else {
                 ""
@@ -251,6 +256,5 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
             FIGURES.map(|f| format!("{f}.svg/.png")).join(", ")
         );
     }
-    out!("{s}");
-    Ok(())
+    s
 }
