@@ -276,9 +276,9 @@ impl fmt::Display for Setting {
 /// Why a simulation (`transient`, `switch-off`) failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SimulationError {
-    #[error("the initial static equilibrium: {0}")]
+    #[error("the initial static equilibrium")]
     Equilibrium(#[from] AnalysisError),
-    #[error("time integration: {0}")]
+    #[error("time integration")]
     Transient(#[from] TransientError),
     #[error("the {setting} must be {allowed}, got {value:?}")]
     InvalidSetting {
@@ -288,6 +288,19 @@ pub enum SimulationError {
     },
     #[error("the tracked point: {why}")]
     InvalidPoint { why: String },
-    #[error("joint `{joint}` is a released support: it lets go of the static equilibrium's hold, so start from the equilibrium (`transient --from-equilibrium`, `sweep --prestress`)")]
+    #[error("joint `{joint}` is a released support: it lets go of the static equilibrium's hold, so the run must start from the static equilibrium")]
     ReleaseNeedsEquilibrium { joint: String },
+}
+
+/// An error and its causes on one line, `a: b: c` (each error names its
+/// own context once and leaves its cause to [`std::error::Error::source`]).
+pub fn chain_text(e: &dyn std::error::Error) -> String {
+    let mut line = e.to_string();
+    let mut cause = e.source();
+    while let Some(c) = cause {
+        line.push_str(": ");
+        line.push_str(&c.to_string());
+        cause = c.source();
+    }
+    line
 }

@@ -23,6 +23,7 @@ pub mod model;
 pub mod output;
 pub mod pair;
 pub mod reference;
+pub mod results;
 pub mod spring;
 pub mod system;
 

@@ -23,22 +23,13 @@ fn main() {
     }
 }
 
-/// The error and its causes on one line, `a: b: c`, leaving out a cause
-/// whose text the line already holds (library errors that wrap another
-/// print it in their own message).
+/// The error and its causes on one line, `a: b: c` (each error names its
+/// own context once and leaves its cause to the chain).
 fn one_line(e: &anyhow::Error) -> String {
-    let mut line = String::new();
-    for cause in e.chain() {
-        let text = cause.to_string();
-        if line.contains(&text) {
-            continue;
-        }
-        if !line.is_empty() {
-            line.push_str(": ");
-        }
-        line.push_str(&text);
-    }
-    line
+    e.chain()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join(": ")
 }
 
 /// A flag's value out of its range, as one line: the flag, the value

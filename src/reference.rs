@@ -35,7 +35,7 @@ pub fn source() -> String {
 }
 
 /// The two error conventions of a model frequency against an experiment.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct Errors {
     /// (model − experiment)/experiment × 100 [%].
     pub error_percent: f64,

@@ -36,7 +36,7 @@ pub enum Reference<'a> {
 }
 
 /// Kind of the reference of a finished study.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ReferenceKind {
     Exact,
@@ -44,7 +44,7 @@ pub enum ReferenceKind {
 }
 
 /// Result of a mesh-convergence study.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct ConvergenceData {
     /// Name of the model.
     pub model: String,

@@ -37,7 +37,7 @@ use crate::system::{Linearization, System};
 use faer::Mat;
 
 /// A complex mode, labelled by the undamped mode it grows from.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct DampedMode {
     /// 1-based index of the undamped mode in the modal result.
     pub index: usize,

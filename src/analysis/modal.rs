@@ -83,7 +83,7 @@ pub const DENSE_MAX: usize = 300;
 pub const ACCURACY_WARNING: f64 = 1e-7;
 
 /// What a mode mostly does.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum ModeKind {
     /// Zero frequency: a rigid motion of the whole assembly.
@@ -118,15 +118,18 @@ impl std::fmt::Display for ModeKind {
 }
 
 /// Fractions of a mode's strain energy.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct EnergyFractions {
+    /// Fraction in beam stretching [–].
     pub axial: f64,
+    /// Fraction in beam bending [–].
     pub bending: f64,
+    /// Fraction in springs and torsion springs [–].
     pub springs: f64,
 }
 
 /// One mode.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Mode {
     /// Mode number, 1-based, in ascending frequency.
     pub index: usize,
@@ -134,8 +137,9 @@ pub struct Mode {
     pub frequency_hz: f64,
     /// Eigenvalue ω² [SI: rad²/s²] (negative = unstable direction).
     pub eigenvalue: f64,
+    /// What the mode mostly does (by where its strain energy sits).
     pub kind: ModeKind,
-    /// Strain-energy split (all zero for rigid modes).
+    /// Strain-energy split [–] (all zero for rigid modes).
     pub energy: EnergyFractions,
     /// Bound on the relative frequency error the eigen-solve and round-off
     /// leave [–]; `None` for rigid modes.
@@ -149,7 +153,7 @@ pub struct Mode {
 }
 
 /// Result of a modal analysis.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct ModalResult {
     /// Number of coordinates.
     pub dofs: usize,

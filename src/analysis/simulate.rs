@@ -39,13 +39,15 @@ pub struct SimulationSettings {
 }
 
 /// Energies at one time [SI: J].
-#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct Energies {
+    /// Kinetic energy [J].
     pub kinetic_j: f64,
-    /// Beam strain energy (axial + bending).
+    /// Beam strain energy (axial + bending) [J].
     pub strain_j: f64,
-    /// Springs, torsion springs and contacts (elastic part).
+    /// Springs, torsion springs and contacts (elastic part) [J].
     pub spring_j: f64,
+    /// Potential energy of gravity [J].
     pub gravity_j: f64,
 }
 
@@ -56,7 +58,7 @@ impl Energies {
 }
 
 /// The energy balance of a run [SI: J].
-#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct EnergyBalance {
     pub initial: Energies,
     #[serde(rename = "final")]

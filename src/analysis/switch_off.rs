@@ -76,7 +76,7 @@ impl Default for SwitchOffSettings {
 }
 
 /// One run: the tracked point's samples and what the run saw.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct SwitchOffRun {
     pub time_to_distance_s: Option<f64>,
     /// When the integration failed after the tracked point had reached
@@ -125,10 +125,11 @@ pub struct SwitchOffResult {
 
 /// One model quantity set so that a result hits a target: a fit, never
 /// agreement.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct Calibrated {
     /// Its JSON path in the model.
     pub name: String,
+    /// Its value [SI, as in the model file].
     pub value: f64,
     /// What it was set to reproduce.
     pub target: String,

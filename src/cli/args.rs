@@ -16,19 +16,8 @@ pub struct ModalArgs {
     /// shift-invert above (auto), or one of them forced.
     #[arg(long, value_enum, default_value_t = Solver::Auto)]
     pub solver: Solver,
-    /// Print one JSON document instead of the table.
-    #[arg(long)]
-    pub json: bool,
-    /// Also write the modes as CSV to this file.
-    #[arg(long, value_name = "FILE")]
-    pub csv: Option<PathBuf>,
-    /// Also draw the first six elastic mode shapes (of those reported) to this file (.svg or .png).
-    #[arg(long, value_name = "FILE")]
-    pub plot: Option<PathBuf>,
-    /// Also write the elastic modes as UFF 15 (nodes) and 55 (normal modes,
-    /// mass-normalised translations at beam nodes and body points).
-    #[arg(long, value_name = "FILE")]
-    pub uff: Option<PathBuf>,
+    #[command(flatten)]
+    pub output: super::output::OutputArgs,
     /// Also print the MAC matrix against another mode set: a model file
     /// (.json) or a UFF file with datasets 55, matched by node number.
     #[arg(long, value_name = "OTHER")]

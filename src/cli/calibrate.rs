@@ -3,6 +3,7 @@
 
 use super::common::{load_model, print_json, write_output};
 use super::impulse::ExperimentArgs;
+use super::output::Output;
 use ancf_modal::analysis::calibrate::{
     calibrate, calibrate_with, sweep, CalibrationError, CalibrationRequest, CalibrationResult,
     CalibrationSettings, EigenFrequencies, ImpulseFrequency, ModeSelection, ParameterSet,
@@ -10,10 +11,11 @@ use ancf_modal::analysis::calibrate::{
 };
 use ancf_modal::analysis::ModeKind;
 use ancf_modal::model::Model;
-use ancf_modal::output::calibrate_report::{calibrate_json, calibrate_table, calibration_plot};
+use ancf_modal::output::calibrate_report::{calibrate_table, calibration_plot};
 use ancf_modal::output::plot::{
     calibration_figure, render, write_atomic, Figure, Format, PlotSize,
 };
+use ancf_modal::results::CalibrationOutput;
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
@@ -50,6 +52,8 @@ pub enum MethodArg {
 pub struct CalibrateArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
+    #[command(flatten)]
+    pub output: super::output::OutputArgs,
     /// Measured frequencies [Hz], comma-separated, one per mode; default:
     /// the model's `reference.first_bending_hz`.
     #[arg(
@@ -93,13 +97,6 @@ pub struct CalibrateArgs {
     /// Write the calibrated model (a valid model file) here.
     #[arg(long, value_name = "FITTED.json")]
     pub out: Option<PathBuf>,
-    /// Print one JSON document instead of the table.
-    #[arg(long)]
-    pub json: bool,
-    /// Draw frequency against the (first) parameter with the iteration path
-    /// (.svg or .png).
-    #[arg(long, value_name = "FILE")]
-    pub plot: Option<PathBuf>,
     /// Settings of the experiment for --method impulse.
     #[command(flatten, next_help_heading = "Impulse method (--method impulse)")]
     pub experiment: ExperimentArgs,
@@ -185,7 +182,7 @@ pub fn request(args: &CalibrateArgs, model: &Model) -> Result<CalibrationRequest
     } else if args.target.is_empty() {
         match &model.reference {
             Some(r) => vec![r.first_bending_hz],
-            None => return Err(CalibrationError::NoTargets.into()),
+            None => return Err(flagged(CalibrationError::NoTargets)),
         }
     } else {
         args.target.clone()
@@ -207,7 +204,14 @@ pub fn request(args: &CalibrateArgs, model: &Model) -> Result<CalibrationRequest
 }
 
 pub fn run(args: CalibrateArgs) -> Result<()> {
-    let plot_format = args.plot.as_deref().map(Format::from_path).transpose()?;
+    args.output
+        .only("calibrate", &[Output::Json, Output::Plot])?;
+    let plot_format = args
+        .output
+        .plot
+        .as_deref()
+        .map(Format::from_path)
+        .transpose()?;
     let model = load_model(args.model.as_deref())?;
     let request = request(&args, &model)?;
     let impulse = args.method == MethodArg::Impulse;
@@ -217,16 +221,16 @@ pub fn run(args: CalibrateArgs) -> Result<()> {
         ..CalibrationSettings::default()
     };
     let result = match args.method {
-        MethodArg::Eigen => calibrate(&model, &request, &settings)?,
+        MethodArg::Eigen => calibrate(&model, &request, &settings).map_err(flagged)?,
         MethodArg::Impulse => {
             let experiment = args.experiment.settings();
             experiment.transient.validate()?;
-            let eval = ImpulseFrequency::new(&request.modes, experiment)?;
-            calibrate_with(&model, &request, &settings, &eval, &[1])?
+            let eval = ImpulseFrequency::new(&request.modes, experiment).map_err(flagged)?;
+            calibrate_with(&model, &request, &settings, &eval, &[1]).map_err(flagged)?
         }
     };
     // Everything is computed before any file is written.
-    let plot_bytes = match (&args.plot, plot_format) {
+    let plot_bytes = match (&args.output.plot, plot_format) {
         (Some(_), Some(format)) => {
             let data = plot_data(&model, &request, &settings, &result)?;
             let figure = calibration_figure(&calibration_plot(&model.name, &result, data));
@@ -237,11 +241,14 @@ pub fn run(args: CalibrateArgs) -> Result<()> {
     if let Some(path) = &args.out {
         write_output(path, &(result.fitted_model.to_json() + "\n"))?;
     }
-    if let (Some(path), Some(bytes)) = (&args.plot, plot_bytes) {
+    if let (Some(path), Some(bytes)) = (&args.output.plot, plot_bytes) {
         write_atomic(path, &bytes)?;
     }
-    if args.json {
-        print_json(calibrate_json(&model.name, &result), args.model.as_deref())?;
+    if args.output.json {
+        print_json(
+            CalibrationOutput::new(&model.name, &result),
+            args.model.as_deref(),
+        )?;
     } else {
         out!("{}", calibrate_table(&model.name, &result));
         if let Some(path) = &args.out {
@@ -298,4 +305,24 @@ pub fn equivalent_height(model: &Model, target_hz: f64) -> Result<CalibrationRes
         keep_mass: false,
     };
     Ok(calibrate(model, &request, &CalibrationSettings::default())?)
+}
+
+/// A calibration error with the flag it concerns in front (`--param: …`);
+/// the library names quantities, not flags.
+fn flagged(e: CalibrationError) -> anyhow::Error {
+    use CalibrationError as E;
+    let flag = match &e {
+        E::NoParameters
+        | E::UnknownParameter { .. }
+        | E::AmbiguousParameter { .. }
+        | E::DuplicateParameter { .. }
+        | E::InvalidBounds { .. }
+        | E::Unreachable { .. } => "--param",
+        E::NoTargets | E::TargetNotPositive { .. } => "--target",
+        E::DensityWithKeepMass { .. } => "--keep-mass",
+        E::ModeCount { .. } | E::ModeNotFound { .. } => "--mode",
+        E::ImpulseMode { .. } | E::NeedsSensitivities { .. } => "--method",
+        _ => return e.into(),
+    };
+    anyhow::Error::new(e).context(flag)
 }

@@ -54,22 +54,6 @@ pub fn load_model(path: Option<&Path>) -> Result<Model> {
     Ok(model)
 }
 
-/// `doc` (a JSON object) with the run's `warnings` array: the analysis's
-/// own warnings (a `warnings` array the document already has) first, then
-/// those given on the way (units, beam theory).
-pub fn with_warnings(doc: impl serde::Serialize) -> Result<serde_json::Value> {
-    let mut doc = serde_json::to_value(doc)?;
-    if let Some(map) = doc.as_object_mut() {
-        let mut all: Vec<serde_json::Value> = match map.remove("warnings") {
-            Some(serde_json::Value::Array(own)) => own,
-            _ => Vec::new(),
-        };
-        all.extend(warnings().into_iter().map(serde_json::Value::from));
-        map.insert("warnings".into(), serde_json::Value::Array(all));
-    }
-    Ok(doc)
-}
-
 /// SHA-256 of the model's bytes (the file, or the built-in model's text),
 /// for the provenance of JSON documents and exported files.
 pub fn model_sha256(path: Option<&Path>) -> Result<String> {
@@ -91,8 +75,7 @@ pub fn print_json(doc: impl serde::Serialize, path: Option<&Path>) -> Result<()>
 /// Prints `doc` stamped with this build's version, `model_sha256` and the
 /// run's `warnings`.
 pub fn print_json_sha(doc: impl serde::Serialize, model_sha256: &str) -> Result<()> {
-    let mut doc = with_warnings(doc)?;
-    ancf_modal::output::provenance::stamp(&mut doc, model_sha256);
+    let doc = ancf_modal::results::document(&doc, Some(model_sha256), &warnings())?;
     outln!("{}", serde_json::to_string_pretty(&doc)?);
     Ok(())
 }
@@ -123,20 +106,6 @@ pub fn emit(text: &str) -> Result<()> {
     {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => std::process::exit(0),
         other => Ok(other?),
-    }
-}
-
-/// Writes `damping_ratio` (and a complex mode's `damped_frequency_hz`)
-/// into the JSON entries of the modes.
-pub fn add_damping(
-    modes: &mut [serde_json::Value],
-    damping: &[ancf_modal::analysis::damped_modes::ModeDamping],
-) {
-    for (entry, d) in modes.iter_mut().zip(damping) {
-        entry["damping_ratio"] = serde_json::json!(d.damping_ratio);
-        if d.complex {
-            entry["damped_frequency_hz"] = serde_json::json!(d.damped_frequency_hz);
-        }
     }
 }
 

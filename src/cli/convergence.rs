@@ -3,16 +3,17 @@
 //! against the finest mesh of the study.
 
 use super::common::{load_model, print_json};
+use super::output::Output;
 use ancf_modal::analysis::convergence::{
     euler_bernoulli_free_free, mesh_convergence_with, with_elements, ConvergenceData, Reference,
-    ReferenceKind,
 };
 use ancf_modal::error::{ModelError, Source};
 use ancf_modal::output::figures::{convergence_figure, write_figure};
 use ancf_modal::output::plot::{Format, PlotSize};
+use ancf_modal::results::fit::{last_orders, reference_note};
+use ancf_modal::results::ConvergenceOutput;
 use anyhow::Result;
 use clap::Args;
-use serde_json::json;
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -20,18 +21,14 @@ use std::path::PathBuf;
 pub struct ConvergenceArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
+    #[command(flatten)]
+    pub output: super::output::OutputArgs,
     /// Finest mesh: elements per beam 2, 4, 8, … up to this number.
     #[arg(long, default_value_t = 64, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 2, Some(256)))]
     pub max_elements: u64,
     /// Number of bending modes compared.
     #[arg(long, default_value_t = 3, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 1, Some(10)))]
     pub modes: u64,
-    /// Also draw the errors (log-log) to this file (.svg or .png).
-    #[arg(long, value_name = "FILE")]
-    pub plot: Option<PathBuf>,
-    /// Print one JSON document instead of the table.
-    #[arg(long)]
-    pub json: bool,
 }
 
 /// 2, 4, 8, … ≤ `max`, and `max` itself.
@@ -46,7 +43,9 @@ fn element_counts(max: usize) -> Vec<usize> {
 }
 
 pub fn run(args: ConvergenceArgs) -> Result<()> {
-    if let Some(path) = &args.plot {
+    args.output
+        .only("convergence", &[Output::Json, Output::Plot])?;
+    if let Some(path) = &args.output.plot {
         Format::from_path(path)?;
     }
     let model = load_model(args.model.as_deref())?;
@@ -70,54 +69,15 @@ pub fn run(args: ConvergenceArgs) -> Result<()> {
         reference,
         &element_counts(max),
     )?;
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.output.plot {
         write_figure(&convergence_figure(&data).into(), path, PlotSize::default())?;
     }
-    if args.json {
-        print_json(document(&data), args.model.as_deref())?;
+    if args.output.json {
+        print_json(ConvergenceOutput::new(&data), args.model.as_deref())?;
     } else {
         out!("{}", table(&data));
     }
     Ok(())
-}
-
-fn reference_note(data: &ConvergenceData) -> String {
-    match data.reference_kind {
-        ReferenceKind::Exact => String::from(
-            "Euler–Bernoulli free-free beam, f = (βL)²/(2πL²)·√(EI/ρA)",
-        ),
-        ReferenceKind::FinestMesh => format!(
-            "the finest mesh ({} elements): the model has no analytic solution, so the errors are estimates",
-            data.elements.last().copied().unwrap_or_default()
-        ),
-    }
-}
-
-/// Observed orders between the two finest meshes with a positive error.
-fn last_orders(data: &ConvergenceData) -> Vec<f64> {
-    (0..data.errors.len())
-        .map(|k| {
-            (0..data.elements.len().saturating_sub(1))
-                .rev()
-                .map(|i| data.observed_order(k, i))
-                .find(|p| p.is_finite())
-                .unwrap_or(f64::NAN)
-        })
-        .collect()
-}
-
-fn document(data: &ConvergenceData) -> serde_json::Value {
-    json!({
-        "model": data.model,
-        "reference": data.reference_kind,
-        "reference_note": reference_note(data),
-        "reference_hz": data.reference_hz,
-        "elements": data.elements,
-        "coordinates": data.coordinates,
-        "frequencies_hz": data.frequencies_hz,
-        "relative_errors": data.errors,
-        "observed_order": last_orders(data),
-    })
 }
 
 fn table(data: &ConvergenceData) -> String {

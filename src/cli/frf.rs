@@ -5,10 +5,9 @@ use super::common::write_output;
 use ancf_modal::measured::analysis::{analyse, AnalysisSettings, Estimator, FrfAnalysis};
 use ancf_modal::measured::window::Window;
 use ancf_modal::measured::{read_measurement, Channel, Channels};
-use ancf_modal::output::frf_report::{
-    frf_csv, frf_figure, frf_json, frf_table, frf_uff, ResponseQuantity,
-};
+use ancf_modal::output::frf_report::{frf_csv, frf_figure, frf_table, frf_uff, ResponseQuantity};
 use ancf_modal::output::plot::{render, Figure, Format, PlotSize};
+use ancf_modal::results::fit::{FrfOutput, ModelOverlay};
 use anyhow::Result;
 use clap::Args;
 use std::path::PathBuf;
@@ -20,20 +19,9 @@ pub struct FrfArgs {
     #[arg(required = true, value_name = "SIGNALS")]
     pub files: Vec<PathBuf>,
     #[command(flatten)]
+    pub output: super::output::OutputArgs,
+    #[command(flatten)]
     pub measured: MeasuredArgs,
-    /// Print one JSON document instead of the table.
-    #[arg(long)]
-    pub json: bool,
-    /// Also write frequency, H1, H2, coherence and the fitted FRF as CSV.
-    #[arg(long, value_name = "FILE")]
-    pub csv: Option<PathBuf>,
-    /// Also draw the FRF with the fitted modes, the coherence and the
-    /// stabilization diagram (.svg or .png).
-    #[arg(long, value_name = "FILE")]
-    pub plot: Option<PathBuf>,
-    /// Also write H1 and the coherence as UFF 58 (complex double).
-    #[arg(long, value_name = "FILE")]
-    pub uff: Option<PathBuf>,
     /// Overlay this model's FRF (modal superposition, its Rayleigh damping
     /// or 0.5 % if it has none) at the sensor --at, per newton of its first
     /// load.
@@ -44,58 +32,25 @@ pub struct FrfArgs {
     pub at: Option<String>,
 }
 
-/// Damping ratio assumed for a model without `damping`.
-const DEFAULT_MODEL_ZETA: f64 = 0.005;
-
-/// The model's FRF on the measured frequencies, its label and the model
-/// file's SHA-256.
+/// The model's FRF on the measured frequencies (the library's defaults:
+/// [`ancf_modal::results::fit::OVERLAY_MODES`] modes, its Rayleigh damping
+/// or [`ancf_modal::results::fit::OVERLAY_DAMPING_RATIO`]), its values and
+/// the model file's SHA-256.
 fn model_overlay(
     path: &std::path::Path,
     sensor: &str,
     q: ResponseQuantity,
     f: &[f64],
-) -> Result<(
-    String,
-    Vec<realfft::num_complex::Complex64>,
-    String,
-    serde_json::Value,
-)> {
+) -> Result<(ModelOverlay, Vec<realfft::num_complex::Complex64>, String)> {
     use anyhow::Context;
     let bytes =
         std::fs::read(path).with_context(|| format!("{}: cannot read the file", path.display()))?;
     let sha = ancf_modal::output::provenance::sha256_hex(&bytes);
     let model = ancf_modal::Model::from_file(path)?;
     super::common::check_units(&model, Some(path));
-    let system = ancf_modal::System::new(&model);
-    let modal = ancf_modal::analysis::modal_at_reference(
-        &system,
-        &ancf_modal::analysis::ModalSettings {
-            modes: Some(30),
-            ..Default::default()
-        },
-    )
-    .with_context(|| path.display().to_string())?;
-    let damping = model.damping;
-    let zeta = |w: f64| damping.map_or(DEFAULT_MODEL_ZETA, |d| d.ratio(w));
-    let power = match q {
-        ResponseQuantity::Displacement => 0,
-        ResponseQuantity::Velocity => 1,
-        ResponseQuantity::Acceleration => 2,
-    };
-    let h = ancf_modal::measured::model_frf::model_frf(&system, &modal, sensor, zeta, power, f)
-        .with_context(|| path.display().to_string())?;
-    let label = match damping {
-        Some(_) => format!("model {} at {sensor}", model.name),
-        None => format!("model {} at {sensor} (ζ = 0.5 % assumed)", model.name),
-    };
-    let info = serde_json::json!({
-        "model": model.name,
-        "sensor": sensor,
-        "damping": damping.map(|d| serde_json::json!({"alpha": d.alpha, "beta": d.beta})),
-        "assumed_damping_ratio": if damping.is_none() { Some(DEFAULT_MODEL_ZETA) } else { None },
-        "h": h.iter().map(|c| serde_json::json!([c.re, c.im])).collect::<Vec<_>>(),
-    });
-    Ok((label, h, sha, info))
+    let (overlay, h) =
+        ModelOverlay::new(&model, sensor, q, f).with_context(|| path.display().to_string())?;
+    Ok((overlay, h, sha))
 }
 
 /// How measurement files are read and analysed (shared with `identify
@@ -202,13 +157,17 @@ pub fn run(args: FrfArgs) -> Result<()> {
         _ => None,
     };
     let sha = overlay.as_ref().map(|o| o.2.as_str());
+    let label = overlay.as_ref().map(|o| o.0.label());
     // Everything is rendered before anything is written: an error leaves
     // no output file behind.
-    let plot = match &args.plot {
+    let plot = match &args.output.plot {
         Some(p) => {
             let ov = overlay
                 .as_ref()
-                .map(|(label, h, _, _)| (label.as_str(), a.frequency_hz.as_slice(), h.as_slice()));
+                .zip(label.as_ref())
+                .map(|((_, h, _), label)| {
+                    (label.as_str(), a.frequency_hz.as_slice(), h.as_slice())
+                });
             let fig: Figure = frf_figure(&a, q, ov).into();
             let size = PlotSize {
                 height: 1100,
@@ -218,8 +177,8 @@ pub fn run(args: FrfArgs) -> Result<()> {
         }
         None => None,
     };
-    let csv = args.csv.as_ref().map(|p| (p, frf_csv(&a)));
-    let uff = args.uff.as_ref().map(|p| (p, frf_uff(&a, q, sha)));
+    let csv = args.output.csv.as_ref().map(|p| (p, frf_csv(&a)));
+    let uff = args.output.uff.as_ref().map(|p| (p, frf_uff(&a, q, sha)));
     if let Some((p, bytes)) = plot {
         ancf_modal::output::files::write_atomic(p, &bytes)?;
     }
@@ -229,12 +188,10 @@ pub fn run(args: FrfArgs) -> Result<()> {
     if let Some((p, text)) = uff {
         write_output(p, &text)?;
     }
-    if args.json {
-        let mut doc = frf_json(&a, q, sha);
-        if let Some((_, _, _, info)) = &overlay {
-            doc["model_frf"] = info.clone();
-        }
-        let doc = super::common::with_warnings(doc)?;
+    if args.output.json {
+        let sha = sha.map(str::to_string);
+        let doc = FrfOutput::new(&a, q, overlay.map(|o| o.0));
+        let doc = ancf_modal::results::document(&doc, sha.as_deref(), &super::common::warnings())?;
         outln!("{}", serde_json::to_string_pretty(&doc)?);
     } else {
         out!("{}", frf_table(&a, q));

@@ -3,21 +3,21 @@
 
 use super::common::{load_model, source_label, write_output};
 use super::impulse::{experiment, ExperimentArgs};
+use super::output::Output;
 use ancf_modal::analysis::convergence::{mesh_convergence_with, with_elements, Reference};
 use ancf_modal::analysis::impulse::ImpulseResult;
-use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings};
-use ancf_modal::output::calibrate_report::calibrate_json;
+use ancf_modal::analysis::{ModalResult, ModalSettings};
 use ancf_modal::output::figures::{
     convergence_figure, response_figure, spectrum_figure, write_figure, write_mode_shapes,
 };
-use ancf_modal::output::impulse_report::{impulse_json, signal_csv, spectrum_csv};
-use ancf_modal::output::modal_report::{modal_csv, modal_json};
+use ancf_modal::output::impulse_report::{signal_csv, spectrum_csv};
+use ancf_modal::output::modal_report::modal_csv;
 use ancf_modal::output::plot::{Figure, PlotSize};
-use ancf_modal::reference::{self, Errors};
+use ancf_modal::results::identify::{choose_experiment, IDENTIFY_MODES};
+use ancf_modal::results::IdentifyOutput;
 use ancf_modal::{Model, System};
 use anyhow::{Context, Result};
 use clap::Args;
-use serde_json::json;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -25,6 +25,8 @@ use std::path::{Path, PathBuf};
 pub struct IdentifyArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
+    #[command(flatten)]
+    pub output: super::output::OutputArgs,
     /// Directory for the data files and figures (created if missing):
     /// summary.json, modes.csv, signal.csv, spectrum.csv and modes,
     /// response, spectrum, convergence as .svg and .png.
@@ -32,9 +34,6 @@ pub struct IdentifyArgs {
     pub out_dir: Option<PathBuf>,
     #[command(flatten)]
     pub experiment: ExperimentArgs,
-    /// Print one JSON document instead of the report.
-    #[arg(long)]
-    pub json: bool,
     /// Also fit the equivalent beam height that matches the experiment's
     /// first bending frequency (eigenvalue-based `calibrate`); with
     /// --out-dir the calibrated model is written as calibrated.json.
@@ -51,42 +50,6 @@ pub struct IdentifyArgs {
     /// Fit band of the measured records, LO:HI in Hz (see `frf --band`).
     #[arg(long, value_name = "LO:HI", requires = "measured", value_parser = super::frf::parse_band)]
     pub measured_band: Option<(f64, f64)>,
-}
-
-/// How the model is held: "free-free", or the kinds of its ground
-/// connections ("clamped", "pinned", "roller", "spring-supported").
-fn supports(model: &Model) -> String {
-    let mut kinds: Vec<&str> = Vec::new();
-    let grounded = |a: &ancf_modal::model::PointSpec, b: &ancf_modal::model::PointSpec| {
-        a.ground.is_some() || b.ground.is_some()
-    };
-    for j in &model.joints {
-        if grounded(&j.a, &j.b) {
-            kinds.push(match j.kind {
-                ancf_modal::model::JointType::Weld => "clamped",
-                ancf_modal::model::JointType::Pin => "pinned",
-                ancf_modal::model::JointType::Slider => "roller",
-            });
-        }
-    }
-    if model.springs.iter().any(|s| grounded(&s.a, &s.b)) {
-        kinds.push("spring-supported");
-    }
-    kinds.dedup();
-    if kinds.is_empty() {
-        "free-free".into()
-    } else {
-        kinds.join(", ")
-    }
-}
-
-/// Whether the model's reference is the paper's Table 3 (then the paper's
-/// own model rows belong in the comparison).
-fn names_the_paper(model: &Model) -> bool {
-    model
-        .reference
-        .as_ref()
-        .is_some_and(|r| r.source.to_ascii_lowercase().contains("paper"))
 }
 
 /// Figures `--out-dir` holds, each as .svg and .png.
@@ -121,20 +84,17 @@ fn write_figures(
 }
 
 pub fn run(args: IdentifyArgs) -> Result<()> {
+    args.output.only("identify", &[Output::Json])?;
     let model = load_model(args.model.as_deref())?;
     args.experiment.settings().transient.validate()?;
     let system = System::new(&model);
-    let modal = modal_at_reference(
-        &system,
-        &ModalSettings {
-            modes: Some(12),
-            ..ModalSettings::default()
-        },
-    )
-    .with_context(|| source_label(args.model.as_deref()))?;
+    let settings = ModalSettings {
+        modes: Some(IDENTIFY_MODES),
+        ..ModalSettings::default()
+    };
+    let (modal, modal_output) = ancf_modal::results::modal::modal(&model, &system, &settings)
+        .with_context(|| source_label(args.model.as_deref()))?;
     let impulse = experiment(&model, args.model.as_deref(), &args.experiment)?;
-    let table3 = reference::table3();
-    let eigen = modal.first_bending().map(|m| m.frequency_hz);
     let measured = if args.measured.is_empty() {
         None
     } else {
@@ -149,83 +109,27 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         };
         Some(m.analyse(&args.measured)?)
     };
-    let paper = names_the_paper(&model) && measured.is_none();
-    // The experiment: the measured mode nearest the model's first bending
-    // frequency, or the model's reference; none without either.
-    let experiment: Option<(String, f64)> = match (&measured, &model.reference) {
-        (Some(a), _) => {
-            let near = eigen.unwrap_or(0.0);
-            a.fit
-                .modes
-                .iter()
-                .min_by(|x, y| {
-                    (x.frequency_hz - near)
-                        .abs()
-                        .total_cmp(&(y.frequency_hz - near).abs())
-                })
-                .map(|m| ("measured (frf fit)".to_string(), m.frequency_hz))
-        }
-        (None, Some(r)) if paper => Some(("experiment (paper Table 3)".into(), r.first_bending_hz)),
-        (None, Some(r)) if !r.source.trim().is_empty() => Some((
-            format!("experiment ({})", r.source.trim()),
-            r.first_bending_hz,
-        )),
-        (None, Some(r)) => Some(("experiment (model reference)".into(), r.first_bending_hz)),
-        (None, None) => None,
-    };
-    let experiment_hz = experiment.as_ref().map(|e| e.1);
-    let calibration = match (args.calibrate, experiment_hz) {
-        (true, Some(f)) => Some(super::calibrate::equivalent_height(&model, f)?),
+    let (experiment, paper) =
+        choose_experiment(&model, modal_output.first_bending_hz, measured.as_ref());
+    let calibration = match (args.calibrate, &experiment) {
+        (true, Some(e)) => Some(super::calibrate::equivalent_height(&model, e.frequency_hz)?),
         (true, None) => anyhow::bail!(
             "--calibrate needs an experiment: the model has no `reference` and no --measured records were given"
         ),
         _ => None,
     };
-    let fft = impulse.first_bending.map(|f| f.corrected_hz);
-    let mut rows: Vec<(String, Option<f64>)> = Vec::new();
-    if let Some((label, f)) = &experiment {
-        rows.push((label.clone(), Some(*f)));
-    }
-    rows.push(("this tool, eigenvalue".into(), eigen));
-    rows.push(("this tool, impulse + FFT (corrected)".into(), fft));
-    rows.push((
-        "this tool, impulse + FFT (raw)".into(),
-        impulse.first_bending.map(|f| f.raw_hz),
-    ));
-    if paper {
-        rows.push(("paper, ANCF".into(), Some(table3.ancf_hz)));
-        rows.push(("paper, ANSYS BEAM188".into(), Some(table3.ansys_hz)));
-    }
-    let errors = |f: &Option<f64>| f.zip(experiment_hz).map(|(f, e)| Errors::new(f, e));
-    let summary = json!({
-        "model": model.name,
-        "supports": supports(&model),
-        "experiment_hz": experiment_hz,
-        "table": rows.iter().map(|(name, f)| json!({
-            "source": name,
-            "first_bending_hz": f,
-            "error_percent": errors(f).map(|e| e.error_percent),
-            "paper_error_percent": errors(f).map(|e| e.paper_error_percent),
-        })).collect::<Vec<_>>(),
-        "reference_source": if paper { Some(reference::source()) } else { model.reference.as_ref().map(|r| r.source.clone()) },
-        "measured": measured.as_ref().map(|a| json!({
-            "files": a.files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
-            "band_hz": [a.band.0, a.band.1],
-            "peaks": a.fit.modes.iter().map(|m| json!({
-                "frequency_hz": m.frequency_hz,
-                "damping_ratio": m.damping_ratio,
-                "magnitude": m.magnitude,
-            })).collect::<Vec<_>>(),
-        })),
-        "modal": modal_json(&model.name, &modal),
-        "impulse": impulse_json(&model.name, &impulse, experiment_hz),
-        "calibration": calibration.as_ref().map(|c| calibrate_json(&model.name, c)),
-    });
-    let mut summary = super::common::with_warnings(summary)?;
-    ancf_modal::output::provenance::stamp(
-        &mut summary,
-        &super::common::model_sha256(args.model.as_deref())?,
+    let output = IdentifyOutput::new(
+        &model,
+        modal_output,
+        &impulse,
+        measured.as_ref(),
+        calibration.as_ref(),
     );
+    let summary = ancf_modal::results::document(
+        &output,
+        Some(&super::common::model_sha256(args.model.as_deref())?),
+        &super::common::warnings(),
+    )?;
     if let Some(dir) = &args.out_dir {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("{}: cannot create the output directory", dir.display()))?;
@@ -244,16 +148,24 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         }
         write_figures(dir, &model, &system, &modal, &impulse)?;
     }
-    if args.json {
+    if args.output.json {
         outln!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());
     }
+    out!("{}", report(&output, paper, args.out_dir.as_deref()));
+    Ok(())
+}
+
+/// The printed report: the comparison table, the measured modes, the
+/// FFT's agreement with the eigenvalue, the calibration and the run's
+/// figures, all from the typed result.
+fn report(output: &IdentifyOutput, paper: bool, out_dir: Option<&Path>) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
         "model {}: first bending frequency, {}{}",
-        model.name,
-        supports(&model),
+        output.model,
+        output.supports,
         if paper { " (paper Table 3)" } else { "" }
     );
     let _ = writeln!(
@@ -261,58 +173,57 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         "{:<40} {:>12} {:>14} {:>16}",
         "", "f [Hz]", "(f−exp)/exp", "paper: (exp−f)/f"
     );
-    for (name, f) in &rows {
-        match (f, errors(f)) {
-            (Some(f), Some(e)) => {
-                let _ = writeln!(
-                    s,
-                    "{name:<40} {f:>12.2} {:>13.2}% {:>15.2}%",
-                    e.error_percent, e.paper_error_percent
-                );
+    for row in &output.table {
+        let name = &row.source;
+        match (
+            row.first_bending_hz,
+            row.error_percent,
+            row.paper_error_percent,
+        ) {
+            (Some(f), Some(e), Some(p)) => {
+                let _ = writeln!(s, "{name:<40} {f:>12.2} {e:>13.2}% {p:>15.2}%");
             }
-            (Some(f), None) => {
+            (Some(f), _, _) => {
                 let _ = writeln!(s, "{name:<40} {f:>12.2}");
             }
-            (None, _) => {
+            (None, _, _) => {
                 let _ = writeln!(s, "{name:<40} {:>12}", "–");
             }
         }
     }
-    if experiment.is_none() {
+    if output.experiment_hz.is_none() {
         let _ = writeln!(
             s,
             "no experiment to compare with: give the model a `reference` or measured records with --measured"
         );
     }
-    if let Some(a) = &measured {
+    if let Some(m) = &output.measured {
         let _ = writeln!(
             s,
             "measured modes ({} over {:.0}–{:.0} Hz): {}",
-            a.files.len(),
-            a.band.0,
-            a.band.1,
-            a.fit
-                .modes
+            m.files.len(),
+            m.band_hz[0],
+            m.band_hz[1],
+            m.peaks
                 .iter()
-                .map(|m| format!(
+                .map(|p| format!(
                     "{:.1} Hz (ζ {:.3} %)",
-                    m.frequency_hz,
-                    100.0 * m.damping_ratio
+                    p.frequency_hz,
+                    100.0 * p.damping_ratio
                 ))
                 .collect::<Vec<_>>()
                 .join(", ")
         );
     }
-    if let Some(fb) = impulse.first_bending {
+    let i = &output.impulse;
+    if let (Some(raw), Some(corrected)) = (i.raw_vs_eigen, i.corrected_vs_eigen) {
         let _ = writeln!(
             s,
-            "FFT vs eigenvalue: raw {:+.2e}, corrected {:+.2e} (integrator period error removed)",
-            fb.raw_error(),
-            fb.corrected_error()
+            "FFT vs eigenvalue: raw {raw:+.2e}, corrected {corrected:+.2e} (integrator period error removed)"
         );
     }
-    if let Some(c) = &calibration {
-        let p = &c.parameters[0];
+    if let Some(c) = &output.calibration {
+        let p = &c.result.parameters[0];
         let _ = writeln!(
             s,
             "equivalent geometry: {} = {:.4} mm ({:+.2} % on {:.4} mm) gives {:.3} Hz (eigenvalue, {} evaluations)",
@@ -320,25 +231,24 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
             1e3 * p.fitted,
             p.change_percent,
             1e3 * p.initial,
-            c.achieved_hz[0],
-            c.evaluations
+            c.result.achieved_hz[0],
+            c.result.evaluations
         );
     }
-    let st = &impulse.stats;
     let _ = writeln!(
         s,
         "impulse: {} steps of {:.1e} s, {:.2} Newton iterations/step, joints held to {:.1e} m",
-        st.steps,
-        args.experiment.step,
-        st.newton_iterations as f64 / st.steps.max(1) as f64,
-        st.max_length_residual
+        i.steps,
+        i.step_s,
+        i.newton_iterations as f64 / i.steps.max(1) as f64,
+        i.max_joint_residual_m
     );
-    if let Some(dir) = &args.out_dir {
+    if let Some(dir) = out_dir {
         let _ = writeln!(
             s,
             "data written to {}: summary.json, modes.csv, signal.csv, spectrum.csv{}, {}",
             dir.display(),
-            if calibration.is_some() {
+            if output.calibration.is_some() {
                 ", calibrated.json"
             } else {
                 ""
@@ -346,6 +256,5 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
             FIGURES.map(|f| format!("{f}.svg/.png")).join(", ")
         );
     }
-    out!("{s}");
-    Ok(())
+    s
 }

@@ -5,8 +5,9 @@ use ancf_modal::analysis::impulse::{run_impulse, ImpulseResult, ImpulseSettings}
 use ancf_modal::analysis::spectrum::Window;
 use ancf_modal::model::Model;
 use ancf_modal::output::figures::{response_path, write_impulse_figures};
-use ancf_modal::output::impulse_report::{impulse_json, impulse_table, signal_csv, spectrum_csv};
+use ancf_modal::output::impulse_report::{impulse_table, signal_csv, spectrum_csv};
 use ancf_modal::output::plot::{Format, PlotSize};
+use ancf_modal::results::ImpulseOutput;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::io::{IsTerminal, Write};
@@ -61,23 +62,9 @@ pub struct ImpulseArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
     #[command(flatten)]
+    pub output: super::output::OutputArgs,
+    #[command(flatten)]
     pub experiment: ExperimentArgs,
-    /// Print one JSON document instead of the report.
-    #[arg(long)]
-    pub json: bool,
-    /// Write the sensor time series to FILE and the spectrum to FILE's
-    /// stem + `.spectrum.csv` beside it.
-    #[arg(long, value_name = "FILE")]
-    pub csv: Option<PathBuf>,
-    /// Draw the spectrum (peaks, eigenfrequencies, the reference) to FILE
-    /// (.svg or .png) and the sensor signal over the force pulse to FILE's
-    /// stem + `.response.<ext>` beside it (x.png → x.response.png).
-    #[arg(long, value_name = "FILE")]
-    pub plot: Option<PathBuf>,
-    /// Write the force and the sensor records as UFF 58 time data (read
-    /// back by `frf` and pyuff).
-    #[arg(long, value_name = "FILE")]
-    pub uff: Option<PathBuf>,
 }
 
 /// Run the experiment with a progress line on a terminal.
@@ -112,18 +99,18 @@ pub fn spectrum_path(csv: &Path) -> PathBuf {
 }
 
 pub fn run(args: ImpulseArgs) -> Result<()> {
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.output.plot {
         Format::from_path(path)?;
     }
     let model = load_model(args.model.as_deref())?;
     args.experiment.settings().transient.validate()?;
     let result = experiment(&model, args.model.as_deref(), &args.experiment)?;
     let reference = model.reference.as_ref().map(|r| r.first_bending_hz);
-    if let Some(path) = &args.csv {
+    if let Some(path) = &args.output.csv {
         write_output(path, &signal_csv(&result))?;
         write_output(&spectrum_path(path), &spectrum_csv(&result))?;
     }
-    if let Some(path) = &args.uff {
+    if let Some(path) = &args.output.uff {
         let provenance = ancf_modal::output::provenance::header_lines(
             &super::common::model_sha256(args.model.as_deref())?,
         );
@@ -137,13 +124,13 @@ pub fn run(args: ImpulseArgs) -> Result<()> {
         );
         write_output(path, &text)?;
     }
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.output.plot {
         let response = response_path(path);
         write_impulse_figures(&model, &result, path, &response, PlotSize::default())?;
     }
-    if args.json {
+    if args.output.json {
         print_json(
-            impulse_json(&model.name, &result, reference),
+            ImpulseOutput::new(&model.name, &result, reference),
             args.model.as_deref(),
         )?;
     } else {

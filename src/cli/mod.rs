@@ -25,6 +25,7 @@ mod frf;
 mod identify;
 mod impulse;
 mod modal;
+mod output;
 mod report;
 mod statics;
 mod sweep;
@@ -69,14 +70,23 @@ pub enum Command {
     SwitchOff(switch_off::SwitchOffArgs),
     /// One self-contained HTML file: the assembly, animated modes, the impulse test.
     Report(report::ReportArgs),
-    /// Print the JSON Schema of the model file.
-    Schema,
+    /// Print the JSON Schema of the model file, or with --output that of a
+    /// command's --json document.
+    Schema(SchemaArgs),
     /// Measured hammer records (CSV, UFF 58) in: H1, H2, coherence, and the
     /// modes' frequencies and damping ratios (LSCF fit).
     Frf(frf::FrfArgs),
 }
 
 pub use common::print_warnings;
+
+#[derive(Debug, clap::Args)]
+pub struct SchemaArgs {
+    /// Print the schema of this command's --json document (result and
+    /// provenance) instead of the model file's.
+    #[arg(long, value_name = "COMMAND", value_parser = clap::builder::PossibleValuesParser::new(ancf_modal::results::COMMANDS))]
+    pub output: Option<String>,
+}
 
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
@@ -91,11 +101,13 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::SweepMerge(a) => sweep_merge::run(a),
         Command::Transient(a) => transient::run(a),
         Command::SwitchOff(a) => switch_off::run(a),
-        Command::Schema => {
-            outln!(
-                "{}",
-                serde_json::to_string_pretty(&ancf_modal::Model::json_schema())?
-            );
+        Command::Schema(a) => {
+            let schema = match &a.output {
+                Some(command) => ancf_modal::results::output_schema(command)
+                    .ok_or_else(|| anyhow::anyhow!("--output `{command}`: no such command"))?,
+                None => ancf_modal::Model::json_schema(),
+            };
+            outln!("{}", serde_json::to_string_pretty(&schema)?);
             Ok(())
         }
         Command::Frf(a) => frf::run(a),

@@ -1,14 +1,14 @@
 //! `ancf-modal modal`: frequencies and mode shapes.
 
 use super::args::ModalArgs;
-use super::common::{add_damping, load_model, print_json, source_label, write_output};
-use ancf_modal::analysis::damped_modes::mode_damping;
+use super::common::{load_model, print_json, source_label, write_output};
 use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings, Mode};
 use ancf_modal::measured::mac::mac;
 use ancf_modal::measured::uff::d55::read_modes;
 use ancf_modal::model::Model;
-use ancf_modal::output::modal_report::{modal_csv, modal_json, modal_table};
+use ancf_modal::output::modal_report::{modal_csv, modal_table};
 use ancf_modal::output::modal_uff::{export_nodes, modal_uff, translations};
+use ancf_modal::results::modal::MacTable;
 use ancf_modal::System;
 use anyhow::{Context, Result};
 use std::path::Path;
@@ -29,24 +29,23 @@ pub fn run(args: ModalArgs) -> Result<()> {
     if args.prestress {
         return super::statics::run_prestress(&args, &model, &system, &settings);
     }
-    let mut result = modal_at_reference(&system, &settings)
+    let (result, mut output) = ancf_modal::results::modal::modal(&model, &system, &settings)
         .with_context(|| source_label(args.model.as_deref()))?;
-    ancf_modal::analysis::shear::annotate(&model, &system, &mut result);
     warn_beam_theory(&result, args.model.as_deref());
     let mac = match &args.mac {
         Some(other) => Some(mac_against(&system, &result, other, &settings)?),
         None => None,
     };
-    if let Some(path) = &args.csv {
+    if let Some(path) = &args.output.csv {
         write_output(path, &modal_csv(&result))?;
     }
-    if let Some(path) = &args.uff {
+    if let Some(path) = &args.output.uff {
         let provenance = ancf_modal::output::provenance::header_lines(
             &super::common::model_sha256(args.model.as_deref())?,
         );
         write_output(path, &modal_uff(&system, &result, &provenance))?;
     }
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.output.plot {
         ancf_modal::output::figures::write_mode_shapes(&system, &system.q0, &result, path)?;
     }
     if let (Some(path), Some((_, _, m))) = (&args.mac_plot, &mac) {
@@ -62,23 +61,17 @@ pub fn run(args: ModalArgs) -> Result<()> {
             ancf_modal::output::plot::PlotSize::default(),
         )?;
     }
-    let damping = mode_damping(&system, &system.reference(), &result, model.damping)
-        .with_context(|| source_label(args.model.as_deref()))?;
-    let complex = damping.iter().any(|d| d.complex);
-    if args.json {
-        let mut doc = modal_json(&model.name, &result);
-        doc["poisson_assumed"] =
-            serde_json::json!(ancf_modal::analysis::shear::poisson_assumed(&model));
-        if let Some(modes) = doc["modes"].as_array_mut() {
-            add_damping(modes, &damping);
-        }
-        if let Some((rows, cols, m)) = &mac {
-            doc["mac"] = serde_json::json!({
-                "rows_hz": rows, "columns_hz": cols,
-                "matrix": m.row_iter().map(|r| r.iter().copied().collect::<Vec<f64>>()).collect::<Vec<_>>(),
-            });
-        }
-        print_json(&doc, args.model.as_deref())?;
+    let complex = output.complex_modes;
+    if args.output.json {
+        output.mac = mac.as_ref().map(|(rows, cols, m)| MacTable {
+            rows_hz: rows.clone(),
+            columns_hz: cols.clone(),
+            matrix: m
+                .row_iter()
+                .map(|r| r.iter().copied().collect::<Vec<f64>>())
+                .collect(),
+        });
+        print_json(&output, args.model.as_deref())?;
     } else {
         out!("{}", modal_table(&model.name, &result));
         if ancf_modal::analysis::shear::poisson_assumed(&model) {
@@ -87,13 +80,12 @@ pub fn run(args: ModalArgs) -> Result<()> {
                 ancf_modal::analysis::shear::DEFAULT_POISSON
             );
         }
-        let lines: Vec<String> = result
+        let lines: Vec<String> = output
             .modes
             .iter()
-            .zip(&damping)
-            .filter_map(|(m, d)| {
-                let z = format!("mode {}: {:.4} %", m.index, 100.0 * d.damping_ratio?);
-                Some(match (d.complex, d.damped_frequency_hz) {
+            .filter_map(|m| {
+                let z = format!("mode {}: {:.4} %", m.mode.index, 100.0 * m.damping_ratio?);
+                Some(match (complex, m.damped_frequency_hz) {
                     (false, _) => z,
                     (true, Some(f)) => format!("{z}, f_d {f:.2} Hz"),
                     (true, None) => format!("{z}, overdamped"),

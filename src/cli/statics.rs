@@ -7,15 +7,14 @@
 
 use super::args::{finite, ModalArgs};
 use super::common::{load_model, print_json, source_label, write_output};
-use ancf_modal::analysis::damped_modes::mode_damping;
-use ancf_modal::analysis::prestress::prestressed_modal;
+use super::output::Output;
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf_modal::analysis::ModalSettings;
 use ancf_modal::output::figures::{write_figure, write_mode_shapes};
 use ancf_modal::output::modal_report::modal_csv;
 use ancf_modal::output::plot::PlotSize;
 use ancf_modal::output::static_report::{
-    equilibrium_figure, prestress_json, prestress_table, static_report, static_table,
+    equilibrium_figure, prestress_table, static_report, static_table,
 };
 use ancf_modal::{Model, System};
 use anyhow::{Context, Result};
@@ -26,20 +25,17 @@ use std::path::PathBuf;
 pub struct StaticArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
+    #[command(flatten)]
+    pub output: super::output::OutputArgs,
     /// Factor on the applied loads (gravity is not scaled). Loads act with
     /// their value at t = 0: constant loads and steps from 0 in full,
     /// half-sine pulses not at all.
     #[arg(long, default_value_t = 1.0, value_name = "S", allow_negative_numbers = true, value_parser = finite)]
     pub load_scale: f64,
-    /// Print one JSON document instead of the tables.
-    #[arg(long)]
-    pub json: bool,
-    /// Also draw the reference and equilibrium shapes to this file (.svg or .png).
-    #[arg(long, value_name = "FILE")]
-    pub plot: Option<PathBuf>,
 }
 
 pub fn run(args: StaticArgs) -> Result<()> {
+    args.output.only("static", &[Output::Json, Output::Plot])?;
     let model = load_model(args.model.as_deref())?;
     let system = System::new(&model);
     let settings = StaticSettings {
@@ -48,7 +44,7 @@ pub fn run(args: StaticArgs) -> Result<()> {
     };
     let eq = solve_equilibrium(&system, &settings)
         .with_context(|| source_label(args.model.as_deref()))?;
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.output.plot {
         let figure = equilibrium_figure(&system, &eq);
         let size = PlotSize {
             width: 900,
@@ -57,7 +53,7 @@ pub fn run(args: StaticArgs) -> Result<()> {
         write_figure(&figure.into(), path, size)?;
     }
     let report = static_report(&model, &system, &eq);
-    if args.json {
+    if args.output.json {
         print_json(&report, args.model.as_deref())?;
     } else {
         out!("{}", static_table(&report));
@@ -72,31 +68,25 @@ pub fn run_prestress(
     system: &System,
     settings: &ModalSettings,
 ) -> Result<()> {
+    args.output.only(
+        "modal --prestress",
+        &[Output::Json, Output::Csv, Output::Plot],
+    )?;
     let statics = StaticSettings {
         load_scale: args.load_scale.unwrap_or(1.0),
         ..StaticSettings::default()
     };
-    let result = prestressed_modal(system, &statics, settings)
-        .with_context(|| source_label(args.model.as_deref()))?;
-    if let Some(path) = &args.csv {
+    let (result, output) =
+        ancf_modal::results::modal::prestressed(model, system, &statics, settings)
+            .with_context(|| source_label(args.model.as_deref()))?;
+    if let Some(path) = &args.output.csv {
         write_output(path, &modal_csv(&result.prestressed))?;
     }
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.output.plot {
         write_mode_shapes(system, &result.equilibrium.q, &result.prestressed, path)?;
     }
-    if args.json {
-        let damping = mode_damping(
-            system,
-            &result.equilibrium.linearization(),
-            &result.prestressed,
-            model.damping,
-        )
-        .with_context(|| source_label(args.model.as_deref()))?;
-        let mut doc = prestress_json(&model.name, &result);
-        if let Some(modes) = doc["modes"].as_array_mut() {
-            super::common::add_damping(modes, &damping);
-        }
-        print_json(doc, args.model.as_deref())?;
+    if args.output.json {
+        print_json(&output, args.model.as_deref())?;
     } else {
         out!("{}", prestress_table(&model.name, &result));
     }

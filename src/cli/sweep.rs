@@ -4,6 +4,7 @@
 
 use super::args::{ModalArgs, Solver, Sweep as LoadRange};
 use super::common::{load_model, write_output};
+use super::output::{Output, OutputArgs};
 use ancf_modal::analysis::sweep::param::load_labels;
 use ancf_modal::analysis::sweep::{
     Execution, Quantity, Shard, Sweep, SweepDocument, SweepRun, SweepSettings,
@@ -69,22 +70,11 @@ pub struct SweepArgs {
     pub outputs: OutputArgs,
 }
 
-/// Where a sweep's document goes (`sweep` and `sweep-merge`).
-#[derive(Debug, Clone, Args)]
-pub struct OutputArgs {
-    /// Print one JSON document instead of the table.
-    #[arg(long)]
-    pub json: bool,
-    /// Also write the points as CSV to this file.
-    #[arg(long, value_name = "FILE")]
-    pub csv: Option<PathBuf>,
-    /// Also draw the sweep (.svg or .png): the quantity against one
-    /// parameter (all tracked modes for frequency:K), a heat map for two.
-    #[arg(long, value_name = "FILE")]
-    pub plot: Option<PathBuf>,
-}
+/// The outputs of `sweep` and `sweep-merge`.
+pub const SWEEP_OUTPUTS: &[Output] = &[Output::Json, Output::Csv, Output::Plot];
 
 pub fn run(args: SweepArgs) -> Result<()> {
+    args.outputs.only("sweep", SWEEP_OUTPUTS)?;
     let quantity = match &args.quantity {
         Some(q) => Quantity::parse(q).map_err(|e| anyhow!("--quantity: {e}"))?,
         None => bail!(
@@ -230,10 +220,6 @@ pub fn run_load_sweep(args: &ModalArgs, range: LoadRange) -> Result<()> {
         solver: args.solver,
         shard: None,
         threads: None,
-        outputs: OutputArgs {
-            json: args.json,
-            csv: args.csv.clone(),
-            plot: args.plot.clone(),
-        },
+        outputs: args.output.clone(),
     })
 }

@@ -1,7 +1,8 @@
 //! `ancf-modal sweep-merge`: joins the shard documents of `sweep --shard
 //! K/N --json` into the document (and table, CSV, plot) a single run gives.
 
-use super::sweep::{emit, OutputArgs};
+use super::output::OutputArgs;
+use super::sweep::{emit, SWEEP_OUTPUTS};
 use ancf_modal::analysis::sweep::{merge, SweepDocument, SweepError};
 use ancf_modal::output::figures::sweep::check_plottable;
 use ancf_modal::output::provenance::tool_version;
@@ -19,6 +20,7 @@ pub struct SweepMergeArgs {
 }
 
 pub fn run(args: SweepMergeArgs) -> Result<()> {
+    args.outputs.only("sweep-merge", SWEEP_OUTPUTS)?;
     let mut docs = Vec::with_capacity(args.shards.len());
     for path in &args.shards {
         let file = path.display().to_string();

@@ -2,11 +2,13 @@
 //! on a model, by default the built-in `models/rcbo_switch_off.json`.
 
 use super::common::{source_label, write_output};
+use super::output::Output;
 use ancf_modal::analysis::switch_off::{run_switch_off, SwitchOffSettings};
 use ancf_modal::model::{Model, PointSpec};
 use ancf_modal::output::figures::switch_off::write_switch_off_figures;
 use ancf_modal::output::plot::{Format, PlotSize};
-use ancf_modal::output::switch_off_report::{switch_off_csv, switch_off_json, switch_off_table};
+use ancf_modal::output::switch_off_report::{switch_off_csv, switch_off_table};
+use ancf_modal::results::SwitchOffOutput;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -15,6 +17,8 @@ use std::path::PathBuf;
 pub struct SwitchOffArgs {
     /// Model file (JSON); the built-in switch-off assembly when omitted.
     pub model: Option<PathBuf>,
+    #[command(flatten)]
+    pub output: super::output::OutputArgs,
     /// End time [s].
     #[arg(long, value_name = "S", default_value_t = 3e-3, allow_hyphen_values = true, value_parser = super::values::positive)]
     pub end_time: f64,
@@ -39,16 +43,6 @@ pub struct SwitchOffArgs {
     /// Skip the check run at half the step.
     #[arg(long)]
     pub no_step_check: bool,
-    /// Print one JSON document instead of the report.
-    #[arg(long)]
-    pub json: bool,
-    /// Write the tracked point's samples to FILE.
-    #[arg(long, value_name = "FILE")]
-    pub csv: Option<PathBuf>,
-    /// Draw x(t), y(t) to FILE (.svg or .png) and the trajectory to FILE's
-    /// stem + `.trajectory.<ext>` beside it.
-    #[arg(long, value_name = "FILE")]
-    pub plot: Option<PathBuf>,
 }
 
 fn parse_pair(s: &str) -> Result<[f64; 2], String> {
@@ -88,7 +82,9 @@ fn parse_point(s: &str) -> Result<PointSpec, String> {
 }
 
 pub fn run(args: SwitchOffArgs) -> Result<()> {
-    if let Some(path) = &args.plot {
+    args.output
+        .only("switch-off", &[Output::Json, Output::Csv, Output::Plot])?;
+    if let Some(path) = &args.output.plot {
         Format::from_path(path)?;
     }
     let model = match &args.model {
@@ -110,18 +106,18 @@ pub fn run(args: SwitchOffArgs) -> Result<()> {
     let result = run_switch_off(&model, &settings)
         .map_err(super::common::simulation_error)
         .with_context(|| source_label(args.model.as_deref()))?;
-    if let Some(path) = &args.csv {
+    if let Some(path) = &args.output.csv {
         write_output(path, &switch_off_csv(&result))?;
     }
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.output.plot {
         write_switch_off_figures(&result, path, PlotSize::default())?;
     }
-    if args.json {
+    if args.output.json {
         let sha = super::common::model_sha256_or(
             args.model.as_deref(),
             ancf_modal::model::SWITCH_OFF_MODEL_JSON,
         )?;
-        super::common::print_json_sha(switch_off_json(&result), &sha)?;
+        super::common::print_json_sha(SwitchOffOutput::new(&result), &sha)?;
     } else {
         out!("{}", switch_off_table(&result));
     }

@@ -7,7 +7,7 @@ use ancf_modal::analysis::transient::TransientSettings;
 use ancf_modal::output::figures::write_figure;
 use ancf_modal::output::plot::{Format, PlotSize};
 use ancf_modal::output::transient_report::{
-    transient_csv, transient_figure, transient_json, transient_table, transient_uff,
+    transient_csv, transient_figure, transient_table, transient_uff,
 };
 use ancf_modal::System;
 use anyhow::{Context, Result};
@@ -18,6 +18,8 @@ use std::path::PathBuf;
 pub struct TransientArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
+    #[command(flatten)]
+    pub output: super::output::OutputArgs,
     /// End time [s].
     #[arg(long, value_name = "S", default_value_t = 0.01, allow_hyphen_values = true, value_parser = super::values::positive)]
     pub end_time: f64,
@@ -37,26 +39,13 @@ pub struct TransientArgs {
     /// Model every beam as a rigid body.
     #[arg(long)]
     pub rigid_beams: bool,
-    /// Print one JSON document instead of the report.
-    #[arg(long)]
-    pub json: bool,
-    /// Write the sensor samples to FILE.
-    #[arg(long, value_name = "FILE")]
-    pub csv: Option<PathBuf>,
-    /// Draw the sensors against time to FILE (.svg or .png).
-    #[arg(long, value_name = "FILE")]
-    pub plot: Option<PathBuf>,
-    /// Write the sensors and the time-varying loads' forces as UFF 58 time
-    /// data (needs a sample rate above 0: UFF 58 samples evenly).
-    #[arg(long, value_name = "FILE")]
-    pub uff: Option<PathBuf>,
 }
 
 pub fn run(args: TransientArgs) -> Result<()> {
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.output.plot {
         Format::from_path(path)?;
     }
-    if args.uff.is_some() && args.sample_rate <= 0.0 {
+    if args.output.uff.is_some() && args.sample_rate <= 0.0 {
         anyhow::bail!(
             "--uff needs --sample-rate above 0 (UFF 58 time data are evenly sampled), got {}",
             args.sample_rate
@@ -81,27 +70,32 @@ pub fn run(args: TransientArgs) -> Result<()> {
     settings.transient.validate()?;
     let system = System::new(&model);
     let sim = simulate(system, &[], &settings)
-        .map_err(super::common::simulation_error)
+        .map_err(|e| match e {
+            ancf_modal::error::SimulationError::ReleaseNeedsEquilibrium { .. } => {
+                anyhow::anyhow!("{e} (--from-equilibrium)")
+            }
+            e => super::common::simulation_error(e),
+        })
         .with_context(|| source_label(args.model.as_deref()))?;
-    if let Some(path) = &args.csv {
+    if let Some(path) = &args.output.csv {
         write_output(path, &transient_csv(&sim))?;
     }
-    if let Some(path) = &args.uff {
+    if let Some(path) = &args.output.uff {
         let provenance = ancf_modal::output::provenance::header_lines(
             &super::common::model_sha256(args.model.as_deref())?,
         );
         write_output(path, &transient_uff(&sim, &provenance))?;
     }
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.output.plot {
         write_figure(
             &transient_figure(&model.name, &sim).into(),
             path,
             PlotSize::default(),
         )?;
     }
-    if args.json {
+    if args.output.json {
         print_json(
-            transient_json(&model.name, &settings, &sim),
+            ancf_modal::results::TransientOutput::new(&model.name, &settings, &sim),
             args.model.as_deref(),
         )?;
     } else {

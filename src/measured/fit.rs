@@ -57,7 +57,7 @@ pub struct FitSettings {
 }
 
 /// A stability label of the diagram.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Stability {
     /// No pole of the previous order close by.
@@ -69,10 +69,13 @@ pub enum Stability {
 }
 
 /// One pole of one order in the diagram.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct DiagramPole {
+    /// Model order of the fit that found it [–].
     pub order: usize,
+    /// Undamped natural frequency [Hz].
     pub frequency_hz: f64,
+    /// Damping ratio ζ [–].
     pub damping_ratio: f64,
     pub stability: Stability,
 }
@@ -92,7 +95,7 @@ pub struct FittedMode {
 }
 
 /// Why a pole stable over the orders is not among the modes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum RejectReason {
     /// Stable in a fit of the spectrum outside the band.
@@ -116,7 +119,7 @@ impl RejectReason {
 }
 
 /// A pole stable over the orders that is not a mode, with its reason.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct RejectedPole {
     /// Undamped natural frequency, Hz (window-corrected).
     pub frequency_hz: f64,

@@ -6,7 +6,6 @@
 use crate::analysis::calibrate::{Algorithm, CalibrationResult, FittedParameter};
 use crate::output::plot::Calibration;
 use crate::output::plot::Scale;
-use serde_json::json;
 use std::fmt::Write;
 
 fn algorithm_name(a: Algorithm) -> &'static str {
@@ -138,32 +137,6 @@ pub fn calibrate_table(model_name: &str, r: &CalibrationResult) -> String {
         let _ = writeln!(s, "  (x: trial step rejected)");
     }
     s
-}
-
-/// JSON document (DESIGN §5 keys: parameters[name, initial, fitted],
-/// targets_hz, achieved_hz, iterations).
-pub fn calibrate_json(model_name: &str, r: &CalibrationResult) -> serde_json::Value {
-    json!({
-        "model": model_name,
-        "fitted_model": r.fitted_model.name,
-        "method": r.method,
-        "algorithm": r.algorithm,
-        "parameters": r.parameters,
-        "derived": r.derived,
-        "keep_mass": r.keep_mass,
-        "mode_kind": r.mode_kind,
-        "mode_numbers": r.mode_numbers,
-        "targets_hz": r.targets_hz,
-        "initial_hz": r.initial_hz,
-        "achieved_hz": r.achieved_hz,
-        "residuals_hz": r.residuals_hz,
-        "least_squares": r.least_squares,
-        "iterations": r.iterations,
-        "evaluations": r.evaluations,
-        "sensitivities_hz": r.sensitivities_hz,
-        "conditioning": r.conditioning,
-        "history": r.history,
-    })
 }
 
 /// How a parameter of this SI unit is shown on an axis.

@@ -6,7 +6,6 @@
 use std::fmt::Write;
 
 use realfft::num_complex::Complex64;
-use serde_json::{json, Value};
 
 use crate::measured::analysis::FrfAnalysis;
 use crate::measured::fit::Stability;
@@ -53,22 +52,6 @@ impl ResponseQuantity {
             ResponseQuantity::Velocity => SpecDataType::VELOCITY,
             ResponseQuantity::Acceleration => SpecDataType::ACCELERATION,
         }
-    }
-}
-
-fn pair(c: &Complex64) -> Value {
-    if c.re.is_finite() && c.im.is_finite() {
-        json!([c.re, c.im])
-    } else {
-        Value::Null
-    }
-}
-
-fn finite(v: f64) -> Value {
-    if v.is_finite() {
-        json!(v)
-    } else {
-        Value::Null
     }
 }
 
@@ -142,43 +125,6 @@ fn mode_rows(s: &mut String, a: &FrfAnalysis) {
             );
         }
     }
-}
-
-/// The JSON document of `frf --json` (DESIGN §9 keys).
-pub fn frf_json(a: &FrfAnalysis, q: ResponseQuantity, model_sha256: Option<&str>) -> Value {
-    let e = a.estimate.as_ref();
-    json!({
-        "tool_version": super::provenance::tool_version(),
-        "model_sha256": model_sha256,
-        "files": a.files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
-        "sample_rate_hz": e.map(|e| e.sample_rate_hz),
-        "averages": e.map(|e| e.averages),
-        "window": e.map(|e| e.window.to_string()),
-        "window_decay_rate": e.map(|e| e.window_decay_rate),
-        "response_quantity": q.name(),
-        "frf_unit": q.frf_unit(),
-        "estimator": a.settings.estimator.name(),
-        "band_hz": [a.band.0, a.band.1],
-        "band_end": a.band_end.key(),
-        "method": "LSCF (z-domain common denominator) with stabilization, poles refined by nonlinear least squares",
-        "frequency_hz": a.frequency_hz,
-        "h1": a.h1.iter().map(pair).collect::<Vec<_>>(),
-        "h2": a.h2.as_ref().map(|h| h.iter().map(pair).collect::<Vec<_>>()),
-        "coherence": a.coherence.as_ref().map(|c| c.iter().map(|v| finite(*v)).collect::<Vec<_>>()),
-        "peaks": a.fit.modes.iter().map(|m| json!({
-            "frequency_hz": m.frequency_hz,
-            "damping_ratio": m.damping_ratio,
-            "magnitude": m.magnitude,
-            "residue": [m.residue.re, m.residue.im],
-        })).collect::<Vec<_>>(),
-        "rejected": a.rejected.iter().map(|r| json!({
-            "frequency_hz": r.frequency_hz,
-            "damping_ratio": r.damping_ratio,
-            "reason": r.reason,
-            "why": r.reason.describe(),
-        })).collect::<Vec<_>>(),
-        "stabilization": a.fit.diagram,
-    })
 }
 
 /// CSV: frequency, |H1|, phase H1, |H2|, phase H2, coherence, |fit|.

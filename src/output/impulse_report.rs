@@ -2,7 +2,7 @@
 
 use crate::analysis::impulse::{Excitation, ImpulseResult};
 use crate::reference::Errors;
-use serde_json::{json, Value};
+
 use std::fmt::Write;
 
 /// Readable report; `reference_hz` is the measured first bending frequency.
@@ -111,47 +111,6 @@ pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f
         }
     }
     s
-}
-
-/// JSON document (DESIGN §5 keys).
-pub fn impulse_json(model_name: &str, r: &ImpulseResult, reference_hz: Option<f64>) -> Value {
-    let fb = r.first_bending;
-    let errors = fb
-        .zip(reference_hz)
-        .map(|(f, e)| Errors::new(f.corrected_hz, e));
-    json!({
-        "model": model_name,
-        "excitation": r.excitation,
-        "excitation_loads": r.excitation_loads,
-        "first_bending_hz": fb.map(|f| f.corrected_hz),
-        "first_bending_raw_hz": fb.map(|f| f.raw_hz),
-        "eigen_first_bending_hz": fb.map(|f| f.eigen_hz),
-        "raw_vs_eigen": fb.map(|f| f.raw_error()),
-        "corrected_vs_eigen": fb.map(|f| f.corrected_error()),
-        "damping": r.damping.map(|d| json!({
-            "identified_ratio": d.identified_ratio,
-            "identified_hz": d.identified_hz,
-            "modal_ratio": d.modal_ratio,
-            "numerical_ratio": d.numerical_ratio,
-            "expected_ratio": d.expected_ratio(),
-            "relative_error": d.relative_error(),
-        })),
-        "peaks": r.peaks.iter().map(|p| json!({"frequency_hz": p.frequency_hz, "magnitude": p.magnitude})).collect::<Vec<_>>(),
-        "reference_hz": reference_hz,
-        "error_percent": errors.map(|e| e.error_percent),
-        "paper_error_percent": errors.map(|e| e.paper_error_percent),
-        "steps": r.stats.steps,
-        "step_s": r.settings.transient.step,
-        "end_time_s": r.settings.transient.end_time,
-        "spectral_radius": r.settings.transient.spectral_radius,
-        "newton_iterations": r.stats.newton_iterations,
-        "factorizations": r.stats.factorizations,
-        "max_joint_residual_m": r.stats.max_length_residual,
-        "max_joint_residual_rad": r.stats.max_angle_residual,
-        "sensor": r.sensor,
-        "sample_rate_hz": r.sample_rate_hz,
-        "samples": r.signal.len(),
-    })
 }
 
 /// CSV of the sensor time series: t [s], signal, force [N].

@@ -1,7 +1,6 @@
 //! Modal results as a table, a JSON document and CSV.
 
 use crate::analysis::ModalResult;
-use serde_json::json;
 use std::fmt::Write;
 
 /// Readable table: index, frequency [Hz], kind, energy split.
@@ -65,23 +64,6 @@ pub fn modal_table(model_name: &str, r: &ModalResult) -> String {
         );
     }
     s
-}
-
-/// JSON document (DESIGN §5 keys: model, dofs, rigid_modes, modes[index, frequency_hz, kind]).
-pub fn modal_json(model_name: &str, r: &ModalResult) -> serde_json::Value {
-    json!({
-        "model": model_name,
-        "dofs": r.dofs,
-        "constraints": r.constraints,
-        "reduced_dofs": r.reduced_dofs,
-        "redundant_constraints": r.redundant_constraints,
-        "rigid_modes": r.rigid_modes,
-        "mechanism_modes": r.mechanism_modes,
-        "first_bending_hz": r.first_bending().map(|m| m.frequency_hz),
-        "solver": r.solver,
-        "accuracy_warning": r.accuracy_warning(),
-        "modes": r.modes,
-    })
 }
 
 /// CSV: one row per mode.

@@ -32,15 +32,6 @@ pub fn model_sha256_or(path: Option<&std::path::Path>, builtin: &str) -> std::io
     })
 }
 
-/// Adds `tool_version` and `model_sha256` to a JSON object (other values
-/// are left as they are).
-pub fn stamp(doc: &mut serde_json::Value, model_sha256: &str) {
-    if let Some(map) = doc.as_object_mut() {
-        map.insert("tool_version".into(), tool_version().into());
-        map.insert("model_sha256".into(), model_sha256.into());
-    }
-}
-
 /// The provenance of an exported file's header: two lines of at most 80
 /// characters (UFF ID lines), `ancf-modal VERSION` and
 /// `model_sha256 HEX`.

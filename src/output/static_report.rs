@@ -20,13 +20,14 @@ use crate::output::plot::{LineFigure, Panel, Scale, Series, SeriesStyle};
 use crate::system::System;
 use nalgebra::Vector2;
 use serde::Serialize;
-use serde_json::json;
 use std::fmt::Write;
 
 /// A beam node at equilibrium.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct NodeState {
+    /// The beam's id.
     pub beam: String,
+    /// Node number along the beam, 0-based [–].
     pub node: usize,
     /// Reference arc length [SI: m].
     pub s: f64,
@@ -36,34 +37,39 @@ pub struct NodeState {
     pub displacement: [f64; 2],
     /// Slope angle atan2(r'y, r'x) [deg].
     pub slope_deg: f64,
-    /// Axial strain |r'| − 1.
+    /// Axial strain |r'| − 1 [–].
     pub strain: f64,
 }
 
 /// A rigid body or point mass at equilibrium.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct BodyState {
+    /// The body's id.
     pub id: String,
+    /// Position of its reference point [SI: m].
     pub position: [f64; 2],
+    /// Displacement from the reference [SI: m].
     pub displacement: [f64; 2],
     /// Rotation from the reference [deg]; `None` for a point mass.
     pub rotation_deg: Option<f64>,
 }
 
 /// The force (and moment) a joint exerts on its point b.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct Reaction {
+    /// The joint's label.
     pub joint: String,
     pub kind: JointType,
-    /// [SI: N], global frame.
+    /// Force [SI: N], global frame.
     pub force: [f64; 2],
-    /// [SI: N m]; welds only.
+    /// Moment [SI: N m]; welds only.
     pub moment: Option<f64>,
 }
 
 /// A spring's force at equilibrium.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct SpringState {
+    /// The spring's id.
     pub spring: String,
     /// Tension (+) or compression (−) [SI: N]; a torsion spring's moment [SI: N m].
     pub force: f64,
@@ -72,19 +78,27 @@ pub struct SpringState {
 }
 
 /// Everything `ancf-modal static` reports.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct StaticReport {
+    /// Model name.
     pub model: String,
+    /// Factor on the applied loads (gravity is not scaled) [–].
     pub load_scale: f64,
+    /// Load increments taken [–].
     pub load_steps: usize,
+    /// Newton iterations in all [–].
     pub iterations: usize,
     /// Unbalanced force at the solution [SI: N].
     pub residual: f64,
     /// Constraint violation at the solution [SI: m, rad].
     pub constraint_violation: f64,
+    /// Every beam node.
     pub nodes: Vec<NodeState>,
+    /// Every rigid body and point mass.
     pub bodies: Vec<BodyState>,
+    /// Every joint's reaction.
     pub reactions: Vec<Reaction>,
+    /// Every spring's force.
     pub springs: Vec<SpringState>,
 }
 
@@ -407,44 +421,4 @@ pub fn prestress_table(model_name: &str, r: &PrestressedModal) -> String {
         );
     }
     s
-}
-
-/// JSON: the DESIGN §5 modal keys at the equilibrium, plus the reference
-/// frequency and shift of each mode and the equilibrium's figures.
-pub fn prestress_json(model_name: &str, r: &PrestressedModal) -> serde_json::Value {
-    let modes: Vec<_> = r
-        .prestressed
-        .modes
-        .iter()
-        .enumerate()
-        .map(|(i, m)| {
-            json!({
-                "index": i + 1,
-                "frequency_hz": m.frequency_hz,
-                "eigenvalue": m.eigenvalue,
-                "kind": m.kind,
-                "energy": m.energy,
-                "unstressed_hz": r.reference.modes.get(i).map(|m| m.frequency_hz),
-                "shift_percent": r.shift_percent(i),
-            })
-        })
-        .collect();
-    let first = |res: &crate::analysis::ModalResult| res.first_bending().map(|m| m.frequency_hz);
-    json!({
-        "model": model_name,
-        "prestress": true,
-        "load_scale": r.equilibrium.load_scale,
-        "dofs": r.prestressed.dofs,
-        "rigid_modes": r.prestressed.rigid_modes,
-        "mechanism_modes": r.prestressed.mechanism_modes,
-        "first_bending_hz": first(&r.prestressed),
-        "unstressed_first_bending_hz": first(&r.reference),
-        "equilibrium": {
-            "load_steps": r.equilibrium.steps,
-            "iterations": r.equilibrium.iterations,
-            "residual_n": r.equilibrium.residual,
-            "constraint_violation": r.equilibrium.constraint_violation,
-        },
-        "modes": modes,
-    })
 }

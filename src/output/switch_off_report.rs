@@ -9,61 +9,14 @@
 //! (empty: a prediction), `warnings`, the half-step check, and `paper`
 //! (the paper's values; null unless the model is the built-in one).
 
-use crate::analysis::switch_off::{SwitchOffResult, SwitchOffRun, DEPARTURE_FRACTION};
-use serde_json::{json, Value};
+use crate::analysis::switch_off::{SwitchOffResult, DEPARTURE_FRACTION};
+
 use std::fmt::Write;
 
 /// Paper, Fig. 7: ~2 mm at ~1.75 ms.
 pub const PAPER_TIME_TO_2MM_S: f64 = 1.75e-3;
 /// Paper, Fig. 8: the rigid model departs after ~1.26 ms.
 pub const PAPER_RIGID_DEPARTURE_S: f64 = 1.26e-3;
-
-fn run_json(run: &SwitchOffRun) -> Value {
-    json!({
-        "time_to_distance_s": run.time_to_distance_s,
-        "node0": {"time_s": run.time_s, "x_m": run.x_m, "y_m": run.y_m},
-        "max_penetration_m": run.max_penetration_m,
-        "contacts": run.contacts,
-        "released_loads": run.released_loads.iter().map(|(k, v)| (k.clone(), json!(v))).collect::<serde_json::Map<String, Value>>(),
-        "ended_at_s": run.ended_at_s,
-        "energy": run.energy,
-        "steps": run.steps,
-        "newton_iterations": run.newton_iterations,
-        "min_step_s": run.min_step_s,
-    })
-}
-
-/// The whole result as one JSON document.
-pub fn switch_off_json(r: &SwitchOffResult) -> Value {
-    let mut doc = run_json(&r.flexible);
-    let o = doc.as_object_mut().expect("an object");
-    o.insert("model".into(), json!(r.model));
-    o.insert("tracked_point".into(), json!(r.point_label));
-    o.insert("calibrated".into(), json!(r.calibrated));
-    o.insert("warnings".into(), json!(r.warnings));
-    o.insert("distance_m".into(), json!(r.settings.distance));
-    o.insert("direction".into(), json!(r.settings.direction));
-    o.insert("step_s".into(), json!(r.settings.step));
-    o.insert("end_time_s".into(), json!(r.settings.end_time));
-    o.insert("sample_rate_hz".into(), json!(r.settings.sample_rate));
-    o.insert(
-        "half_step_time_to_distance_s".into(),
-        json!(r.half_step_time_s),
-    );
-    let rigid = r.rigid.as_ref().map_or(Value::Null, |run| {
-        let mut v = run_json(run);
-        v["departure_s"] = json!(r.departure_s);
-        v
-    });
-    o.insert("rigid".into(), rigid);
-    let paper = if r.builtin {
-        json!({"time_to_distance_s": PAPER_TIME_TO_2MM_S, "rigid_departure_s": PAPER_RIGID_DEPARTURE_S})
-    } else {
-        Value::Null
-    };
-    o.insert("paper".into(), paper);
-    doc
-}
 
 fn ms(t: Option<f64>) -> String {
     t.map_or_else(

@@ -10,30 +10,8 @@ use crate::load::load_magnitudes;
 use crate::model::SensorQuantity;
 use crate::output::plot::{Legend, LineFigure, Panel, Scale, Series};
 use crate::output::records_uff::{records_uff, Record, RecordKind};
-use serde_json::{json, Map, Value};
-use std::fmt::Write;
 
-pub fn transient_json(model: &str, settings: &SimulationSettings, sim: &Simulation) -> Value {
-    let sensors: Map<String, Value> = sim
-        .sensors
-        .iter()
-        .map(|(id, v)| (id.clone(), json!(v)))
-        .collect();
-    json!({
-        "model": model,
-        "step_s": settings.transient.step,
-        "end_time_s": settings.transient.end_time,
-        "from_equilibrium": settings.from_equilibrium,
-        "sample_rate_hz": settings.sample_rate,
-        "steps": sim.stats.steps,
-        "newton_iterations": sim.stats.newton_iterations,
-        "min_step_s": sim.min_step,
-        "time_s": sim.time,
-        "sensors": sensors,
-        "contacts": sim.contacts,
-        "energy": sim.energy,
-    })
-}
+use std::fmt::Write;
 
 pub fn transient_table(model: &str, settings: &SimulationSettings, sim: &Simulation) -> String {
     let mut s = String::new();

@@ -40,9 +40,9 @@ fn identifiability_details(
 /// Why a calibration (`ancf-modal calibrate`) failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CalibrationError {
-    #[error("no parameter to fit (give at least one --param)")]
+    #[error("no parameter to fit")]
     NoParameters,
-    #[error("no target frequency (give --target HZ, or a `reference` in the model)")]
+    #[error("no target frequency (and no `reference` in the model)")]
     NoTargets,
     #[error("target frequency must be positive and finite, got {value:?} Hz")]
     TargetNotPositive { value: f64 },
@@ -58,7 +58,9 @@ pub enum CalibrationError {
     },
     #[error("parameter `{name}` is given twice (as `{canonical}`)")]
     DuplicateParameter { name: String, canonical: String },
-    #[error("`{name}` cannot be fitted with --keep-mass: the density follows the section there")]
+    #[error(
+        "`{name}` cannot be fitted while the mass is kept: the density follows the section there"
+    )]
     DensityWithKeepMass { name: String },
     #[error(
         "`{name}` is {initial:?} in the model; a fitted parameter needs a positive starting value"
@@ -70,7 +72,7 @@ pub enum CalibrationError {
         lower: f64,
         upper: f64,
     },
-    #[error("{modes} mode numbers for {targets} targets (give one --mode per target)")]
+    #[error("{modes} mode numbers for {targets} targets (one mode number per target)")]
     ModeCount { modes: usize, targets: usize },
     #[error("the model has no {kind} mode number {number} ({available} {kind} modes computed)")]
     ModeNotFound {
@@ -84,7 +86,7 @@ pub enum CalibrationError {
         frequency_hz: f64,
         relative_sensitivity: f64,
     },
-    #[error("target {target_hz} Hz is out of reach for `{parameter}` in [{lower:e}, {upper:e}]: the mode goes from {lower_hz:.3} Hz to {upper_hz:.3} Hz there (widen the bounds with --param NAME=LO:HI)")]
+    #[error("target {target_hz} Hz is out of reach for `{parameter}` in [{lower:e}, {upper:e}]: the mode goes from {lower_hz:.3} Hz to {upper_hz:.3} Hz there (the bounds must be widened)")]
     Unreachable {
         parameter: String,
         target_hz: f64,
@@ -115,12 +117,12 @@ pub enum CalibrationError {
         "the `{method}` method has no sensitivities; it fits one parameter to one target only"
     )]
     NeedsSensitivities { method: &'static str },
-    #[error("analysis failed at {at}: {source}")]
+    #[error("analysis failed at {at}")]
     Analysis { at: String, source: AnalysisError },
-    #[error("the impulse experiment failed at {at}: {source}")]
+    #[error("the impulse experiment failed at {at}")]
     Impulse { at: String, source: ImpulseError },
     #[error("the impulse experiment shows no first bending peak at {at}")]
     NoImpulsePeak { at: String },
-    #[error("the impulse method identifies the first bending mode only (asked for {kind} mode(s) {numbers:?}); use --method eigen")]
+    #[error("the impulse method identifies the first bending mode only (asked for {kind} mode(s) {numbers:?}): the eigen method fits the others")]
     ImpulseMode { kind: ModeKind, numbers: Vec<usize> },
 }

@@ -81,7 +81,7 @@ impl Default for CalibrationSettings {
 }
 
 /// The numerical method used.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Algorithm {
     Brent,
@@ -89,21 +89,26 @@ pub enum Algorithm {
 }
 
 /// One fitted (or derived) parameter.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct FittedParameter {
+    /// Its name (short name or JSON path in the model).
     pub name: String,
     /// SI unit.
     pub unit: &'static str,
+    /// Value in the model [SI, `unit`].
     pub initial: f64,
+    /// Fitted value [SI, `unit`].
     pub fitted: f64,
+    /// Lower bound of the search [SI, `unit`].
     pub lower: f64,
+    /// Upper bound of the search [SI, `unit`].
     pub upper: f64,
     /// (fitted − initial)/initial × 100.
     pub change_percent: f64,
 }
 
 /// One evaluation of the model.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct HistoryEntry {
     /// Parameter values, in request order.
     pub parameters: Vec<f64>,
@@ -115,7 +120,7 @@ pub struct HistoryEntry {
 }
 
 /// Conditioning of the relative Jacobian ∂ln f/∂ln p.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Conditioning {
     /// Singular values, descending.
     pub singular_values: Vec<f64>,
@@ -124,33 +129,43 @@ pub struct Conditioning {
 }
 
 /// The outcome of a calibration.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct CalibrationResult {
     /// Evaluator (`eigen`, `impulse`).
     pub method: &'static str,
+    /// The fitting algorithm (Brent for one parameter and target, else
+    /// Levenberg–Marquardt).
     pub algorithm: Algorithm,
+    /// The fitted parameters (name, SI unit, initial and fitted value, bounds).
     pub parameters: Vec<FittedParameter>,
     /// Values that follow the fitted ones (densities under `keep_mass`).
     pub derived: Vec<FittedParameter>,
+    /// Whether each beam's mass was kept (density follows the section).
     pub keep_mass: bool,
+    /// Kind of the target modes.
     pub mode_kind: ModeKind,
-    /// 1-based numbers of the tracked modes among their kind (start).
+    /// 1-based numbers of the tracked modes among their kind (start) [–].
     pub mode_numbers: Vec<usize>,
+    /// Target frequencies [SI: Hz].
     pub targets_hz: Vec<f64>,
+    /// The modes' frequencies at the initial values [SI: Hz].
     pub initial_hz: Vec<f64>,
+    /// The modes' frequencies at the fitted values [SI: Hz].
     pub achieved_hz: Vec<f64>,
     /// achieved − target [SI: Hz].
     pub residuals_hz: Vec<f64>,
     /// More targets than parameters: the fit is a least-squares compromise.
     pub least_squares: bool,
-    /// Iterates after the start (Brent steps, or accepted LM steps).
+    /// Iterates after the start (Brent steps, or accepted LM steps) [–].
     pub iterations: usize,
-    /// Model evaluations, the start included.
+    /// Model evaluations, the start included [–].
     pub evaluations: usize,
+    /// Every evaluation: parameter values [SI] and frequencies [SI: Hz].
     pub history: Vec<HistoryEntry>,
     /// ∂fᵢ/∂ln pⱼ at the fit [SI: Hz per unit relative change], when the
-    /// evaluator has sensitivities.
+    /// evaluator has sensitivities; else null.
     pub sensitivities_hz: Option<Vec<Vec<f64>>>,
+    /// Conditioning of the relative sensitivities; null without them.
     pub conditioning: Option<Conditioning>,
     /// The calibrated model (a valid model file).
     #[serde(skip)]

@@ -37,7 +37,7 @@ pub const BAND_HALF_WIDTH: f64 = 0.3;
 const MAX_ORDER: usize = 24;
 
 /// The identified and the expected damping of the first bending mode.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct DampingCheck {
     /// Undamped natural frequency |s|/2π of the fitted pole [SI: Hz].
     pub identified_hz: f64,

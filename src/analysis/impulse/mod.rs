@@ -48,9 +48,9 @@ pub enum ImpulseError {
     Transient(#[from] TransientError),
     #[error(transparent)]
     Analysis(#[from] AnalysisError),
-    #[error("spectrum: {0}")]
+    #[error("spectrum")]
     Spectrum(#[from] SpectrumError),
-    #[error("integrator correction: {0}")]
+    #[error("integrator correction")]
     Dispersion(#[from] DispersionError),
     #[error("the model has no sensor to record (add one under `sensors`)")]
     NoSensor,
@@ -78,7 +78,7 @@ pub enum ImpulseError {
 }
 
 /// Which loads excite the experiment (module doc).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Excitation {
     /// The half-sine loads: the hammer.

@@ -69,7 +69,9 @@ pub enum SpectrumError {
 }
 
 /// Data window applied before the FFT.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum Window {
     /// Hann (raised cosine): good default for peak frequencies.
@@ -173,7 +175,7 @@ impl FromStr for Window {
 }
 
 /// How a record is turned into a spectrum.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct SpectrumSettings {
     /// Data window.
@@ -195,7 +197,7 @@ impl Default for SpectrumSettings {
 }
 
 /// Single-sided amplitude spectrum.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Spectrum {
     /// Bin frequencies `k · df`, Hz, from 0 to the Nyquist frequency.
     pub frequency_hz: Vec<f64>,
@@ -224,7 +226,7 @@ impl Spectrum {
 }
 
 /// An identified spectral peak.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Peak {
     /// Interpolated peak frequency, Hz.
     pub frequency_hz: f64,
@@ -235,7 +237,7 @@ pub struct Peak {
 }
 
 /// What [`find_peaks`] reports.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct PeakSettings {
     /// Peaks lower than this (dB relative to the largest magnitude above
@@ -259,7 +261,7 @@ impl Default for PeakSettings {
 }
 
 /// Frequency-response function estimate.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Frf {
     /// Bin frequencies, Hz.
     pub frequency_hz: Vec<f64>,

@@ -16,7 +16,7 @@ use super::tracking::{track, TrackedMode};
 use serde::{Deserialize, Serialize};
 
 /// A sweep as a JSON document.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SweepDocument {
     /// The model's name.
@@ -27,32 +27,35 @@ pub struct SweepDocument {
     pub sweep_id: String,
     /// Points of the whole grid.
     pub total_points: usize,
+    /// The varied parameters and their values.
     pub parameters: Vec<ParameterValues>,
     /// Linearized at the static equilibrium under the loads.
     pub prestress: bool,
     /// Elastic modes tracked (tracked quantities).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub tracked_modes: Option<usize>,
     /// Points of this document that failed.
     pub failed_points: usize,
     /// Which shard this is (shard documents only).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub shard: Option<ShardInfo>,
     /// Provenance (set by the command line): this build's version and the
     /// SHA-256 of the model file (or of the built-in model's text).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub tool_version: Option<String>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// SHA-256 (hex) of the model's bytes (set by the command line).
+    #[serde(default)]
     pub model_sha256: Option<String>,
     /// The run's warnings (set by the command line): the model's unit
     /// warnings and those of the points.
     #[serde(default)]
     pub warnings: Vec<String>,
+    /// The points of this document, by index.
     pub points: Vec<PointRecord>,
 }
 
 /// One parameter's name and values.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ParameterValues {
     /// As given (`height`, `beams[blade].section.height`, `load_scale:F`).
@@ -66,15 +69,17 @@ pub struct ParameterValues {
 }
 
 /// `K/N` of a shard.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ShardInfo {
+    /// K, 1-based [–].
     pub index: usize,
+    /// N, the number of shards [–].
     pub count: usize,
 }
 
 /// One point of a sweep document.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PointRecord {
     /// Row-major index in the grid.
@@ -84,21 +89,22 @@ pub struct PointRecord {
     /// The quantity; `null` for a failed point (and in a shard, for a
     /// tracked quantity).
     pub result: Option<f64>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// Why the point failed; null when it did not.
+    #[serde(default)]
     pub error: Option<String>,
     /// Frequencies of the tracked modes [Hz] (tracked quantities).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub frequencies_hz: Option<Vec<Option<f64>>>,
     /// MAC of each tracked mode with the same mode at the point it was
     /// tracked from (`null` where tracking starts).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub mac: Option<Vec<Option<f64>>>,
     /// Computed elastic modes (shard documents of tracked quantities).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub modes: Option<Vec<RawMode>>,
     /// The switch-off's tracked point (`time_to_distance_s` over one
     /// parameter).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub node0: Option<Trace>,
     /// Unit-sanity warnings of the model at this point
     /// ([`crate::model::UnitWarning`]), as text.

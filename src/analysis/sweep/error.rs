@@ -10,7 +10,7 @@ use crate::error::{AnalysisError, Problem};
 /// A problem with the set-up of a sweep or with joining its shards.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SweepError {
-    #[error("no parameter to vary (give at least one --param NAME=LO:HI:N[:log])")]
+    #[error("no parameter to vary")]
     NoParameters,
     #[error("`{given}` is not NAME=LO:HI:N[:log] or NAME+=LO:HI:N[:log] (an offset; not for load_scale:)")]
     ParamSyntax { given: String },
@@ -91,7 +91,7 @@ pub enum SweepError {
     NothingToMerge,
     #[error("{file}: not a sweep document: {message}")]
     NotADocument { file: String, message: String },
-    #[error("{file}: a complete sweep, not a shard (only the outputs of --shard K/N are merged)")]
+    #[error("{file}: a complete sweep, not a shard (only shards are merged)")]
     NotAShard { file: String },
     #[error(
         "{file} belongs to a different sweep (sweep_id {found}, expected {expected} from {first})"
@@ -141,7 +141,7 @@ pub enum PointError {
     /// The changed model fails validation (e.g. a negative height).
     #[error("{path}: {problem}")]
     Invalid { path: String, problem: Problem },
-    #[error("{0}")]
+    #[error(transparent)]
     Analysis(#[from] AnalysisError),
     #[error("no bending mode among the {computed} elastic modes computed")]
     NoBendingMode { computed: usize },
@@ -154,6 +154,6 @@ pub enum PointError {
         id: String,
         available: crate::error::Ids,
     },
-    #[error("{0}")]
+    #[error(transparent)]
     Simulation(#[from] crate::error::SimulationError),
 }

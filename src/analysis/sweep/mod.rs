@@ -193,7 +193,7 @@ impl Sweep {
                 warnings = m.unit_warnings().iter().map(|w| w.to_string()).collect();
                 evaluate(&self.settings.quantity, &m, &self.model, &eval)
             })
-            .map_err(|e| e.to_string());
+            .map_err(|e| crate::error::chain_text(&e));
         RawPoint {
             index,
             values,

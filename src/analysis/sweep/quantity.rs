@@ -129,7 +129,7 @@ impl std::fmt::Display for Quantity {
 }
 
 /// An elastic mode of one point, as tracking needs it.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct RawMode {
     /// [SI: Hz]
     pub frequency_hz: f64,
@@ -152,7 +152,7 @@ pub struct Evaluation {
 
 /// The tracked point of a switch-off run (node 0 by default): absolute
 /// coordinates at the output samples, as `switch-off --json`'s `node0`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Trace {
     /// [SI: s]

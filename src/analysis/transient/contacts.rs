@@ -35,8 +35,9 @@ pub const ONSET_FRACTION: f64 = 0.02;
 pub const STEPS_PER_IMPACT: f64 = 25.0;
 
 /// What a run saw of one contact.
-#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct ContactStats {
+    /// The contact's id in the model.
     pub id: String,
     /// Largest penetration [SI: m] (0 if it never closed).
     #[serde(rename = "max_penetration_m")]

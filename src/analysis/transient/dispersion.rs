@@ -84,7 +84,7 @@ pub enum DispersionError {
 
 /// Generalized-α parameters in the Chung–Hulbert convention (see module
 /// docs). The eigenvalue routines assume `alpha_m < 1`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct GenAlpha {
     pub alpha_m: f64,
     pub alpha_f: f64,
@@ -93,7 +93,7 @@ pub struct GenAlpha {
 }
 
 /// The oscillation the integrator produces for one undamped mode.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct NumericalMode {
     /// Numerical angular frequency ω̄ = Ω̄/h, rad/s.
     pub omega: f64,

@@ -354,7 +354,7 @@ pub fn measurement_from_uff(
     if functions.iter().any(is_frf) && channels.force.is_none() {
         let h = pick(&channels.response, &is_frf).ok_or(MeasuredError::NoChannel {
             file: file.to_path_buf(),
-            what: "no FRF record matches --response",
+            what: "no FRF record matches the response channel",
         })?;
         let coherence = functions
             .iter()
@@ -370,12 +370,12 @@ pub fn measurement_from_uff(
     let is_force = |f: &Function| f.ordinate_type == SpecDataType::FORCE;
     let force = pick(&channels.force, &is_force).ok_or(MeasuredError::NoChannel {
         file: file.to_path_buf(),
-        what: "no force record (ordinate type 13) in the file; choose one with --force",
+        what: "no force record (ordinate type 13) in the file; name the force channel",
     })?;
     let response = pick(&channels.response, &|f: &Function| !std::ptr::eq(f, force)).ok_or(
         MeasuredError::NoChannel {
             file: file.to_path_buf(),
-            what: "no response record besides the force; choose one with --response",
+            what: "no response record besides the force; name the response channel",
         },
     )?;
     if force.ordinate.len() != response.ordinate.len() || force.dx != response.dx {

@@ -1,0 +1,272 @@
+//! `modal`'s document: the modes of the assembly linearized at its
+//! reference configuration ([`ModalOutput`]) or at the static equilibrium
+//! under its loads ([`PrestressedOutput`]), with each mode's damping
+//! (Rayleigh ζ = α/(2ω) + βω/2, or complex modes when the model has
+//! dampers) and, on request, the MAC against another mode set.
+
+use crate::analysis::damped_modes::{mode_damping, ModeDamping};
+use crate::analysis::modal::EnergyFractions;
+use crate::analysis::prestress::{prestressed_modal, PrestressedModal};
+use crate::analysis::statics::StaticSettings;
+use crate::analysis::{modal_at_reference, ModalResult, ModalSettings, Mode, ModeKind};
+use crate::error::AnalysisError;
+use crate::model::Model;
+use crate::System;
+use schemars::JsonSchema;
+use serde::Serialize;
+
+/// One mode of [`ModalOutput`]: the mode (its shape stays out of the
+/// JSON) and its damping.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct ModeEntry {
+    /// The mode (its keys sit beside the damping's).
+    #[serde(flatten)]
+    pub mode: Mode,
+    /// Damping ratio ζ [–]; null for zero-frequency modes.
+    pub damping_ratio: Option<f64>,
+    /// Damped frequency Im λ/2π of a complex mode [Hz]; null without
+    /// dampers (Rayleigh damping only) or when overdamped.
+    pub damped_frequency_hz: Option<f64>,
+}
+
+/// MAC of this model's elastic modes (rows) against another mode set
+/// (columns), on the translations at the export nodes.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct MacTable {
+    /// Frequencies of the rows, this model's elastic modes [Hz].
+    pub rows_hz: Vec<f64>,
+    /// Frequencies of the columns, the other set's modes [Hz].
+    pub columns_hz: Vec<f64>,
+    /// MAC values, one row per row mode [–] (0 to 1).
+    pub matrix: Vec<Vec<f64>>,
+}
+
+/// `modal --json`: the modes at the reference configuration.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct ModalOutput {
+    /// Model name.
+    pub model: String,
+    /// Number of coordinates [–].
+    pub dofs: usize,
+    /// Number of constraint equations [–].
+    pub constraints: usize,
+    /// Dimension of the reduced (constrained) problem [–].
+    pub reduced_dofs: usize,
+    /// Labels of joints with redundant equations.
+    pub redundant_constraints: Vec<String>,
+    /// Number of zero-frequency modes, rigid motions and mechanisms [–].
+    pub rigid_modes: usize,
+    /// How many of the zero-frequency modes are mechanisms of the joints [–].
+    pub mechanism_modes: usize,
+    /// Frequency of the first bending mode [Hz]; null when none was computed.
+    pub first_bending_hz: Option<f64>,
+    /// Which eigensolver ran (`dense` or `sparse shift-invert Lanczos`).
+    pub solver: String,
+    /// The worst error bound of the lowest three elastic modes when above
+    /// 1e-7 [–], else null.
+    pub accuracy_warning: Option<f64>,
+    /// The modes, ascending.
+    pub modes: Vec<ModeEntry>,
+    /// Whether a beam's material gives no Poisson ratio, so the shear
+    /// estimate assumes one.
+    pub poisson_assumed: bool,
+    /// Whether the damping ratios come from complex modes (the model has
+    /// dampers) rather than the Rayleigh formula.
+    pub complex_modes: bool,
+    /// MAC against another mode set (`--mac`), else null.
+    pub mac: Option<MacTable>,
+}
+
+impl ModalOutput {
+    /// The document of `result` (of `model`) with the modes' damping.
+    pub fn new(model: &Model, result: &ModalResult, damping: &[ModeDamping]) -> Self {
+        ModalOutput {
+            model: model.name.clone(),
+            dofs: result.dofs,
+            constraints: result.constraints,
+            reduced_dofs: result.reduced_dofs,
+            redundant_constraints: result.redundant_constraints.clone(),
+            rigid_modes: result.rigid_modes,
+            mechanism_modes: result.mechanism_modes,
+            first_bending_hz: result.first_bending().map(|m| m.frequency_hz),
+            solver: result.solver.to_string(),
+            accuracy_warning: result.accuracy_warning(),
+            modes: entries(result, damping),
+            poisson_assumed: crate::analysis::shear::poisson_assumed(model),
+            complex_modes: damping.iter().any(|d| d.complex),
+            mac: None,
+        }
+    }
+}
+
+fn entries(result: &ModalResult, damping: &[ModeDamping]) -> Vec<ModeEntry> {
+    result
+        .modes
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let d = damping.get(i).copied().unwrap_or_default();
+            ModeEntry {
+                mode: m.clone(),
+                damping_ratio: d.damping_ratio,
+                damped_frequency_hz: d.damped_frequency_hz,
+            }
+        })
+        .collect()
+}
+
+/// The modal analysis of `model` at its reference configuration: the
+/// modes (with their shapes, for exports) and the document.
+pub fn modal(
+    model: &Model,
+    system: &System,
+    settings: &ModalSettings,
+) -> Result<(ModalResult, ModalOutput), AnalysisError> {
+    let mut result = modal_at_reference(system, settings)?;
+    crate::analysis::shear::annotate(model, system, &mut result);
+    let damping = mode_damping(system, &system.reference(), &result, model.damping)?;
+    let output = ModalOutput::new(model, &result, &damping);
+    Ok((result, output))
+}
+
+/// One mode of [`PrestressedOutput`].
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct PrestressedMode {
+    /// Mode number, 1-based [–].
+    pub index: usize,
+    /// Natural frequency at the equilibrium [Hz].
+    pub frequency_hz: f64,
+    /// Eigenvalue ω² at the equilibrium [rad²/s²].
+    pub eigenvalue: f64,
+    /// What the mode mostly does.
+    pub kind: ModeKind,
+    /// Strain-energy fractions [–].
+    pub energy: EnergyFractions,
+    /// The same mode's frequency at the reference, unstressed [Hz]; null
+    /// when the reference has fewer modes.
+    pub unstressed_hz: Option<f64>,
+    /// Relative shift from the unstressed frequency [%]; null where that
+    /// is zero.
+    pub shift_percent: Option<f64>,
+    /// Damping ratio ζ [–]; null for zero-frequency modes.
+    pub damping_ratio: Option<f64>,
+    /// Damped frequency of a complex mode [Hz]; null without dampers or
+    /// when overdamped.
+    pub damped_frequency_hz: Option<f64>,
+}
+
+/// How the static equilibrium of a pre-stressed analysis was found.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct EquilibriumSummary {
+    /// Load increments taken [–].
+    pub load_steps: usize,
+    /// Newton iterations in all [–].
+    pub iterations: usize,
+    /// Unbalanced force at the solution [N].
+    pub residual_n: f64,
+    /// Constraint violation at the solution [m, rad].
+    pub constraint_violation: f64,
+}
+
+/// `modal --prestress --json`: the modes at the static equilibrium beside
+/// the unstressed ones.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct PrestressedOutput {
+    /// Model name.
+    pub model: String,
+    /// Always true: this document is linearized at the equilibrium.
+    pub prestress: bool,
+    /// Factor on the applied loads (gravity is not scaled) [–].
+    pub load_scale: f64,
+    /// Number of coordinates [–].
+    pub dofs: usize,
+    /// Number of zero-frequency modes at the equilibrium [–].
+    pub rigid_modes: usize,
+    /// How many of them are mechanisms [–].
+    pub mechanism_modes: usize,
+    /// First bending frequency at the equilibrium [Hz]; null if none.
+    pub first_bending_hz: Option<f64>,
+    /// First bending frequency unstressed [Hz]; null if none.
+    pub unstressed_first_bending_hz: Option<f64>,
+    /// The equilibrium's solution statistics.
+    pub equilibrium: EquilibriumSummary,
+    /// The modes at the equilibrium, ascending.
+    pub modes: Vec<PrestressedMode>,
+    /// Whether the damping ratios come from complex modes (the model has
+    /// dampers) rather than the Rayleigh formula.
+    pub complex_modes: bool,
+}
+
+impl PrestressedOutput {
+    /// The document of `r` (of `model`) with the modes' damping.
+    pub fn new(model: &Model, r: &PrestressedModal, damping: &[ModeDamping]) -> Self {
+        let first = |res: &ModalResult| res.first_bending().map(|m| m.frequency_hz);
+        let modes = r
+            .prestressed
+            .modes
+            .iter()
+            .enumerate()
+            .map(|(i, m)| {
+                let d = damping.get(i).copied().unwrap_or_default();
+                PrestressedMode {
+                    index: i + 1,
+                    frequency_hz: m.frequency_hz,
+                    eigenvalue: m.eigenvalue,
+                    kind: m.kind,
+                    energy: m.energy,
+                    unstressed_hz: r.reference.modes.get(i).map(|m| m.frequency_hz),
+                    shift_percent: r.shift_percent(i),
+                    damping_ratio: d.damping_ratio,
+                    damped_frequency_hz: d.damped_frequency_hz,
+                }
+            })
+            .collect();
+        PrestressedOutput {
+            model: model.name.clone(),
+            prestress: true,
+            load_scale: r.equilibrium.load_scale,
+            dofs: r.prestressed.dofs,
+            rigid_modes: r.prestressed.rigid_modes,
+            mechanism_modes: r.prestressed.mechanism_modes,
+            first_bending_hz: first(&r.prestressed),
+            unstressed_first_bending_hz: first(&r.reference),
+            equilibrium: EquilibriumSummary {
+                load_steps: r.equilibrium.steps,
+                iterations: r.equilibrium.iterations,
+                residual_n: r.equilibrium.residual,
+                constraint_violation: r.equilibrium.constraint_violation,
+            },
+            modes,
+            complex_modes: damping.iter().any(|d| d.complex),
+        }
+    }
+}
+
+/// The modal analysis of `model` at the static equilibrium under its
+/// loads (scaled by `statics.load_scale`): the analysis and the document.
+pub fn prestressed(
+    model: &Model,
+    system: &System,
+    statics: &StaticSettings,
+    settings: &ModalSettings,
+) -> Result<(PrestressedModal, PrestressedOutput), AnalysisError> {
+    let r = prestressed_modal(system, statics, settings)?;
+    let damping = mode_damping(
+        system,
+        &r.equilibrium.linearization(),
+        &r.prestressed,
+        model.damping,
+    )?;
+    let output = PrestressedOutput::new(model, &r, &damping);
+    Ok((r, output))
+}
+
+/// Any document `modal --json` prints: at the reference, pre-stressed
+/// (`--prestress`), or over load factors (`--sweep-load`, a sweep).
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[serde(untagged)]
+pub enum ModalJson {
+    Reference(ModalOutput),
+    Prestressed(PrestressedOutput),
+    LoadSweep(crate::analysis::sweep::SweepDocument),
+}
