@@ -14,22 +14,32 @@ command line's one-line message.
 
 from ._native import (
     AnalysisError,
+    CalibrationResult,
     FrfResult,
+    ImpulseResult,
     ModalResult,
     Model,
     ModelError,
+    StaticResult,
+    SweepResult,
     __version__,
     frf,
     frf_files,
+    sweep,
 )
 
 __all__ = [
     "AnalysisError",
+    "CalibrationResult",
     "FrfResult",
+    "ImpulseResult",
     "ModalResult",
     "Model",
     "ModelError",
+    "StaticResult",
+    "SweepResult",
     "__version__",
     "frf",
     "frf_files",
+    "sweep",
 ]

@@ -11,12 +11,17 @@ from typing_extensions import final
 __all__ = [
     "__version__",
     "AnalysisError",
+    "CalibrationResult",
     "FrfResult",
+    "ImpulseResult",
     "ModalResult",
     "Model",
     "ModelError",
+    "StaticResult",
+    "SweepResult",
     "frf",
     "frf_files",
+    "sweep",
 ]
 
 __version__: str
@@ -89,6 +94,38 @@ class Model:
         [count] modes including the zero-frequency ones; with
         prestress=True linearized at the static equilibrium under the loads
         × load_scale [–] and gravity."""
+    def impulse(
+        self,
+        amplitude: Optional[float] = None,
+        duration: Optional[float] = None,
+        end_time: float = 0.1,
+        step: float = 1e-6,
+        spectral_radius: float = 0.9,
+        sample_rate: float = 51200.0,
+        sensor: Optional[str] = None,
+        window: Literal["hann", "rect", "blackman", "flattop"] = "hann",
+    ) -> "ImpulseResult":
+        """The time-domain test (``ancf-modal impulse``): the half-sine
+        loads (``amplitude`` [N], ``duration`` [s] override them), ``end_time``
+        [s] in steps of ``step`` [s], generalized-α with ``spectral_radius``
+        [–], the sensor recorded at ``sample_rate`` [Hz] (0: every step)."""
+    def calibrate(
+        self,
+        target_hz: Union[float, Sequence[float], None] = None,
+        params: Union[str, Sequence[str], Mapping[str, Optional[Tuple[float, float]]], None] = None,
+        mode_kind: Literal["bending", "axial", "spring"] = "bending",
+        mode: Optional[Sequence[int]] = None,
+        keep_mass: bool = False,
+        tolerance: Optional[float] = None,
+        max_evaluations: int = 60,
+    ) -> "CalibrationResult":
+        """Fits ``params`` (default "height"; names as ``calibrate --param``,
+        bounds [SI]) so that the modes ``mode`` of ``mode_kind`` reach
+        ``target_hz`` [Hz] (default: the model's reference frequency);
+        ``tolerance`` [Hz]."""
+    def static(self, load_scale: float = 1.0) -> "StaticResult":
+        """The static equilibrium under the loads × load_scale [–] and
+        gravity (``ancf-modal static``)."""
 
 @final
 class ModalResult:
@@ -133,6 +170,85 @@ class ModalResult:
         """Draws the first six elastic mode shapes to ``path`` (.svg, .png)."""
 
 @final
+@final
+class ImpulseResult:
+    """The result of ``Model.impulse``; ``repr`` is the command line's report."""
+
+    @property
+    def time(self) -> npt.NDArray[np.float64]:
+        """Sample times [s]."""
+    @property
+    def signal(self) -> npt.NDArray[np.float64]:
+        """The sensor's record [m, m/s or m/s²]."""
+    @property
+    def force(self) -> npt.NDArray[np.float64]:
+        """The hammer force at the sample times [N]."""
+    @property
+    def sensor(self) -> str:
+        """The sensor's id."""
+    @property
+    def sample_rate_hz(self) -> float:
+        """Sampling rate of the records [Hz]."""
+    @property
+    def spectrum_hz(self) -> npt.NDArray[np.float64]:
+        """Frequencies of the spectrum [Hz]."""
+    @property
+    def spectrum(self) -> npt.NDArray[np.float64]:
+        """Amplitude spectrum of the signal [signal unit]."""
+    @property
+    def peaks_hz(self) -> npt.NDArray[np.float64]:
+        """Spectrum peaks [Hz]."""
+    @property
+    def first_bending(self) -> Optional[Tuple[float, float, float]]:
+        """(raw_hz, corrected_hz, eigen_hz) [Hz] of the first bending peak."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's JSON document of the result (``impulse --json``)."""
+
+@final
+class StaticResult:
+    """The result of ``Model.static``; ``repr`` is the command line's table."""
+
+    @property
+    def q(self) -> npt.NDArray[np.float64]:
+        """Equilibrium coordinates [m, –, rad] about the centre of mass."""
+    @property
+    def multipliers(self) -> npt.NDArray[np.float64]:
+        """Constraint multipliers λ [N, N m]."""
+    @property
+    def residual(self) -> float:
+        """Final unbalanced force [N, N m]."""
+    @property
+    def load_scale(self) -> float:
+        """The applied-load factor [–]."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's report (``static --json``)."""
+
+@final
+class CalibrationResult:
+    """The result of ``Model.calibrate``; ``repr`` is the command line's table."""
+
+    @property
+    def parameters(self) -> Dict[str, float]:
+        """Fitted values by name [SI]."""
+    @property
+    def targets_hz(self) -> npt.NDArray[np.float64]:
+        """Targets [Hz]."""
+    @property
+    def initial_hz(self) -> npt.NDArray[np.float64]:
+        """The modes' frequencies before the fit [Hz]."""
+    @property
+    def achieved_hz(self) -> npt.NDArray[np.float64]:
+        """The modes' frequencies of the fitted model [Hz]."""
+    @property
+    def evaluations(self) -> int:
+        """Model evaluations, the start included."""
+    @property
+    def fitted_model(self) -> Model:
+        """The calibrated model."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's JSON document (``calibrate --json``)."""
+
+@final
 class FrfResult:
     """Measured FRFs and the modes fitted to them; ``repr`` is the command
     line's table."""
@@ -164,6 +280,48 @@ class FrfResult:
         """The stabilization diagram's poles."""
     def to_dict(self) -> Dict[str, Any]:
         """The library's JSON document of the result (``frf --json``)."""
+
+@final
+class SweepResult:
+    """The result of ``sweep``; ``repr`` is the command line's table."""
+
+    @property
+    def names(self) -> List[str]:
+        """The parameters, in the order of ``values``' columns."""
+    @property
+    def values(self) -> npt.NDArray[np.float64]:
+        """Parameter values [SI], points × parameters (row-major grid)."""
+    @property
+    def result(self) -> npt.NDArray[np.float64]:
+        """The quantity at each point [Hz or s]; NaN where it failed."""
+    @property
+    def errors(self) -> List[Optional[str]]:
+        """Each point's error message, None where it succeeded."""
+    @property
+    def failed_points(self) -> int:
+        """Points that failed."""
+    @property
+    def frequencies_hz(self) -> Optional[npt.NDArray[np.float64]]:
+        """Tracked frequencies [Hz], points × tracked modes."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The sweep's JSON document (``sweep --json``)."""
+
+def sweep(
+    model: Model,
+    params: Mapping[str, Union[str, Tuple[float, float, int], Tuple[float, float, int, str]]],
+    quantity: str,
+    modes: int = 6,
+    prestress: bool = False,
+    solver: Literal["auto", "dense", "sparse"] = "auto",
+    step: Optional[float] = None,
+    end_time: Optional[float] = None,
+    threads: Optional[int] = None,
+) -> SweepResult:
+    """A parameter study (``ancf-modal sweep``): ``quantity``
+    (first_bending_hz [Hz], frequency:K [Hz], time_to_distance_s [s],
+    peak:SENSOR) over the grid of ``params`` {name: "LO:HI:N[:log]" or
+    (LO, HI, N)} [SI]; ``step``, ``end_time`` [s] of transient quantities;
+    ``threads`` workers. KeyboardInterrupt stops it."""
 
 def frf(
     force: npt.ArrayLike,

@@ -239,8 +239,7 @@ impl PyFrfResult {
 
     /// One key of the document as a Python object.
     fn key<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
-        let text = self.document()[key].to_string();
-        py.import("json")?.call_method1("loads", (text,))
+        crate::json_to_python(py, &self.document()[key])
     }
 }
 
@@ -311,8 +310,7 @@ impl PyFrfResult {
 
     /// The result as the library's JSON document (`frf --json`) as a dict.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        py.import("json")?
-            .call_method1("loads", (self.document().to_string(),))
+        crate::json_to_python(py, &self.document())
     }
 
     fn __repr__(&self) -> String {

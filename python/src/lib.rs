@@ -5,13 +5,26 @@
 //! line's one-line message.
 
 mod builtin;
+mod calibrate;
 mod errors;
 mod frf;
+mod impulse;
 mod matrices;
 mod modal;
 mod model;
+mod statics;
+mod sweep;
 
 use pyo3::prelude::*;
+
+/// A JSON document as Python objects (dicts, lists, floats …): what every
+/// result's `to_dict()` returns.
+pub(crate) fn json_to_python<'py>(
+    py: Python<'py>,
+    doc: &serde_json::Value,
+) -> PyResult<Bound<'py, PyAny>> {
+    py.import("json")?.call_method1("loads", (doc.to_string(),))
+}
 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -22,6 +35,11 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<model::PyModel>()?;
     m.add_class::<modal::PyModalResult>()?;
     m.add_class::<frf::PyFrfResult>()?;
+    m.add_class::<impulse::PyImpulseResult>()?;
+    m.add_class::<statics::PyStaticResult>()?;
+    m.add_class::<calibrate::PyCalibrationResult>()?;
+    m.add_class::<sweep::PySweepResult>()?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_function, m)?)?;
     m.add_function(wrap_pyfunction!(frf::frf, m)?)?;
     m.add_function(wrap_pyfunction!(frf::frf_files, m)?)?;
     Ok(())

@@ -277,11 +277,7 @@ impl PyModalResult {
 
     /// The result as the library's JSON document (`modal --json`) as a dict.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let doc = self
-            .outcome
-            .document(&self.model.name, &self.sha256)
-            .to_string();
-        py.import("json")?.call_method1("loads", (doc,))
+        crate::json_to_python(py, &self.outcome.document(&self.model.name, &self.sha256))
     }
 
     /// Writes the elastic modes as UFF 15 (nodes) and 55 (mass-normalised

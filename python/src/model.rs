@@ -268,6 +268,86 @@ impl PyModel {
         crate::modal::run(self, py, modes, prestress, solver, load_scale)
     }
 
+    /// The paper's time-domain test (the command line's `impulse`): the
+    /// model's half-sine loads (the hammer; `amplitude` [N] and `duration`
+    /// [s] override them) excite it, generalized-α integrates `end_time`
+    /// [s] in steps of `step` [s] with spectral radius `spectral_radius`
+    /// [–], the sensor `sensor` (default: the model's first) is recorded at
+    /// `sample_rate` [Hz] (0: every step), and its spectrum (`window`:
+    /// hann, rect, blackman, flattop) gives the peaks.
+    #[pyo3(signature = (amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann"))]
+    #[allow(clippy::too_many_arguments)]
+    fn impulse(
+        &self,
+        py: Python<'_>,
+        amplitude: Option<f64>,
+        duration: Option<f64>,
+        end_time: f64,
+        step: f64,
+        spectral_radius: f64,
+        sample_rate: f64,
+        sensor: Option<&str>,
+        window: &str,
+    ) -> PyResult<crate::impulse::PyImpulseResult> {
+        let e = crate::impulse::Experiment {
+            amplitude,
+            duration,
+            end_time,
+            step,
+            spectral_radius,
+            sample_rate,
+            sensor,
+            window,
+        };
+        crate::impulse::run(self, py, e)
+    }
+
+    /// The static equilibrium under the loads × load_scale [–] (their values
+    /// at t = 0) and gravity (the command line's `static`). Raises
+    /// AnalysisError when there is none (no support, a mechanism, a loss of
+    /// stability on the load path).
+    #[pyo3(signature = (load_scale = 1.0))]
+    fn r#static(
+        &self,
+        py: Python<'_>,
+        load_scale: f64,
+    ) -> PyResult<crate::statics::PyStaticResult> {
+        crate::statics::run(self, py, load_scale)
+    }
+
+    /// Fits parameters to measured frequencies (the command line's
+    /// `calibrate`, eigenvalue method): `target_hz` [Hz] one frequency or
+    /// several (default: the model's `reference.first_bending_hz`),
+    /// `params` a name, names, or {name: (lower, upper) [SI] or None}
+    /// (default "height"; names as `calibrate --param`), the targets'
+    /// modes `mode` (1-based among `mode_kind`: bending, axial, spring;
+    /// default 1, 2, …), `keep_mass` (density follows the section),
+    /// `tolerance` [Hz] (default 1e-10 × target), `max_evaluations`.
+    #[pyo3(signature = (target_hz = None, params = None, mode_kind = "bending", mode = None, keep_mass = false, tolerance = None, max_evaluations = 60))]
+    #[allow(clippy::too_many_arguments)]
+    fn calibrate(
+        &self,
+        py: Python<'_>,
+        target_hz: Option<&Bound<'_, PyAny>>,
+        params: Option<&Bound<'_, PyAny>>,
+        mode_kind: &str,
+        mode: Option<Vec<i64>>,
+        keep_mass: bool,
+        tolerance: Option<f64>,
+        max_evaluations: i64,
+    ) -> PyResult<crate::calibrate::PyCalibrationResult> {
+        let r = crate::calibrate::Request {
+            target_hz,
+            params,
+            mode_kind,
+            mode,
+            keep_mass,
+            tolerance,
+            max_evaluations,
+        };
+        crate::calibrate::run(self, py, r)
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<ancf_modal.Model {:?} from {}>",
