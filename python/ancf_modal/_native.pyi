@@ -22,6 +22,7 @@ __all__ = [
     "frf",
     "frf_files",
     "sweep",
+    "_panic",
 ]
 
 __version__: str
@@ -350,3 +351,7 @@ def frf_files(
 ) -> FrfResult:
     """``frf`` on measurement files (CSV or UFF 58), as ``ancf-modal frf``;
     ``force``/``response`` a column name or 1-based index."""
+
+def _panic(message: str) -> None:
+    """Panics inside the library's call wrapper (for the test suite: raises
+    AnalysisError)."""

@@ -26,6 +26,15 @@ pub(crate) fn json_to_python<'py>(
     py.import("json")?.call_method1("loads", (doc.to_string(),))
 }
 
+/// Panics inside [`errors::compute`] (for the test suite: a panic in the
+/// library must arrive as `AnalysisError`).
+#[pyfunction]
+fn _panic(py: Python<'_>, message: String) -> PyResult<()> {
+    errors::compute(py, move || -> Result<(), errors::Failure> {
+        panic!("{message}")
+    })
+}
+
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
@@ -41,6 +50,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<sweep::PySweepResult>()?;
     m.add_function(wrap_pyfunction!(sweep::sweep_function, m)?)?;
     m.add_function(wrap_pyfunction!(frf::frf, m)?)?;
+    m.add_function(wrap_pyfunction!(_panic, m)?)?;
     m.add_function(wrap_pyfunction!(frf::frf_files, m)?)?;
     Ok(())
 }

@@ -101,3 +101,12 @@ def test_analysis_failure_is_an_analysis_error(cli):
         model.modal(prestress=True)
     assert str(e.value).startswith("<json text>: ")
     assert "support" in str(e.value)
+
+
+def test_a_panic_is_an_analysis_error():
+    from ancf_modal import _native
+
+    with pytest.raises(ancf_modal.AnalysisError, match="internal error.*a test panic"):
+        _native._panic("a test panic")
+    # The module still works after it.
+    assert ancf_modal.Model.builtin().modal(modes=4).rigid_modes == 3
