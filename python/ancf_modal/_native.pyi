@@ -19,6 +19,7 @@ __all__ = [
     "ModelError",
     "StaticResult",
     "SweepResult",
+    "SwitchOffResult",
     "frf",
     "frf_files",
     "sweep",
@@ -124,6 +125,21 @@ class Model:
         bounds [SI]) so that the modes ``mode`` of ``mode_kind`` reach
         ``target_hz`` [Hz] (default: the model's reference frequency);
         ``tolerance`` [Hz]."""
+    def switch_off(
+        self,
+        end_time: float = 3e-3,
+        step: float = 1e-6,
+        distance: float = 2e-3,
+        direction: Tuple[float, float] = ...,  # (1.0, 0.0)
+        point: Optional[str] = None,
+        sample_rate: float = 67200.0,
+        compare_rigid: bool = False,
+        no_step_check: bool = False,
+    ) -> "SwitchOffResult":
+        """The switch-off (``ancf-modal switch-off``): ``end_time`` [s] in
+        steps of ``step`` [s]; the time for ``point`` ("BEAM:S", S [m], or
+        "BODY") to travel ``distance`` [m] along ``direction``, sampled at
+        ``sample_rate`` [Hz]."""
     def static(self, load_scale: float = 1.0) -> "StaticResult":
         """The static equilibrium under the loads × load_scale [–] and
         gravity (``ancf-modal static``)."""
@@ -306,6 +322,37 @@ class SweepResult:
         """Tracked frequencies [Hz], points × tracked modes."""
     def to_dict(self) -> Dict[str, Any]:
         """The sweep's JSON document (``sweep --json``)."""
+
+@final
+class SwitchOffResult:
+    """The result of ``Model.switch_off``; ``repr`` is the command line's report."""
+
+    @property
+    def time_to_distance_s(self) -> Optional[float]:
+        """Time to the distance [s]."""
+    @property
+    def time(self) -> npt.NDArray[np.float64]:
+        """Sample times [s]."""
+    @property
+    def x(self) -> npt.NDArray[np.float64]:
+        """The tracked point's x [m]."""
+    @property
+    def y(self) -> npt.NDArray[np.float64]:
+        """The tracked point's y [m]."""
+    @property
+    def released_loads(self) -> Dict[str, npt.NDArray[np.float64]]:
+        """Released loads' magnitudes at the sample times [N]."""
+    @property
+    def rigid_time_to_distance_s(self) -> Optional[float]:
+        """The rigid-beam model's time to the distance [s]."""
+    @property
+    def half_step_time_to_distance_s(self) -> Optional[float]:
+        """The time to the distance at half the step [s]."""
+    @property
+    def warnings(self) -> List[str]:
+        """Things the reader must know."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's JSON document (``switch-off --json``)."""
 
 def sweep(
     model: Model,

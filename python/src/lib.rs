@@ -14,6 +14,7 @@ mod modal;
 mod model;
 mod statics;
 mod sweep;
+mod switch_off;
 
 use pyo3::prelude::*;
 
@@ -48,6 +49,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<statics::PyStaticResult>()?;
     m.add_class::<calibrate::PyCalibrationResult>()?;
     m.add_class::<sweep::PySweepResult>()?;
+    m.add_class::<switch_off::PySwitchOffResult>()?;
     m.add_function(wrap_pyfunction!(sweep::sweep_function, m)?)?;
     m.add_function(wrap_pyfunction!(frf::frf, m)?)?;
     m.add_function(wrap_pyfunction!(_panic, m)?)?;

@@ -348,6 +348,40 @@ impl PyModel {
         crate::calibrate::run(self, py, r)
     }
 
+    /// The paper's switch-off (the command line's `switch-off`): the
+    /// pre-stressed ON equilibrium, the released loads, `end_time` [s] of
+    /// transient in steps of `step` [s]; the time for `point` ("BEAM:S"
+    /// with S [m], or "BODY"; default node 0 of the first beam) to travel
+    /// `distance` [m] along `direction` (dx, dy), sampled at `sample_rate`
+    /// [Hz]; `compare_rigid` runs the model with rigid beams beside it,
+    /// `no_step_check` skips the run at half the step.
+    #[pyo3(signature = (end_time = 3e-3, step = 1e-6, distance = 2e-3, direction = (1.0, 0.0), point = None, sample_rate = 67200.0, compare_rigid = false, no_step_check = false))]
+    #[allow(clippy::too_many_arguments)]
+    fn switch_off(
+        &self,
+        py: Python<'_>,
+        end_time: f64,
+        step: f64,
+        distance: f64,
+        direction: (f64, f64),
+        point: Option<&str>,
+        sample_rate: f64,
+        compare_rigid: bool,
+        no_step_check: bool,
+    ) -> PyResult<crate::switch_off::PySwitchOffResult> {
+        let r = crate::switch_off::Request {
+            end_time,
+            step,
+            distance,
+            direction,
+            point,
+            sample_rate,
+            compare_rigid,
+            no_step_check,
+        };
+        crate::switch_off::run(self, py, r)
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<ancf_modal.Model {:?} from {}>",
