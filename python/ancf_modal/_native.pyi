@@ -20,6 +20,7 @@ __all__ = [
     "StaticResult",
     "SweepResult",
     "SwitchOffResult",
+    "TransientResult",
     "frf",
     "frf_files",
     "sweep",
@@ -140,6 +141,18 @@ class Model:
         steps of ``step`` [s]; the time for ``point`` ("BEAM:S", S [m], or
         "BODY") to travel ``distance`` [m] along ``direction``, sampled at
         ``sample_rate`` [Hz]."""
+    def transient(
+        self,
+        end_time: float = 0.01,
+        step: float = 1e-6,
+        spectral_radius: float = 0.9,
+        from_equilibrium: bool = False,
+        sample_rate: float = 51200.0,
+        rigid_beams: bool = False,
+    ) -> "TransientResult":
+        """A time integration (``ancf-modal transient``): ``end_time`` [s] in
+        steps of ``step`` [s], generalized-α ``spectral_radius`` [–], from
+        rest or ``from_equilibrium``; sensors at ``sample_rate`` [Hz]."""
     def static(self, load_scale: float = 1.0) -> "StaticResult":
         """The static equilibrium under the loads × load_scale [–] and
         gravity (``ancf-modal static``)."""
@@ -353,6 +366,19 @@ class SwitchOffResult:
         """Things the reader must know."""
     def to_dict(self) -> Dict[str, Any]:
         """The library's JSON document (``switch-off --json``)."""
+
+@final
+class TransientResult:
+    """The result of ``Model.transient``; ``repr`` is the command line's report."""
+
+    @property
+    def time(self) -> npt.NDArray[np.float64]:
+        """Sample times [s]."""
+    @property
+    def sensors(self) -> Dict[str, npt.NDArray[np.float64]]:
+        """Each sensor's samples [m, m/s or m/s²] by id."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's JSON document (``transient --json``)."""
 
 def sweep(
     model: Model,

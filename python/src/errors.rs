@@ -97,3 +97,29 @@ where
         }
     }
 }
+
+/// A simulation's error: a setting or the tracked point names the keyword
+/// argument (as the command line names its flag), a model that cannot be
+/// released from the reference is a bad input, the rest failed runs; each
+/// after the model's name `label`.
+pub fn simulation(label: &str, e: &ancf::error::SimulationError) -> Failure {
+    use ancf::error::{Setting, SimulationError};
+    let argument = match e {
+        SimulationError::InvalidPoint { .. } => Some("point"),
+        SimulationError::InvalidSetting { setting, .. } => Some(match setting {
+            Setting::Step => "step",
+            Setting::EndTime => "end_time",
+            Setting::Distance => "distance",
+            Setting::Direction => "direction",
+            Setting::SampleRate => "sample_rate",
+        }),
+        _ => None,
+    };
+    match (argument, e) {
+        (Some(name), _) => Failure::Input(format!("{label}: {name}: {}", one_line(e))),
+        (None, SimulationError::ReleaseNeedsEquilibrium { .. }) => {
+            Failure::Input(format!("{label}: {}", one_line(e)))
+        }
+        _ => Failure::analysis(label, e),
+    }
+}

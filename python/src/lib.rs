@@ -15,6 +15,7 @@ mod model;
 mod statics;
 mod sweep;
 mod switch_off;
+mod transient;
 
 use pyo3::prelude::*;
 
@@ -50,6 +51,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<calibrate::PyCalibrationResult>()?;
     m.add_class::<sweep::PySweepResult>()?;
     m.add_class::<switch_off::PySwitchOffResult>()?;
+    m.add_class::<transient::PyTransientResult>()?;
     m.add_function(wrap_pyfunction!(sweep::sweep_function, m)?)?;
     m.add_function(wrap_pyfunction!(frf::frf, m)?)?;
     m.add_function(wrap_pyfunction!(_panic, m)?)?;

@@ -382,6 +382,36 @@ impl PyModel {
         crate::switch_off::run(self, py, r)
     }
 
+    /// A general time integration (the command line's `transient`):
+    /// generalized-α with spectral radius `spectral_radius` [–] over
+    /// `end_time` [s] in steps of `step` [s] (shortened at contact onsets),
+    /// from rest at the reference or, with `from_equilibrium`, from the
+    /// static equilibrium under the loads at t = 0 (released supports let
+    /// go); the sensors sampled at `sample_rate` [Hz] (0: every step);
+    /// `rigid_beams` models every beam as a rigid body.
+    #[pyo3(signature = (end_time = 0.01, step = 1e-6, spectral_radius = 0.9, from_equilibrium = false, sample_rate = 51200.0, rigid_beams = false))]
+    #[allow(clippy::too_many_arguments)]
+    fn transient(
+        &self,
+        py: Python<'_>,
+        end_time: f64,
+        step: f64,
+        spectral_radius: f64,
+        from_equilibrium: bool,
+        sample_rate: f64,
+        rigid_beams: bool,
+    ) -> PyResult<crate::transient::PyTransientResult> {
+        let r = crate::transient::Request {
+            end_time,
+            step,
+            spectral_radius,
+            from_equilibrium,
+            sample_rate,
+            rigid_beams,
+        };
+        crate::transient::run(self, py, r)
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<ancf_modal.Model {:?} from {}>",

@@ -4,12 +4,11 @@
 //! [`PySwitchOffResult::document`] is the one place that builds
 //! `to_dict()`.
 
-use crate::errors::{compute, one_line, Failure};
+use crate::errors::{compute, Failure};
 use crate::model::PyModel;
 use ancf::analysis::switch_off::{
     run_switch_off, SwitchOffResult, SwitchOffRun, SwitchOffSettings,
 };
-use ancf::error::{Setting, SimulationError};
 use ancf::model::PointSpec;
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -86,28 +85,7 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_>) -> PyResult<PySwitch
     let shared = model.model.clone();
     let label = model.label();
     let result = compute(py, move || {
-        run_switch_off(&shared, &settings).map_err(|e| {
-            // Settings name the keyword argument, as the command line
-            // names its flag; a failed run names the model.
-            let argument = match &e {
-                SimulationError::InvalidPoint { .. } => Some("point"),
-                SimulationError::InvalidSetting { setting, .. } => Some(match setting {
-                    Setting::Step => "step",
-                    Setting::EndTime => "end_time",
-                    Setting::Distance => "distance",
-                    Setting::Direction => "direction",
-                    Setting::SampleRate => "sample_rate",
-                }),
-                _ => None,
-            };
-            match (argument, &e) {
-                (Some(name), _) => Failure::Input(format!("{label}: {name}: {}", one_line(&e))),
-                (None, SimulationError::ReleaseNeedsEquilibrium { .. }) => {
-                    Failure::Input(format!("{label}: {}", one_line(&e)))
-                }
-                _ => Failure::analysis(&label, &e),
-            }
-        })
+        run_switch_off(&shared, &settings).map_err(|e| crate::errors::simulation(&label, &e))
     })?;
     Ok(PySwitchOffResult {
         sha256: model.sha256.clone(),

@@ -57,3 +57,19 @@ def model_args(name: str) -> list:
     `Model.builtin(name)` names its source: none for the built-in default,
     else the file relative to the repository root."""
     return [] if name == "rcbo_free_free" else [f"models/{name}.json"]
+
+
+def close_documents(mine, theirs, rtol=1e-12):
+    """Every value of `mine` equals `theirs`' (numbers to rtol)."""
+    if isinstance(mine, dict):
+        for key, value in mine.items():
+            assert key in theirs, key
+            close_documents(value, theirs[key], rtol)
+    elif isinstance(mine, list):
+        assert len(mine) == len(theirs)
+        for a, b in zip(mine, theirs):
+            close_documents(a, b, rtol)
+    elif isinstance(mine, float) and isinstance(theirs, float):
+        assert abs(mine - theirs) <= rtol * max(abs(theirs), 1e-300) or mine == theirs
+    else:
+        assert mine == theirs
