@@ -9,8 +9,8 @@ import ancf_modal
 
 
 def modal_of_a_fine_cantilever():
-    # 1,000 elements: sparse shift-invert.
-    model = ancf_modal.Model.builtin("cantilever").with_params({"beams[0].elements": 1000})
+    # 2,000 elements: sparse shift-invert.
+    model = ancf_modal.Model.builtin("cantilever").with_params({"beams[0].elements": 2000})
     return lambda: model.modal(modes=8)
 
 
@@ -33,7 +33,11 @@ def test_a_thread_runs_during_a_long_call(make):
     thread = threading.Thread(target=spin)
     thread.start()
     try:
+        # The counter's pace while this thread sleeps (the GIL free).
+        time.sleep(0.02)
+        c0, t0 = count[0], time.perf_counter()
         time.sleep(0.05)
+        pace = (count[0] - c0) / (time.perf_counter() - t0)
         before = count[0]
         start = time.perf_counter()
         call()
@@ -42,7 +46,8 @@ def test_a_thread_runs_during_a_long_call(make):
     finally:
         stop.set()
         thread.join()
-    assert elapsed > 0.02, elapsed
-    # With the GIL held for the call the counter could not move while it
-    # runs; released, it counts at the interpreter's pace (millions per s).
-    assert during > 1000 * elapsed / 0.02, (during, elapsed)
+    # Released, the counter keeps most of its pace (measured here: 0.6–0.8;
+    # the call may take the other core). A call that holds the GIL leaves
+    # it only the switches at its ends (measured on json.dumps and sorted
+    # of 3e6 ints: 0.08–0.13).
+    assert during >= 0.3 * pace * elapsed, (during, pace, elapsed)
