@@ -1,0 +1,49 @@
+"""Modal and frequency-response analysis of planar rigid-flexible assemblies
+whose flexible parts are ANCF beams, from Python: numpy in and out.
+
+>>> import ancf_modal
+>>> model = ancf_modal.Model.builtin()          # the paper's free-free assembly
+>>> result = model.modal(modes=6)
+>>> result.frequencies_hz                         # Hz, rigid modes at 0
+
+Units are SI throughout (m, kg, s, N, Pa), frequencies in Hz. Errors are
+``ModelError`` (a ``ValueError``: bad model, parameter or argument) and
+``AnalysisError`` (a ``RuntimeError``: the analysis failed), with the
+command line's one-line message.
+"""
+
+from ._native import (
+    AnalysisError,
+    CalibrationResult,
+    FrfResult,
+    ImpulseResult,
+    ModalResult,
+    Model,
+    ModelError,
+    StaticResult,
+    SweepResult,
+    SwitchOffResult,
+    TransientResult,
+    __version__,
+    frf,
+    frf_files,
+    sweep,
+)
+
+__all__ = [
+    "AnalysisError",
+    "CalibrationResult",
+    "FrfResult",
+    "ImpulseResult",
+    "ModalResult",
+    "Model",
+    "ModelError",
+    "StaticResult",
+    "SweepResult",
+    "SwitchOffResult",
+    "TransientResult",
+    "__version__",
+    "frf",
+    "frf_files",
+    "sweep",
+]

@@ -1,0 +1,430 @@
+"""Stubs of the extension module ``ancf_modal._native`` (checked against it
+by mypy's stubtest in the Python suite). Units are SI; frequencies in Hz."""
+
+import os
+from typing import Any, Dict, List, Literal, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+from typing_extensions import final
+
+__all__ = [
+    "__version__",
+    "AnalysisError",
+    "CalibrationResult",
+    "FrfResult",
+    "ImpulseResult",
+    "ModalResult",
+    "Model",
+    "ModelError",
+    "StaticResult",
+    "SweepResult",
+    "SwitchOffResult",
+    "TransientResult",
+    "frf",
+    "frf_files",
+    "sweep",
+    "_panic",
+]
+
+__version__: str
+
+class ModelError(ValueError):
+    """A bad model file, model parameter or argument value (the command
+    line's ``Error:`` line)."""
+
+class AnalysisError(RuntimeError):
+    """An analysis that failed on a valid model: a solver failure, a loss of
+    stability, an internal error."""
+
+@final
+class Model:
+    """A model: an assembly of ANCF beams, rigid bodies and point masses with
+    joints, springs, loads and sensors (the JSON model file, SI units)."""
+
+    @staticmethod
+    def from_json(path_or_text: Union[str, "os.PathLike[str]"]) -> "Model":
+        """Reads a model file (a path) or JSON text (a str starting with ``{``).
+
+        Raises ModelError with the command line's message for a file that
+        cannot be read, malformed JSON or an invalid value."""
+    @staticmethod
+    def builtin(name: str = "rcbo_free_free") -> "Model":
+        """A shipped model by the file stem of ``models/`` (see
+        ``builtin_names()``); the default is the command line's built-in
+        model, the paper's free-free assembly."""
+    @staticmethod
+    def builtin_names() -> List[str]:
+        """The names ``builtin`` accepts."""
+    @property
+    def name(self) -> str:
+        """The model's ``name``."""
+    @property
+    def source(self) -> str:
+        """Its path, ``<built-in model>`` or ``<json text>``."""
+    @property
+    def sha256(self) -> str:
+        """SHA-256 of the JSON text it was read from (``model_sha256``)."""
+    def to_json(self) -> str:
+        """The model as pretty JSON: a valid model file."""
+    def with_params(self, params: Mapping[str, float]) -> "Model":
+        """A new model with numbers changed, keys as ``sweep --param`` names
+        them (``"beams[blade].section.height"``, ``"young"``,
+        ``"load_scale:F_x2"``; a key ending in ``+`` adds its value), values
+        SI as in the model file [m, Pa, kg/m³, kg, N/m, …]."""
+    def coordinates(self) -> List[str]:
+        """What each coordinate of q is: beam nodes [rx, ry, r'x, r'y]
+        [m, m, –, –], rigid bodies [x, y, θ] [m, m, rad], point masses
+        [x, y] [m]."""
+    def matrices(
+        self,
+        prestress: bool = False,
+        format: Literal["scipy", "arrays"] = "scipy",
+        load_scale: float = 1.0,
+    ) -> Dict[str, Any]:
+        """{"M", "K", "C_q"}: mass [kg, kg m, kg m²], tangent stiffness and
+        constraint Jacobian as scipy.sparse CSR matrices or (data, indices,
+        indptr, shape) tuples; at the reference, or with prestress=True at
+        the equilibrium under the loads × load_scale [–] and gravity."""
+    def modal(
+        self,
+        modes: int = 12,
+        prestress: bool = False,
+        solver: Literal["auto", "dense", "sparse"] = "auto",
+        load_scale: float = 1.0,
+    ) -> "ModalResult":
+        """Frequencies and mode shapes (``ancf-modal modal``): ``modes``
+        [count] modes including the zero-frequency ones; with
+        prestress=True linearized at the static equilibrium under the loads
+        × load_scale [–] and gravity."""
+    def impulse(
+        self,
+        amplitude: Optional[float] = None,
+        duration: Optional[float] = None,
+        end_time: float = 0.1,
+        step: float = 1e-6,
+        spectral_radius: float = 0.9,
+        sample_rate: float = 51200.0,
+        sensor: Optional[str] = None,
+        window: Literal["hann", "rect", "blackman", "flattop"] = "hann",
+    ) -> "ImpulseResult":
+        """The time-domain test (``ancf-modal impulse``): the half-sine
+        loads (``amplitude`` [N], ``duration`` [s] override them), ``end_time``
+        [s] in steps of ``step`` [s], generalized-α with ``spectral_radius``
+        [–], the sensor recorded at ``sample_rate`` [Hz] (0: every step)."""
+    def calibrate(
+        self,
+        target_hz: Union[float, Sequence[float], None] = None,
+        params: Union[str, Sequence[str], Mapping[str, Optional[Tuple[float, float]]], None] = None,
+        mode_kind: Literal["bending", "axial", "spring"] = "bending",
+        mode: Optional[Sequence[int]] = None,
+        keep_mass: bool = False,
+        tolerance: Optional[float] = None,
+        max_evaluations: int = 60,
+    ) -> "CalibrationResult":
+        """Fits ``params`` (default "height"; names as ``calibrate --param``,
+        bounds [SI]) so that the modes ``mode`` of ``mode_kind`` reach
+        ``target_hz`` [Hz] (default: the model's reference frequency);
+        ``tolerance`` [Hz]."""
+    def switch_off(
+        self,
+        end_time: float = 3e-3,
+        step: float = 1e-6,
+        distance: float = 2e-3,
+        direction: Tuple[float, float] = ...,  # (1.0, 0.0)
+        point: Optional[str] = None,
+        sample_rate: float = 67200.0,
+        compare_rigid: bool = False,
+        no_step_check: bool = False,
+    ) -> "SwitchOffResult":
+        """The switch-off (``ancf-modal switch-off``): ``end_time`` [s] in
+        steps of ``step`` [s]; the time for ``point`` ("BEAM:S", S [m], or
+        "BODY") to travel ``distance`` [m] along ``direction``, sampled at
+        ``sample_rate`` [Hz]."""
+    def transient(
+        self,
+        end_time: float = 0.01,
+        step: float = 1e-6,
+        spectral_radius: float = 0.9,
+        from_equilibrium: bool = False,
+        sample_rate: float = 51200.0,
+        rigid_beams: bool = False,
+    ) -> "TransientResult":
+        """A time integration (``ancf-modal transient``): ``end_time`` [s] in
+        steps of ``step`` [s], generalized-α ``spectral_radius`` [–], from
+        rest or ``from_equilibrium``; sensors at ``sample_rate`` [Hz]."""
+    def static(self, load_scale: float = 1.0) -> "StaticResult":
+        """The static equilibrium under the loads × load_scale [–] and
+        gravity (``ancf-modal static``)."""
+
+@final
+class ModalResult:
+    """The result of ``Model.modal``; ``repr`` is the command line's table."""
+
+    @property
+    def frequencies_hz(self) -> npt.NDArray[np.float64]:
+        """Natural frequencies [Hz]; 0 for rigid and mechanism modes."""
+    @property
+    def eigenvalues(self) -> npt.NDArray[np.float64]:
+        """ω² [rad²/s²]."""
+    @property
+    def error_bound(self) -> npt.NDArray[np.float64]:
+        """Relative frequency error bound of the eigen-solve [–]; NaN for
+        zero modes."""
+    @property
+    def damping_ratio(self) -> npt.NDArray[np.float64]:
+        """Modal damping ratio ζ [–]; NaN for zero modes."""
+    @property
+    def kinds(self) -> List[str]:
+        """``rigid``, ``mechanism``, ``bending``, ``axial`` or ``spring``."""
+    @property
+    def rigid_modes(self) -> int:
+        """Number of zero-frequency modes (rigid and mechanism)."""
+    @property
+    def mechanism_modes(self) -> int:
+        """How many zero-frequency modes are mechanisms."""
+    @property
+    def solver(self) -> str:
+        """``dense`` or ``sparse shift-invert Lanczos``."""
+    @property
+    def shapes(self) -> npt.NDArray[np.float64]:
+        """Mode shapes, modes × coordinates, mass-normalized (φᵀMφ = 1)."""
+    def mac(self, other: "ModalResult") -> npt.NDArray[np.float64]:
+        """MAC [–] of the elastic modes (rows) against ``other``'s (columns),
+        on the translations at beam nodes and body points."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's JSON document of the result (``modal --json``)."""
+    def write_uff(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes UFF 15 (nodes) and 55 (elastic modes) to ``path``."""
+    def plot(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Draws the first six elastic mode shapes to ``path`` (.svg, .png)."""
+
+@final
+@final
+class ImpulseResult:
+    """The result of ``Model.impulse``; ``repr`` is the command line's report."""
+
+    @property
+    def time(self) -> npt.NDArray[np.float64]:
+        """Sample times [s]."""
+    @property
+    def signal(self) -> npt.NDArray[np.float64]:
+        """The sensor's record [m, m/s or m/s²]."""
+    @property
+    def force(self) -> npt.NDArray[np.float64]:
+        """The hammer force at the sample times [N]."""
+    @property
+    def sensor(self) -> str:
+        """The sensor's id."""
+    @property
+    def sample_rate_hz(self) -> float:
+        """Sampling rate of the records [Hz]."""
+    @property
+    def spectrum_hz(self) -> npt.NDArray[np.float64]:
+        """Frequencies of the spectrum [Hz]."""
+    @property
+    def spectrum(self) -> npt.NDArray[np.float64]:
+        """Amplitude spectrum of the signal [signal unit]."""
+    @property
+    def peaks_hz(self) -> npt.NDArray[np.float64]:
+        """Spectrum peaks [Hz]."""
+    @property
+    def first_bending(self) -> Optional[Tuple[float, float, float]]:
+        """(raw_hz, corrected_hz, eigen_hz) [Hz] of the first bending peak."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's JSON document of the result (``impulse --json``)."""
+
+@final
+class StaticResult:
+    """The result of ``Model.static``; ``repr`` is the command line's table."""
+
+    @property
+    def q(self) -> npt.NDArray[np.float64]:
+        """Equilibrium coordinates [m, –, rad] about the centre of mass."""
+    @property
+    def multipliers(self) -> npt.NDArray[np.float64]:
+        """Constraint multipliers λ [N, N m]."""
+    @property
+    def residual(self) -> float:
+        """Final unbalanced force [N, N m]."""
+    @property
+    def load_scale(self) -> float:
+        """The applied-load factor [–]."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's report (``static --json``)."""
+
+@final
+class CalibrationResult:
+    """The result of ``Model.calibrate``; ``repr`` is the command line's table."""
+
+    @property
+    def parameters(self) -> Dict[str, float]:
+        """Fitted values by name [SI]."""
+    @property
+    def targets_hz(self) -> npt.NDArray[np.float64]:
+        """Targets [Hz]."""
+    @property
+    def initial_hz(self) -> npt.NDArray[np.float64]:
+        """The modes' frequencies before the fit [Hz]."""
+    @property
+    def achieved_hz(self) -> npt.NDArray[np.float64]:
+        """The modes' frequencies of the fitted model [Hz]."""
+    @property
+    def evaluations(self) -> int:
+        """Model evaluations, the start included."""
+    @property
+    def fitted_model(self) -> Model:
+        """The calibrated model."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's JSON document (``calibrate --json``)."""
+
+@final
+class FrfResult:
+    """Measured FRFs and the modes fitted to them; ``repr`` is the command
+    line's table."""
+
+    @property
+    def freq(self) -> npt.NDArray[np.float64]:
+        """Frequencies [Hz]."""
+    @property
+    def h1(self) -> npt.NDArray[np.complex128]:
+        """H1 = G_fx/G_ff [response unit per N]."""
+    @property
+    def h2(self) -> Optional[npt.NDArray[np.complex128]]:
+        """H2 = G_xx/G_xf [response unit per N]; None for a measured FRF."""
+    @property
+    def coherence(self) -> Optional[npt.NDArray[np.float64]]:
+        """γ² [–]; None for a measured FRF without one."""
+    @property
+    def band(self) -> Tuple[float, float]:
+        """The fit band [Hz]."""
+    @property
+    def peaks(self) -> List[Dict[str, Any]]:
+        """Identified modes: frequency_hz [Hz], damping_ratio [–],
+        magnitude, residue."""
+    @property
+    def rejected(self) -> List[Dict[str, Any]]:
+        """Stable poles not reported as modes, with the reason."""
+    @property
+    def stabilization(self) -> List[Dict[str, Any]]:
+        """The stabilization diagram's poles."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's JSON document of the result (``frf --json``)."""
+
+@final
+class SweepResult:
+    """The result of ``sweep``; ``repr`` is the command line's table."""
+
+    @property
+    def names(self) -> List[str]:
+        """The parameters, in the order of ``values``' columns."""
+    @property
+    def values(self) -> npt.NDArray[np.float64]:
+        """Parameter values [SI], points × parameters (row-major grid)."""
+    @property
+    def result(self) -> npt.NDArray[np.float64]:
+        """The quantity at each point [Hz or s]; NaN where it failed."""
+    @property
+    def errors(self) -> List[Optional[str]]:
+        """Each point's error message, None where it succeeded."""
+    @property
+    def failed_points(self) -> int:
+        """Points that failed."""
+    @property
+    def frequencies_hz(self) -> Optional[npt.NDArray[np.float64]]:
+        """Tracked frequencies [Hz], points × tracked modes."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The sweep's JSON document (``sweep --json``)."""
+
+@final
+class SwitchOffResult:
+    """The result of ``Model.switch_off``; ``repr`` is the command line's report."""
+
+    @property
+    def time_to_distance_s(self) -> Optional[float]:
+        """Time to the distance [s]."""
+    @property
+    def time(self) -> npt.NDArray[np.float64]:
+        """Sample times [s]."""
+    @property
+    def x(self) -> npt.NDArray[np.float64]:
+        """The tracked point's x [m]."""
+    @property
+    def y(self) -> npt.NDArray[np.float64]:
+        """The tracked point's y [m]."""
+    @property
+    def released_loads(self) -> Dict[str, npt.NDArray[np.float64]]:
+        """Released loads' magnitudes at the sample times [N]."""
+    @property
+    def rigid_time_to_distance_s(self) -> Optional[float]:
+        """The rigid-beam model's time to the distance [s]."""
+    @property
+    def half_step_time_to_distance_s(self) -> Optional[float]:
+        """The time to the distance at half the step [s]."""
+    @property
+    def warnings(self) -> List[str]:
+        """Things the reader must know."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's JSON document (``switch-off --json``)."""
+
+@final
+class TransientResult:
+    """The result of ``Model.transient``; ``repr`` is the command line's report."""
+
+    @property
+    def time(self) -> npt.NDArray[np.float64]:
+        """Sample times [s]."""
+    @property
+    def sensors(self) -> Dict[str, npt.NDArray[np.float64]]:
+        """Each sensor's samples [m, m/s or m/s²] by id."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's JSON document (``transient --json``)."""
+
+def sweep(
+    model: Model,
+    params: Mapping[str, Union[str, Tuple[float, float, int], Tuple[float, float, int, str]]],
+    quantity: str,
+    modes: int = 6,
+    prestress: bool = False,
+    solver: Literal["auto", "dense", "sparse"] = "auto",
+    step: Optional[float] = None,
+    end_time: Optional[float] = None,
+    threads: Optional[int] = None,
+) -> SweepResult:
+    """A parameter study (``ancf-modal sweep``): ``quantity``
+    (first_bending_hz [Hz], frequency:K [Hz], time_to_distance_s [s],
+    peak:SENSOR) over the grid of ``params`` {name: "LO:HI:N[:log]" or
+    (LO, HI, N)} [SI]; ``step``, ``end_time`` [s] of transient quantities;
+    ``threads`` workers. KeyboardInterrupt stops it."""
+
+def frf(
+    force: npt.ArrayLike,
+    response: npt.ArrayLike,
+    fs: float,
+    window: str = "rect",
+    estimator: Literal["h1", "h2"] = "h1",
+    band: Optional[Tuple[float, float]] = None,
+    max_order: int = 40,
+    response_quantity: Literal["displacement", "velocity", "acceleration"] = "velocity",
+) -> FrfResult:
+    """H1/H2, coherence and the modal fit of hammer hits: ``force`` [N] and
+    ``response`` [m, m/s or m/s²], 1-D (one hit) or 2-D (one hit per row),
+    sampled at ``fs`` [Hz]; ``window`` rect, hann, force:P, exponential:P;
+    ``band`` (LO, HI) [Hz] of the fit."""
+
+def frf_files(
+    paths: Sequence[Union[str, "os.PathLike[str]"]],
+    force: Union[str, int, None] = None,
+    response: Union[str, int, None] = None,
+    window: str = "rect",
+    estimator: Literal["h1", "h2"] = "h1",
+    band: Optional[Tuple[float, float]] = None,
+    max_order: int = 40,
+    response_quantity: Literal["displacement", "velocity", "acceleration"] = "velocity",
+) -> FrfResult:
+    """``frf`` on measurement files (CSV or UFF 58), as ``ancf-modal frf``;
+    ``force``/``response`` a column name or 1-based index."""
+
+def _panic(message: str) -> None:
+    """Panics inside the library's call wrapper (for the test suite: raises
+    AnalysisError)."""

@@ -1,0 +1,60 @@
+//! The Python package `ancf_modal`: its extension module `ancf_modal._native`
+//! over the library (convert → call → wrap). Every computation runs with the
+//! GIL released ([`errors::compute`]); library errors arrive as
+//! `ancf_modal.ModelError` / `ancf_modal.AnalysisError` with the command
+//! line's one-line message.
+
+mod builtin;
+mod calibrate;
+mod errors;
+mod frf;
+mod impulse;
+mod matrices;
+mod modal;
+mod model;
+mod statics;
+mod sweep;
+mod switch_off;
+mod transient;
+
+use pyo3::prelude::*;
+
+/// A JSON document as Python objects (dicts, lists, floats …): what every
+/// result's `to_dict()` returns.
+pub(crate) fn json_to_python<'py>(
+    py: Python<'py>,
+    doc: &serde_json::Value,
+) -> PyResult<Bound<'py, PyAny>> {
+    py.import("json")?.call_method1("loads", (doc.to_string(),))
+}
+
+/// Panics inside [`errors::compute`] (for the test suite: a panic in the
+/// library must arrive as `AnalysisError`).
+#[pyfunction]
+fn _panic(py: Python<'_>, message: String) -> PyResult<()> {
+    errors::compute(py, move || -> Result<(), errors::Failure> {
+        panic!("{message}")
+    })
+}
+
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("__version__", ancf::output::provenance::tool_version())?;
+    m.add("ModelError", py.get_type::<errors::ModelError>())?;
+    m.add("AnalysisError", py.get_type::<errors::AnalysisError>())?;
+    m.add_class::<model::PyModel>()?;
+    m.add_class::<modal::PyModalResult>()?;
+    m.add_class::<frf::PyFrfResult>()?;
+    m.add_class::<impulse::PyImpulseResult>()?;
+    m.add_class::<statics::PyStaticResult>()?;
+    m.add_class::<calibrate::PyCalibrationResult>()?;
+    m.add_class::<sweep::PySweepResult>()?;
+    m.add_class::<switch_off::PySwitchOffResult>()?;
+    m.add_class::<transient::PyTransientResult>()?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_function, m)?)?;
+    m.add_function(wrap_pyfunction!(frf::frf, m)?)?;
+    m.add_function(wrap_pyfunction!(_panic, m)?)?;
+    m.add_function(wrap_pyfunction!(frf::frf_files, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,422 @@
+//! `ancf_modal.Model`: a validated model file, its parameters and its
+//! matrices; the analyses are its methods (one module per result kind).
+
+use crate::builtin;
+use crate::errors::{compute, Failure};
+use crate::matrices;
+use ancf::analysis::statics::{solve_equilibrium, StaticSettings};
+use ancf::analysis::sweep::{Quantity, Sweep, SweepSettings};
+use ancf::error::{ModelError, Source};
+use ancf::model::Model;
+use ancf::output::provenance::sha256_hex;
+use ancf::System;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyString};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// A model: an assembly of ANCF beams, rigid bodies and point masses with
+/// joints, springs, loads and sensors (the JSON model file, SI units).
+#[pyclass(name = "Model", module = "ancf_modal", frozen)]
+pub struct PyModel {
+    pub model: Arc<Model>,
+    /// Where it came from, for messages (`<built-in model>`, the path).
+    pub source: Source,
+    /// SHA-256 of the JSON text it was read from (`model_sha256`).
+    pub sha256: String,
+}
+
+impl PyModel {
+    /// Parses and validates `text`, read from `source`.
+    pub fn parse(text: &str, source: Source) -> Result<PyModel, Failure> {
+        let model = Model::from_json(text, source.clone()).map_err(|e| Failure::input(&e))?;
+        Ok(PyModel {
+            model: Arc::new(model),
+            source,
+            sha256: sha256_hex(text.as_bytes()),
+        })
+    }
+
+    /// The model's name in messages: its path or `<built-in model>`.
+    pub fn label(&self) -> String {
+        self.source.to_string()
+    }
+}
+
+/// An argument's text choice among `allowed`.
+pub fn choice<'a>(name: &str, value: &'a str, allowed: &[&str]) -> Result<&'a str, Failure> {
+    if allowed.contains(&value) {
+        Ok(value)
+    } else {
+        Err(Failure::argument(
+            name,
+            value,
+            &format!("must be one of {}", allowed.join(", ")),
+        ))
+    }
+}
+
+/// A finite number.
+pub fn finite(name: &str, value: f64) -> Result<f64, Failure> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Failure::argument(name, value, "must be a finite number"))
+    }
+}
+
+/// The static equilibrium under the loads × `load_scale` (their values at
+/// t = 0) and gravity, with the model named in its error.
+pub fn equilibrium(
+    label: &str,
+    system: &System,
+    load_scale: f64,
+) -> Result<ancf::analysis::statics::Equilibrium, Failure> {
+    let settings = StaticSettings {
+        load_scale,
+        ..StaticSettings::default()
+    };
+    solve_equilibrium(system, &settings).map_err(|e| Failure::analysis(label, &e))
+}
+
+#[pymethods]
+impl PyModel {
+    /// Reads a model: `path_or_text` is a path to a JSON model file (str or
+    /// os.PathLike) or the JSON text itself (a str starting with `{`).
+    /// Raises ModelError with the command line's message for a file that
+    /// cannot be read, malformed JSON or an invalid value.
+    #[staticmethod]
+    fn from_json(py: Python<'_>, path_or_text: &Bound<'_, PyAny>) -> PyResult<PyModel> {
+        if let Ok(s) = path_or_text.cast::<PyString>() {
+            let text = s.to_cow()?;
+            if text.trim_start().starts_with('{') {
+                let text = text.into_owned();
+                let source = Source::File(PathBuf::from("<json text>"));
+                return compute(py, move || PyModel::parse(&text, source));
+            }
+        }
+        let path: PathBuf = path_or_text.extract()?;
+        compute(py, move || {
+            let source = Source::File(path.clone());
+            let text = std::fs::read_to_string(&path).map_err(|io| {
+                Failure::input(&ModelError::Read {
+                    source_name: source.clone(),
+                    io,
+                })
+            })?;
+            PyModel::parse(&text, source)
+        })
+    }
+
+    /// A model shipped with the package, by the file stem of `models/`:
+    /// `rcbo_free_free` (the paper's free-free assembly, the command line's
+    /// built-in model), `rcbo_prestressed`, `rcbo_switch_off`,
+    /// `beam_free_free`, `cantilever`.
+    #[staticmethod]
+    #[pyo3(signature = (name = "rcbo_free_free"))]
+    fn builtin(py: Python<'_>, name: &str) -> PyResult<PyModel> {
+        let text = builtin::text(name).ok_or_else(|| {
+            Failure::argument(
+                "name",
+                name,
+                &format!(
+                    "no shipped model of that name (there: {})",
+                    builtin::names()
+                ),
+            )
+        })?;
+        // The default is the command line's built-in model; the others are
+        // named as the files the command line reads from the repository.
+        let source = if name == "rcbo_free_free" {
+            Source::BuiltIn
+        } else {
+            Source::File(PathBuf::from(format!("models/{name}.json")))
+        };
+        compute(py, move || PyModel::parse(text, source))
+    }
+
+    /// The names `Model.builtin` accepts.
+    #[staticmethod]
+    fn builtin_names() -> Vec<&'static str> {
+        builtin::MODELS.iter().map(|(n, _)| *n).collect()
+    }
+
+    /// The model's `name`.
+    #[getter]
+    fn name(&self) -> String {
+        self.model.name.clone()
+    }
+
+    /// Where the model came from: its path, `<built-in model>` or
+    /// `<json text>`.
+    #[getter]
+    fn source(&self) -> String {
+        self.label()
+    }
+
+    /// SHA-256 of the JSON text the model was read from (the `--json`
+    /// documents' `model_sha256`).
+    #[getter]
+    fn sha256(&self) -> String {
+        self.sha256.clone()
+    }
+
+    /// The model as pretty JSON: a valid model file.
+    fn to_json(&self) -> String {
+        self.model.to_json()
+    }
+
+    /// A new model with numbers changed: `{"beams[blade].section.height":
+    /// 1.2e-3, "young": 130e9, ...}`, keys as `sweep --param` names them (a
+    /// JSON path with `[index]` or `[id]`, a short name of `calibrate
+    /// --param`, or `load_scale:ID[,ID...]`; a key ending in `+` adds the
+    /// value to the model's number), values SI as in the model file. The
+    /// new model is validated like a model file.
+    fn with_params(&self, py: Python<'_>, params: &Bound<'_, PyDict>) -> PyResult<PyModel> {
+        let mut specs = Vec::with_capacity(params.len());
+        let mut values = Vec::with_capacity(params.len());
+        for (k, v) in params.iter() {
+            let name: String = k.extract()?;
+            let value: f64 = v.extract()?;
+            specs.push(format!("{name}={value:?}:{value:?}:1"));
+            values.push(value);
+        }
+        let model = Arc::clone(&self.model);
+        let source = self.source.clone();
+        compute(py, move || {
+            let sweep = Sweep::new(&model, &specs, SweepSettings::new(Quantity::FirstBendingHz))
+                .map_err(|e| {
+                    // The command line names its flag (`--param: …`), this
+                    // the argument.
+                    Failure::Input(format!("params: {}", crate::errors::one_line(&e)))
+                })?;
+            let changed = sweep.model_at(&values).map_err(|e| {
+                Failure::Input(format!("{source}: {}", crate::errors::one_line(&e)))
+            })?;
+            let text = changed.to_json();
+            Ok(PyModel {
+                sha256: sha256_hex(text.as_bytes()),
+                model: Arc::new(changed),
+                source,
+            })
+        })
+    }
+
+    /// What each coordinate of q is, in order (`beam `blade` node 3 (s =
+    /// 9.3750 mm) r'x`, `rigid body `slot` rotation`, ...). Beam nodes have
+    /// [rx, ry, r'x, r'y] [m, m, –, –], rigid bodies [x, y, θ] [m, m,
+    /// rad], point masses [x, y] [m].
+    fn coordinates(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+        let model = Arc::clone(&self.model);
+        compute(py, move || {
+            let system = System::new(&model);
+            Ok((0..system.ndof()).map(|i| system.dof_label(i)).collect())
+        })
+    }
+
+    /// The mass matrix M [kg, kg m, kg m²], the tangent stiffness K [N/m,
+    /// ...] and the constraint Jacobian C_q of the linearized system, as a
+    /// dict {"M", "K", "C_q"}: scipy.sparse CSR matrices (format="scipy")
+    /// or (data, indices, indptr, shape) tuples (format="arrays"). At the
+    /// reference configuration, or with prestress=True at the static
+    /// equilibrium under the loads × load_scale (and gravity), where K
+    /// includes the geometric, load and constraint-force (∂(C_qᵀλ)/∂q)
+    /// terms. The modes solve K φ = ω² M φ on C_q φ = 0.
+    #[pyo3(signature = (prestress = false, format = "scipy", load_scale = 1.0))]
+    fn matrices<'py>(
+        &self,
+        py: Python<'py>,
+        prestress: bool,
+        format: &str,
+        load_scale: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let format = choice("format", format, &["scipy", "arrays"])?;
+        let load_scale = finite("load_scale", load_scale)?;
+        let model = Arc::clone(&self.model);
+        let label = self.label();
+        let m = compute(py, move || {
+            let system = System::new(&model);
+            let eq = match prestress {
+                true => Some(equilibrium(&label, &system, load_scale)?),
+                false => None,
+            };
+            let at = match &eq {
+                Some(eq) => eq.linearization(),
+                None => system.reference(),
+            };
+            Ok(matrices::assemble(&system, &at))
+        })?;
+        m.to_python(py, format == "scipy")
+    }
+
+    /// Frequencies and mode shapes (the command line's `modal`): `modes`
+    /// modes [count] including the zero-frequency ones, linearized at the
+    /// reference configuration or, with prestress=True, at the static
+    /// equilibrium under the loads × load_scale [–] and gravity; solver
+    /// "auto" (dense up to 300 free coordinates, sparse shift-invert
+    /// above), "dense" or "sparse". Raises ModelError for a bad argument,
+    /// AnalysisError when the analysis fails.
+    #[pyo3(signature = (modes = 12, prestress = false, solver = "auto", load_scale = 1.0))]
+    fn modal(
+        &self,
+        py: Python<'_>,
+        modes: i64,
+        prestress: bool,
+        solver: &str,
+        load_scale: f64,
+    ) -> PyResult<crate::modal::PyModalResult> {
+        crate::modal::run(self, py, modes, prestress, solver, load_scale)
+    }
+
+    /// The paper's time-domain test (the command line's `impulse`): the
+    /// model's half-sine loads (the hammer; `amplitude` [N] and `duration`
+    /// [s] override them) excite it, generalized-α integrates `end_time`
+    /// [s] in steps of `step` [s] with spectral radius `spectral_radius`
+    /// [–], the sensor `sensor` (default: the model's first) is recorded at
+    /// `sample_rate` [Hz] (0: every step), and its spectrum (`window`:
+    /// hann, rect, blackman, flattop) gives the peaks.
+    #[pyo3(signature = (amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann"))]
+    #[allow(clippy::too_many_arguments)]
+    fn impulse(
+        &self,
+        py: Python<'_>,
+        amplitude: Option<f64>,
+        duration: Option<f64>,
+        end_time: f64,
+        step: f64,
+        spectral_radius: f64,
+        sample_rate: f64,
+        sensor: Option<&str>,
+        window: &str,
+    ) -> PyResult<crate::impulse::PyImpulseResult> {
+        let e = crate::impulse::Experiment {
+            amplitude,
+            duration,
+            end_time,
+            step,
+            spectral_radius,
+            sample_rate,
+            sensor,
+            window,
+        };
+        crate::impulse::run(self, py, e)
+    }
+
+    /// The static equilibrium under the loads × load_scale [–] (their values
+    /// at t = 0) and gravity (the command line's `static`). Raises
+    /// AnalysisError when there is none (no support, a mechanism, a loss of
+    /// stability on the load path).
+    #[pyo3(signature = (load_scale = 1.0))]
+    fn r#static(
+        &self,
+        py: Python<'_>,
+        load_scale: f64,
+    ) -> PyResult<crate::statics::PyStaticResult> {
+        crate::statics::run(self, py, load_scale)
+    }
+
+    /// Fits parameters to measured frequencies (the command line's
+    /// `calibrate`, eigenvalue method): `target_hz` [Hz] one frequency or
+    /// several (default: the model's `reference.first_bending_hz`),
+    /// `params` a name, names, or {name: (lower, upper) [SI] or None}
+    /// (default "height"; names as `calibrate --param`), the targets'
+    /// modes `mode` (1-based among `mode_kind`: bending, axial, spring;
+    /// default 1, 2, …), `keep_mass` (density follows the section),
+    /// `tolerance` [Hz] (default 1e-10 × target), `max_evaluations`.
+    #[pyo3(signature = (target_hz = None, params = None, mode_kind = "bending", mode = None, keep_mass = false, tolerance = None, max_evaluations = 60))]
+    #[allow(clippy::too_many_arguments)]
+    fn calibrate(
+        &self,
+        py: Python<'_>,
+        target_hz: Option<&Bound<'_, PyAny>>,
+        params: Option<&Bound<'_, PyAny>>,
+        mode_kind: &str,
+        mode: Option<Vec<i64>>,
+        keep_mass: bool,
+        tolerance: Option<f64>,
+        max_evaluations: i64,
+    ) -> PyResult<crate::calibrate::PyCalibrationResult> {
+        let r = crate::calibrate::Request {
+            target_hz,
+            params,
+            mode_kind,
+            mode,
+            keep_mass,
+            tolerance,
+            max_evaluations,
+        };
+        crate::calibrate::run(self, py, r)
+    }
+
+    /// The paper's switch-off (the command line's `switch-off`): the
+    /// pre-stressed ON equilibrium, the released loads, `end_time` [s] of
+    /// transient in steps of `step` [s]; the time for `point` ("BEAM:S"
+    /// with S [m], or "BODY"; default node 0 of the first beam) to travel
+    /// `distance` [m] along `direction` (dx, dy), sampled at `sample_rate`
+    /// [Hz]; `compare_rigid` runs the model with rigid beams beside it,
+    /// `no_step_check` skips the run at half the step.
+    #[pyo3(signature = (end_time = 3e-3, step = 1e-6, distance = 2e-3, direction = (1.0, 0.0), point = None, sample_rate = 67200.0, compare_rigid = false, no_step_check = false))]
+    #[allow(clippy::too_many_arguments)]
+    fn switch_off(
+        &self,
+        py: Python<'_>,
+        end_time: f64,
+        step: f64,
+        distance: f64,
+        direction: (f64, f64),
+        point: Option<&str>,
+        sample_rate: f64,
+        compare_rigid: bool,
+        no_step_check: bool,
+    ) -> PyResult<crate::switch_off::PySwitchOffResult> {
+        let r = crate::switch_off::Request {
+            end_time,
+            step,
+            distance,
+            direction,
+            point,
+            sample_rate,
+            compare_rigid,
+            no_step_check,
+        };
+        crate::switch_off::run(self, py, r)
+    }
+
+    /// A general time integration (the command line's `transient`):
+    /// generalized-α with spectral radius `spectral_radius` [–] over
+    /// `end_time` [s] in steps of `step` [s] (shortened at contact onsets),
+    /// from rest at the reference or, with `from_equilibrium`, from the
+    /// static equilibrium under the loads at t = 0 (released supports let
+    /// go); the sensors sampled at `sample_rate` [Hz] (0: every step);
+    /// `rigid_beams` models every beam as a rigid body.
+    #[pyo3(signature = (end_time = 0.01, step = 1e-6, spectral_radius = 0.9, from_equilibrium = false, sample_rate = 51200.0, rigid_beams = false))]
+    #[allow(clippy::too_many_arguments)]
+    fn transient(
+        &self,
+        py: Python<'_>,
+        end_time: f64,
+        step: f64,
+        spectral_radius: f64,
+        from_equilibrium: bool,
+        sample_rate: f64,
+        rigid_beams: bool,
+    ) -> PyResult<crate::transient::PyTransientResult> {
+        let r = crate::transient::Request {
+            end_time,
+            step,
+            spectral_radius,
+            from_equilibrium,
+            sample_rate,
+            rigid_beams,
+        };
+        crate::transient::run(self, py, r)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<ancf_modal.Model {:?} from {}>",
+            self.model.name,
+            self.label()
+        )
+    }
+}

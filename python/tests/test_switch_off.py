@@ -1,0 +1,52 @@
+"""Model.switch_off against its own samples, the energy balance and the
+command line."""
+
+import numpy as np
+import pytest
+
+import ancf_modal
+
+
+@pytest.fixture(scope="module")
+def run():
+    return ancf_modal.Model.builtin("rcbo_switch_off").switch_off(no_step_check=True)
+
+
+def test_the_tracked_point_travels_the_distance_at_the_reported_time(run):
+    t, x = run.time, run.x
+    travel = x - x[0]  # along the default direction (1, 0)
+    td = run.time_to_distance_s
+    assert td is not None and 0 < td < t[-1]
+    k = np.searchsorted(t, td)
+    # The samples bracketing the reported time bracket the distance.
+    assert travel[k - 1] < 2e-3 <= travel[k] + 1e-12
+    # The released load (a step at t = 0) is gone after the start.
+    for label, f in run.released_loads.items():
+        assert f.shape == t.shape and np.all(f[1:] == 0.0), label
+
+
+def test_energy_balance(run):
+    energy = run.to_dict()["energy"]
+    # README: the balance error is 4e-6 of the stored energy.
+    assert abs(energy["error_j"]) < 1e-4 * energy["stored_j"]
+
+
+def test_equals_the_command_line(cli, run):
+    doc = cli.json("switch-off", "models/rcbo_switch_off.json", "--no-step-check")
+    assert run.time_to_distance_s == pytest.approx(doc["time_to_distance_s"], rel=1e-12)
+    mine = run.to_dict()
+    assert np.allclose(mine["node0"]["x_m"], doc["node0"]["x_m"], rtol=0, atol=1e-15)
+    assert cli.run("switch-off", "models/rcbo_switch_off.json", "--no-step-check").stdout.startswith(
+        repr(run).splitlines()[0]
+    )
+
+
+def test_bad_point_names_the_argument(cli):
+    model = ancf_modal.Model.builtin("rcbo_switch_off")
+    with pytest.raises(ancf_modal.ModelError) as e:
+        model.switch_off(point="nobody", end_time=1e-5, no_step_check=True)
+    line = cli.error(
+        "switch-off", "models/rcbo_switch_off.json", "--point", "nobody", "--end-time", "1e-5",
+        "--no-step-check",
+    )
+    assert str(e.value) == line.replace("--point: ", "point: ", 1)
