@@ -120,7 +120,10 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_, '_>) -> PyResult<PyCa
             CalibrationError::Analysis { .. }
             | CalibrationError::Impulse { .. }
             | CalibrationError::NotConverged { .. } => Failure::analysis(&label, &e),
-            _ => Failure::input(&e),
+            _ => match keyword(&e) {
+                Some(k) => Failure::Input(format!("{k}: {}", crate::errors::one_line(&e))),
+                None => Failure::input(&e),
+            },
         })
     })?;
     Ok(PyCalibrationResult {
@@ -128,6 +131,25 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_, '_>) -> PyResult<PyCa
         source: model.source.clone(),
         sha256: model.sha256.clone(),
         result,
+    })
+}
+
+/// The keyword argument a calibration error concerns, named in front of
+/// the message as the command line names its flag (`--param: …`); the
+/// library names quantities, not arguments.
+fn keyword(e: &CalibrationError) -> Option<&'static str> {
+    use CalibrationError as E;
+    Some(match e {
+        E::NoParameters
+        | E::UnknownParameter { .. }
+        | E::AmbiguousParameter { .. }
+        | E::DuplicateParameter { .. }
+        | E::InvalidBounds { .. }
+        | E::Unreachable { .. } => "params",
+        E::NoTargets | E::TargetNotPositive { .. } => "target_hz",
+        E::DensityWithKeepMass { .. } => "keep_mass",
+        E::ModeCount { .. } | E::ModeNotFound { .. } => "mode",
+        _ => return None,
     })
 }
 
@@ -141,15 +163,15 @@ pub struct PyCalibrationResult {
 }
 
 impl PyCalibrationResult {
-    /// The library's JSON document (`calibrate --json`), stamped with
-    /// `tool_version` and `model_sha256`.
-    // TODO(typed results): the typed calibration result; the command line
-    // adds `warnings`.
+    /// The document `calibrate --json` prints: the typed result
+    /// ([`ancf::results::CalibrationOutput`]) with the provenance block.
     fn document(&self) -> serde_json::Value {
-        let mut doc =
-            ancf::output::calibrate_report::calibrate_json(&self.model.name, &self.result);
-        ancf::output::provenance::stamp(&mut doc, &self.sha256);
-        doc
+        let label = self.source.to_string();
+        crate::document(
+            &ancf::results::CalibrationOutput::new(&self.model.name, &self.result),
+            Some((&self.model, &label)),
+            Some(&self.sha256),
+        )
     }
 }
 

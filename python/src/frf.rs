@@ -230,11 +230,14 @@ pub struct PyFrfResult {
 }
 
 impl PyFrfResult {
-    /// The library's JSON document of the result (`frf --json`).
-    // TODO(typed results): serialize the typed FRF result instead; the
-    // command line adds `warnings` (and `model_frf` with --model).
+    /// The document `frf --json` prints without `--model`: the typed
+    /// result ([`ancf::results::FrfOutput`]) with the provenance block.
     fn document(&self) -> serde_json::Value {
-        ancf::output::frf_report::frf_json(&self.analysis, self.quantity, None)
+        crate::document(
+            &ancf::results::FrfOutput::new(&self.analysis, self.quantity, None),
+            None,
+            None,
+        )
     }
 
     /// One key of the document as a Python object.

@@ -106,18 +106,14 @@ impl PyImpulseResult {
         self.model.reference.as_ref().map(|r| r.first_bending_hz)
     }
 
-    /// The library's JSON document (`impulse --json`), stamped with
-    /// `tool_version` and `model_sha256`.
-    // TODO(typed results): serialize the typed impulse result instead; the
-    // command line adds `warnings`.
+    /// The document `impulse --json` prints: the typed result
+    /// ([`ancf::results::ImpulseOutput`]) with the provenance block.
     fn document(&self) -> serde_json::Value {
-        let mut doc = ancf::output::impulse_report::impulse_json(
-            &self.model.name,
-            &self.result,
-            self.reference_hz(),
-        );
-        ancf::output::provenance::stamp(&mut doc, &self.sha256);
-        doc
+        crate::document(
+            &ancf::results::ImpulseOutput::new(&self.model.name, &self.result, self.reference_hz()),
+            None,
+            Some(&self.sha256),
+        )
     }
 }
 

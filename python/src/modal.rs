@@ -39,20 +39,30 @@ impl ModalOutcome {
         }
     }
 
-    /// The library's JSON document of the result (`modal --json`), stamped
-    /// with `tool_version` and `model_sha256`.
-    // TODO(typed results): serialize the typed modal result instead; the
-    // command line also adds each mode's `damping_ratio`, `poisson_assumed`
-    // and `warnings` around these functions, which are not library calls.
-    fn document(&self, model_name: &str, sha256: &str) -> serde_json::Value {
-        let mut doc = match self {
-            ModalOutcome::Reference(r) => ancf::output::modal_report::modal_json(model_name, r),
-            ModalOutcome::Prestressed(p) => {
-                ancf::output::static_report::prestress_json(model_name, p)
-            }
-        };
-        ancf::output::provenance::stamp(&mut doc, sha256);
-        doc
+    /// The document `modal --json` prints: the typed result
+    /// ([`ancf::results::ModalOutput`], or [`ancf::results::PrestressedOutput`])
+    /// with the provenance block.
+    fn document(
+        &self,
+        model: &Model,
+        label: &str,
+        damping: &[ModeDamping],
+        sha256: &str,
+    ) -> serde_json::Value {
+        let source = Some((model, label));
+        match self {
+            ModalOutcome::Reference(r) => crate::document_with(
+                &ancf::results::ModalOutput::new(model, r, damping),
+                source,
+                Some(sha256),
+                ancf::analysis::shear::beam_theory_warnings(r),
+            ),
+            ModalOutcome::Prestressed(p) => crate::document(
+                &ancf::results::PrestressedOutput::new(model, p, damping),
+                source,
+                Some(sha256),
+            ),
+        }
     }
 
     /// The command line's table.
@@ -277,7 +287,12 @@ impl PyModalResult {
 
     /// The result as the library's JSON document (`modal --json`) as a dict.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        crate::json_to_python(py, &self.outcome.document(&self.model.name, &self.sha256))
+        crate::json_to_python(
+            py,
+            &self
+                .outcome
+                .document(&self.model, &self.source, &self.damping, &self.sha256),
+        )
     }
 
     /// Writes the elastic modes as UFF 15 (nodes) and 55 (mass-normalised

@@ -38,14 +38,10 @@ pub fn run(model: &PyModel, py: Python<'_>, load_scale: f64) -> PyResult<PyStati
 }
 
 impl PyStaticResult {
-    /// The library's report as JSON (`static --json`), stamped with
-    /// `tool_version` and `model_sha256`.
-    // TODO(typed results): the typed static result; the command line adds
-    // `warnings`.
+    /// The document `static --json` prints: the typed report
+    /// ([`ancf::results::StaticReport`]) with the provenance block.
     fn document(&self) -> serde_json::Value {
-        let mut doc = serde_json::to_value(&self.report).unwrap_or_default();
-        ancf::output::provenance::stamp(&mut doc, &self.sha256);
-        doc
+        crate::document(&self.report, None, Some(&self.sha256))
     }
 }
 

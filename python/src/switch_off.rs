@@ -102,14 +102,14 @@ pub struct PySwitchOffResult {
 }
 
 impl PySwitchOffResult {
-    /// The library's JSON document (`switch-off --json`), stamped with
-    /// `tool_version` and `model_sha256`.
-    // TODO(typed results): the typed switch-off result; the command line
-    // appends its run's `warnings` to the result's own.
+    /// The document `switch-off --json` prints: the typed result
+    /// ([`ancf::results::SwitchOffOutput`]) with the provenance block.
     fn document(&self) -> serde_json::Value {
-        let mut doc = ancf::output::switch_off_report::switch_off_json(&self.result);
-        ancf::output::provenance::stamp(&mut doc, &self.sha256);
-        doc
+        crate::document(
+            &ancf::results::SwitchOffOutput::new(&self.result),
+            None,
+            Some(&self.sha256),
+        )
     }
 
     fn rigid_run(&self) -> Option<&SwitchOffRun> {

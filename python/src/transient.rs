@@ -65,11 +65,11 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request) -> PyResult<PyTransientR
             .map_err(|e| Failure::Input(crate::errors::one_line(&e)))?;
         let sim = simulate(System::new(&model), &[], &settings)
             .map_err(|e| crate::errors::simulation(&label, &e))?;
-        // TODO(typed results): the typed transient result; the command
-        // line adds `warnings`.
-        let mut document =
-            ancf::output::transient_report::transient_json(&model.name, &settings, &sim);
-        ancf::output::provenance::stamp(&mut document, &sha256);
+        let document = crate::document(
+            &ancf::results::TransientOutput::new(&model.name, &settings, &sim),
+            None,
+            Some(&sha256),
+        );
         Ok(PyTransientResult {
             table: ancf::output::transient_report::transient_table(&model.name, &settings, &sim),
             document,

@@ -36,6 +36,25 @@ pub const DEFAULT_POISSON: f64 = 0.3;
 /// |Δf/f| above which the report warns that beam theory limits a mode.
 pub const WARNING_LEVEL: f64 = 0.01;
 
+/// One sentence for each mode of `result` whose Euler–Bernoulli frequency
+/// is more than [`WARNING_LEVEL`] above Timoshenko theory's estimate.
+pub fn beam_theory_warnings(result: &crate::analysis::ModalResult) -> Vec<String> {
+    result
+        .modes
+        .iter()
+        .filter_map(|m| {
+            let e = m.shear_estimate.filter(|e| e.abs() > WARNING_LEVEL)?;
+            Some(format!(
+                "mode {} ({:.1} Hz): beam theory limits it: shear and rotary inertia (Timoshenko) would lower it by about {:.1} %, more than the {:.0} %",
+                m.index,
+                m.frequency_hz,
+                -100.0 * e,
+                100.0 * WARNING_LEVEL
+            ))
+        })
+        .collect()
+}
+
 /// The estimate Δf/f for the mode `phi` (global coordinates) of `system`;
 /// `poisson(beam id)` gives each beam's ν. `None` when φᵀMφ is not
 /// positive (no motion).

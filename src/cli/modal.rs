@@ -216,17 +216,7 @@ fn mac_table(rows: &[f64], cols: &[f64], m: &nalgebra::DMatrix<f64>) -> String {
 /// more than 1 % above Timoshenko theory's (estimate of
 /// [`ancf_modal::analysis::shear`]).
 fn warn_beam_theory(result: &ModalResult, path: Option<&Path>) {
-    use ancf_modal::analysis::shear::WARNING_LEVEL;
-    for m in &result.modes {
-        if let Some(e) = m.shear_estimate.filter(|e| e.abs() > WARNING_LEVEL) {
-            super::common::warn(format!(
-                "{}: mode {} ({:.1} Hz): beam theory limits it: shear and rotary inertia (Timoshenko) would lower it by about {:.1} %, more than the {:.0} %",
-                source_label(path),
-                m.index,
-                m.frequency_hz,
-                -100.0 * e,
-                100.0 * WARNING_LEVEL
-            ));
-        }
+    for w in ancf_modal::analysis::shear::beam_theory_warnings(result) {
+        super::common::warn(format!("{}: {w}", source_label(path)));
     }
 }
