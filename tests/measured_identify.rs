@@ -216,3 +216,60 @@ fn reports_of_the_same_try_end_cleanly() {
     assert!(out.status.success());
     assert!(out.stdout.ends_with(b"\n"));
 }
+
+/// `identify --html` with measured records and a calibration: the report
+/// has the comparison (its experiment the measured mode `identify --json`
+/// chose), the impulse test, the calibration and the measured FRF with its
+/// figure; every SVG part parses.
+#[test]
+fn the_html_report_carries_the_measured_records_and_the_calibration() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = cantilever(dir.path(), None);
+    let files = hits(
+        dir.path(),
+        &[TestMode {
+            f: 1_050.0,
+            zeta: 0.01,
+            inv_mass: 500.0,
+        }],
+    );
+    let html_path = dir.path().join("r.html");
+    let mut extra: Vec<String> = vec!["--calibrate".into(), "--html".into()];
+    extra.push(html_path.display().to_string());
+    extra.extend([
+        "--measured-window".into(),
+        "force:0.02".into(),
+        "--measured".into(),
+    ]);
+    extra.extend(files.iter().map(|f| f.display().to_string()));
+    let extra: Vec<&str> = extra.iter().map(String::as_str).collect();
+    let (_, doc) = run_identify(&model, &extra);
+    let html = std::fs::read_to_string(&html_path).unwrap();
+    for id in [
+        "assembly",
+        "modes-1",
+        "comparison",
+        "impulse",
+        "calibration",
+        "measured",
+    ] {
+        assert!(
+            html.contains(&format!("<section id=\"{id}\"")),
+            "section {id}"
+        );
+    }
+    let exp = doc["experiment_hz"].as_f64().unwrap();
+    assert!(
+        html.contains(&format!("<td>measured (frf fit)</td><td>{exp:.2}</td>")),
+        "the comparison's experiment {exp:.2} Hz"
+    );
+    let measured = &html[html.find("<section id=\"measured\"").unwrap()..];
+    let measured = &measured[..measured.find("</section>").unwrap()];
+    assert!(measured.contains("<svg"), "the FRF figure");
+    let mut rest = html.as_str();
+    while let Some(a) = rest.find("<svg") {
+        let b = a + rest[a..].find("</svg>").unwrap() + 6;
+        roxmltree::Document::parse(&rest[a..b]).unwrap();
+        rest = &rest[b..];
+    }
+}

@@ -48,6 +48,7 @@ fn paper_report() -> (System, String) {
             title: "Impulse test".into(),
             notes: vec!["a < b & c".into()],
             tables: Vec::new(),
+            preformatted: Vec::new(),
             figures: vec![
                 (response_figure(&model.name, &imp), size),
                 (Figure::Line(spectrum_figure(&model, &imp)), size),

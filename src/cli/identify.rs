@@ -50,6 +50,21 @@ pub struct IdentifyArgs {
     /// Fit band of the measured records, LO:HI in Hz (see `frf --band`).
     #[arg(long, value_name = "LO:HI", requires = "measured", value_parser = super::frf::parse_band)]
     pub measured_band: Option<(f64, f64)>,
+    /// Also write everything as one self-contained HTML report (see `report`).
+    #[arg(long, value_name = "FILE.html")]
+    pub html: Option<PathBuf>,
+}
+
+/// What `identify` computed.
+pub struct Identified {
+    pub model: Model,
+    pub system: System,
+    pub modal: ModalResult,
+    pub impulse: ImpulseResult,
+    pub measured: Option<ancf_modal::measured::analysis::FrfAnalysis>,
+    pub output: IdentifyOutput,
+    /// The comparison is the paper's Table 3.
+    pub paper: bool,
 }
 
 /// Figures `--out-dir` holds, each as .svg and .png.
@@ -83,8 +98,9 @@ fn write_figures(
     Ok(())
 }
 
-pub fn run(args: IdentifyArgs) -> Result<()> {
-    args.output.only("identify", &[Output::Json])?;
+/// The modal analysis, the impulse experiment, the measured records and
+/// the calibration `args` ask for, and the comparison.
+pub fn compute(args: &IdentifyArgs) -> Result<Identified> {
     let model = load_model(args.model.as_deref())?;
     args.experiment.settings().transient.validate()?;
     let system = System::new(&model);
@@ -125,6 +141,29 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
         measured.as_ref(),
         calibration.as_ref(),
     );
+    Ok(Identified {
+        model,
+        system,
+        modal,
+        impulse,
+        measured,
+        output,
+        paper,
+    })
+}
+
+pub fn run(args: IdentifyArgs) -> Result<()> {
+    args.output.only("identify", &[Output::Json])?;
+    let id = compute(&args)?;
+    let Identified {
+        model,
+        system,
+        modal,
+        impulse,
+        output,
+        paper,
+        ..
+    } = &id;
     let summary = ancf_modal::results::document(
         &output,
         Some(&super::common::model_sha256(args.model.as_deref())?),
@@ -137,22 +176,25 @@ pub fn run(args: IdentifyArgs) -> Result<()> {
             &dir.join("summary.json"),
             &serde_json::to_string_pretty(&summary)?,
         )?;
-        write_output(&dir.join("modes.csv"), &modal_csv(&modal))?;
-        write_output(&dir.join("signal.csv"), &signal_csv(&impulse))?;
-        write_output(&dir.join("spectrum.csv"), &spectrum_csv(&impulse))?;
-        if let Some(c) = &calibration {
+        write_output(&dir.join("modes.csv"), &modal_csv(modal))?;
+        write_output(&dir.join("signal.csv"), &signal_csv(impulse))?;
+        write_output(&dir.join("spectrum.csv"), &spectrum_csv(impulse))?;
+        if let Some(c) = &output.calibration {
             write_output(
                 &dir.join("calibrated.json"),
-                &(c.fitted_model.to_json() + "\n"),
+                &(c.result.fitted_model.to_json() + "\n"),
             )?;
         }
-        write_figures(dir, &model, &system, &modal, &impulse)?;
+        write_figures(dir, model, system, modal, impulse)?;
+    }
+    if let Some(path) = &args.html {
+        super::report::write_report(path, &id, args.model.as_deref(), false)?;
     }
     if args.output.json {
         outln!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());
     }
-    out!("{}", report(&output, paper, args.out_dir.as_deref()));
+    out!("{}", report(output, *paper, args.out_dir.as_deref()));
     Ok(())
 }
 

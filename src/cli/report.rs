@@ -1,21 +1,31 @@
-//! `ancf-modal report`: one self-contained HTML file with the assembly,
-//! the animated modes, the impulse experiment (when the model has an
-//! excitation) and the switch-off (when it releases something).
+//! `ancf-modal report`: one self-contained HTML file. For a model with an
+//! excitation, everything `identify` computes (comparison, impulse,
+//! calibration, measured records); for any model the assembly and the
+//! animated modes, the pre-stressed modes beside them (`--prestress`) and
+//! the switch-off when the model releases something.
 
 use super::common::{load_model, source_label, write_output};
-use super::impulse::{experiment, ExperimentArgs};
+use super::identify::{compute, Identified, IdentifyArgs};
+use super::impulse::ExperimentArgs;
 use ancf_modal::analysis::impulse::excitation;
 use ancf_modal::analysis::statics::prestress::prestressed_modal;
 use ancf_modal::analysis::statics::StaticSettings;
 use ancf_modal::analysis::switch_off::{run_switch_off, SwitchOffSettings};
-use ancf_modal::analysis::{modal_at_reference, ModalSettings};
+use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings};
+use ancf_modal::model::Model;
+use ancf_modal::output::frf_report::ResponseQuantity;
 use ancf_modal::output::provenance::{model_sha256, tool_version, utc_now};
-use ancf_modal::output::report::sections::{has_release, impulse_section, switch_off_section};
-use ancf_modal::output::report::{report_html, ModeSet, Provenance, ReportInput};
+use ancf_modal::output::report::sections::{
+    calibration_section, comparison_section, has_release, impulse_section, measured_section,
+    switch_off_section,
+};
+use ancf_modal::output::report::{report_html, ModeSet, Provenance, ReportInput, Section};
+use ancf_modal::results::identify::IDENTIFY_MODES;
+use ancf_modal::results::ModelOverlay;
 use ancf_modal::System;
 use anyhow::{Context, Result};
 use clap::Args;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
 pub struct ReportArgs {
@@ -24,74 +34,164 @@ pub struct ReportArgs {
     /// The HTML file to write.
     #[arg(long, value_name = "FILE.html", default_value = "report.html")]
     pub out: PathBuf,
-    /// Modes computed (rigid ones included).
-    #[arg(long, value_name = "N", default_value_t = 9, value_parser = super::values::at_least_one_usize)]
-    pub modes: usize,
     /// Also the modes at the static equilibrium under the model's loads,
     /// beside the unstressed ones.
     #[arg(long)]
     pub prestress: bool,
     #[command(flatten)]
     pub experiment: ExperimentArgs,
+    /// Also fit the equivalent beam height that matches the experiment
+    /// (as `identify --calibrate`).
+    #[arg(long)]
+    pub calibrate: bool,
+    /// Measured hammer records (as `identify --measured`).
+    #[arg(long, value_name = "FILE", num_args = 1..)]
+    pub measured: Vec<PathBuf>,
+    /// Window of the measured records (see `frf --window`).
+    #[arg(long, value_name = "W", default_value = "rect", requires = "measured", value_parser = |s: &str| s.parse::<ancf_modal::measured::window::Window>())]
+    pub measured_window: ancf_modal::measured::window::Window,
+    /// Fit band of the measured records, LO:HI in Hz (see `frf --band`).
+    #[arg(long, value_name = "LO:HI", requires = "measured", value_parser = super::frf::parse_band)]
+    pub measured_band: Option<(f64, f64)>,
 }
 
 pub fn run(args: ReportArgs) -> Result<()> {
-    let path = args.model.as_deref();
-    let model = load_model(path)?;
-    let system = System::new(&model);
+    let path = args.model.clone();
+    let out = args.out.clone();
+    let prestress = args.prestress;
+    let model = load_model(path.as_deref())?;
+    if excitation(&model).is_ok() {
+        let id = compute(&IdentifyArgs {
+            model: args.model,
+            output: Default::default(),
+            out_dir: None,
+            experiment: args.experiment,
+            calibrate: args.calibrate,
+            measured: args.measured,
+            measured_window: args.measured_window,
+            measured_band: args.measured_band,
+            html: None,
+        })?;
+        write_report(&out, &id, path.as_deref(), prestress)?;
+    } else {
+        if args.calibrate || !args.measured.is_empty() {
+            anyhow::bail!(
+                "{}: --calibrate and --measured need the impulse experiment, and the model has no half-sine or step load",
+                source_label(path.as_deref())
+            );
+        }
+        let system = System::new(&model);
+        let settings = ModalSettings {
+            modes: Some(IDENTIFY_MODES),
+            ..ModalSettings::default()
+        };
+        let modal = modal_at_reference(&system, &settings)
+            .with_context(|| source_label(path.as_deref()))?;
+        let parts = Parts {
+            model: &model,
+            system: &system,
+            modal: &modal,
+            sections: Vec::new(),
+        };
+        write(&out, parts, path.as_deref(), prestress)?;
+    }
+    outln!("report written to {}", out.display());
+    Ok(())
+}
+
+/// The report of what `identify` computed (`identify --html`, `report`).
+pub fn write_report(
+    out: &Path,
+    id: &Identified,
+    path: Option<&Path>,
+    prestress: bool,
+) -> Result<()> {
+    let mut sections = vec![
+        comparison_section(&id.output, id.paper),
+        impulse_section(&id.model, &id.impulse),
+    ];
+    if let Some(c) = &id.output.calibration {
+        sections.push(calibration_section(c));
+    }
+    if let Some(a) = &id.measured {
+        let q = ResponseQuantity::Velocity;
+        let overlay = id
+            .model
+            .sensors
+            .first()
+            .and_then(|s| ModelOverlay::new(&id.model, &s.id, q, &a.frequency_hz).ok());
+        let label = format!("model {}", id.model.name);
+        let overlay = overlay
+            .as_ref()
+            .map(|(_, h)| (label.as_str(), a.frequency_hz.as_slice(), h.as_slice()));
+        sections.push(measured_section(a, q, overlay));
+    }
+    let parts = Parts {
+        model: &id.model,
+        system: &id.system,
+        modal: &id.modal,
+        sections,
+    };
+    write(out, parts, path, prestress)
+}
+
+/// What every report has.
+struct Parts<'a> {
+    model: &'a Model,
+    system: &'a System,
+    modal: &'a ModalResult,
+    sections: Vec<Section>,
+}
+
+/// Adds the pre-stressed modes and the switch-off, renders and writes.
+fn write(out: &Path, p: Parts, path: Option<&Path>, prestress: bool) -> Result<()> {
+    let label = || source_label(path);
     let settings = ModalSettings {
-        modes: Some(args.modes),
+        modes: Some(p.modal.modes.len().max(1)),
         ..ModalSettings::default()
     };
-    let modal = modal_at_reference(&system, &settings).with_context(|| source_label(path))?;
-    let prestressed = if args.prestress {
+    let prestressed = if prestress {
         Some(
-            prestressed_modal(&system, &StaticSettings::default(), &settings)
-                .with_context(|| source_label(path))?,
+            prestressed_modal(p.system, &StaticSettings::default(), &settings)
+                .with_context(label)?,
         )
     } else {
         None
     };
-    let mut sections = Vec::new();
-    if excitation(&model).is_ok() {
-        let impulse = experiment(&model, path, &args.experiment)?;
-        sections.push(impulse_section(&model, &impulse));
-    }
-    if has_release(&model) {
+    let mut sections = p.sections;
+    if has_release(p.model) {
         let settings = SwitchOffSettings {
             compare_rigid: true,
             ..SwitchOffSettings::default()
         };
-        let r = run_switch_off(&model, &settings).with_context(|| source_label(path))?;
+        let r = run_switch_off(p.model, &settings).with_context(label)?;
         sections.push(switch_off_section(&r));
     }
     let mut mode_sets = vec![ModeSet {
         title: "Modes at the reference",
-        system: &system,
-        q: &system.q0,
-        modal: &modal,
+        system: p.system,
+        q: &p.system.q0,
+        modal: p.modal,
     }];
-    if let Some(p) = &prestressed {
+    if let Some(e) = &prestressed {
         mode_sets.push(ModeSet {
             title: "Modes at the pre-stressed equilibrium",
-            system: &system,
-            q: &p.equilibrium.q,
-            modal: &p.prestressed,
+            system: p.system,
+            q: &e.equilibrium.q,
+            modal: &e.prestressed,
         });
     }
     let input = ReportInput {
         provenance: Provenance {
             tool_version: tool_version().to_string(),
-            model_name: model.name.clone(),
+            model_name: p.model.name.clone(),
             model_sha256: model_sha256(path)?,
             command_line: std::env::args().collect::<Vec<_>>().join(" "),
             date: utc_now(),
         },
-        description: &model.description,
+        description: &p.model.description,
         mode_sets,
         sections,
     };
-    write_output(&args.out, &report_html(&input)?)?;
-    outln!("report written to {}", args.out.display());
-    Ok(())
+    write_output(out, &report_html(&input)?)
 }

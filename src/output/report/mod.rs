@@ -59,6 +59,8 @@ pub struct Section {
     /// Paragraphs of plain text.
     pub notes: Vec<String>,
     pub tables: Vec<Table>,
+    /// Text tables as the command line prints them (monospaced).
+    pub preformatted: Vec<String>,
     pub figures: Vec<(Figure, PlotSize)>,
 }
 
@@ -225,6 +227,9 @@ fn section_html(s: &Section) -> Result<String, PlotError> {
     }
     for t in &s.tables {
         out.push_str(&table_html(t));
+    }
+    for p in &s.preformatted {
+        let _ = write!(out, "<pre>{}</pre>", escape(p));
     }
     for (figure, size) in &s.figures {
         let svg = String::from_utf8(render(figure, Format::Svg, *size)?)

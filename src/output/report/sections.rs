@@ -4,10 +4,15 @@
 use super::{Section, Table};
 use crate::analysis::impulse::{Excitation, ImpulseResult};
 use crate::analysis::switch_off::SwitchOffResult;
+use crate::measured::analysis::FrfAnalysis;
 use crate::model::{Model, TimeFunction};
+use crate::output::calibrate_report::calibrate_table;
 use crate::output::figures::switch_off::{time_figure, trajectory_figure};
 use crate::output::figures::{response_figure, spectrum_figure};
+use crate::output::frf_report::{frf_figure, frf_table, ResponseQuantity};
 use crate::output::plot::{Figure, PlotSize};
+use crate::results::{CalibrationOutput, IdentifyOutput};
+use realfft::num_complex::Complex64;
 
 /// Size of the report's line figures [px].
 pub const FIGURE_SIZE: PlotSize = PlotSize {
@@ -66,6 +71,7 @@ pub fn impulse_section(model: &Model, r: &ImpulseResult) -> Section {
         title: "Impulse test".into(),
         notes,
         tables,
+        preformatted: Vec::new(),
         figures: vec![
             (response_figure(&model.name, r), FIGURE_SIZE),
             (Figure::Line(spectrum_figure(model, r)), FIGURE_SIZE),
@@ -130,9 +136,98 @@ pub fn switch_off_section(r: &SwitchOffResult) -> Section {
             header: vec!["run".into(), "time".into()],
             rows,
         }],
+        preformatted: Vec::new(),
         figures: vec![
             (Figure::Line(time_figure(r)), FIGURE_SIZE),
             (Figure::Line(trajectory_figure(r)), FIGURE_SIZE),
         ],
+    }
+}
+
+/// The first bending frequency against the experiment (the paper's Table 3
+/// for the paper's assembly, else the model's reference or the measured
+/// records), as `identify` prints it.
+pub fn comparison_section(output: &IdentifyOutput, paper: bool) -> Section {
+    let pct = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:+.2} %"));
+    let rows = output
+        .table
+        .iter()
+        .map(|r| {
+            vec![
+                r.source.clone(),
+                r.first_bending_hz.map_or("–".into(), |f| format!("{f:.2}")),
+                pct(r.error_percent),
+                pct(r.paper_error_percent),
+            ]
+        })
+        .collect();
+    let mut notes = vec![format!("Supports: {}.", output.supports)];
+    match (&output.reference_source, output.experiment_hz) {
+        (Some(source), Some(_)) => notes.push(format!("Experiment: {source}.")),
+        (_, None) => notes.push(
+            "No experiment to compare with: the model has no `reference` and no measured records were given."
+                .into(),
+        ),
+        _ => {}
+    }
+    Section {
+        id: "comparison".into(),
+        title: if paper {
+            "First bending frequency (the paper's Table 3)".into()
+        } else {
+            "First bending frequency against the experiment".into()
+        },
+        notes,
+        tables: vec![Table {
+            caption: String::new(),
+            header: vec![
+                "source".into(),
+                "f [Hz]".into(),
+                "(f − exp)/exp".into(),
+                "paper: (exp − f)/f".into(),
+            ],
+            rows,
+        }],
+        preformatted: Vec::new(),
+        figures: Vec::new(),
+    }
+}
+
+/// The equivalent-geometry fit: what was calibrated, to what, and the
+/// fitted model's frequencies (the `calibrate` table).
+pub fn calibration_section(c: &CalibrationOutput) -> Section {
+    Section {
+        id: "calibration".into(),
+        title: "Calibration".into(),
+        notes: vec![format!(
+            "Calibrated to the experiment (a fit, not a prediction): the fitted model {} is the model with these values.",
+            c.fitted_model
+        )],
+        tables: Vec::new(),
+        preformatted: vec![calibrate_table(&c.model, &c.result)],
+        figures: Vec::new(),
+    }
+}
+
+/// The measured records: FRF magnitude and phase with the fitted modes,
+/// the coherence and the stabilization diagram, with the model's FRF at
+/// the sensor when `overlay` is given (label, frequencies [Hz], values).
+pub fn measured_section(
+    a: &FrfAnalysis,
+    q: ResponseQuantity,
+    overlay: Option<(&str, &[f64], &[Complex64])>,
+) -> Section {
+    Section {
+        id: "measured".into(),
+        title: "Measured FRF".into(),
+        notes: vec![format!(
+            "{} record file(s); band {:.0}–{:.0} Hz.",
+            a.files.len(),
+            a.band.0,
+            a.band.1
+        )],
+        tables: Vec::new(),
+        preformatted: vec![frf_table(a, q)],
+        figures: vec![(Figure::Line(frf_figure(a, q, overlay)), FIGURE_SIZE)],
     }
 }
