@@ -67,6 +67,17 @@ fn bench(c: &mut Criterion) {
     c.bench_function("modal: default model (from parsed model)", |b| {
         b.iter(|| modal_at_reference(&System::new(&model), &settings).unwrap())
     });
+    // What `modal` and Python's `Model.modal()` compute: the modes with
+    // their shear estimates and damping ratios (the Python call's
+    // in-process counterpart, python/benches/modal.py).
+    c.bench_function(
+        "modal: default model, modes + shear + damping (results::modal)",
+        |b| {
+            b.iter(|| {
+                ancf_modal::results::modal::modal(&model, &System::new(&model), &settings).unwrap()
+            })
+        },
+    );
     // The bare 8-element blade, free-free: Exudyn's dense-call comparison case.
     let bare = System::new(&beam(8));
     c.bench_function(
