@@ -65,8 +65,12 @@ pub enum Problem {
     Negative { value: f64 },
     #[error("must be at least 1")]
     ZeroCount,
-    #[error("the beams have {total} elements in all, more than the {max} this machine's available memory holds (about {} kB per element)", crate::model::validate::BYTES_PER_ELEMENT / 1024)]
-    TooManyElements { total: usize, max: usize },
+    #[error("the beams have {total} elements in all, more than the {max} this machine's available memory holds (about {kib_per_element} kB per element)")]
+    TooManyElements {
+        total: usize,
+        max: usize,
+        kib_per_element: usize,
+    },
     #[error("{value:?} is outside [{min:?}, {max:?}]")]
     OutOfRange { value: f64, min: f64, max: f64 },
     #[error("must not be empty")]

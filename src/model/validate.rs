@@ -245,6 +245,7 @@ impl Model {
                 let problem = Problem::TooManyElements {
                     total: total_elements,
                     max,
+                    kib_per_element: BYTES_PER_ELEMENT / 1024,
                 };
                 return Err((format!("{p}.elements"), problem));
             }
