@@ -11,20 +11,14 @@
 #![forbid(unsafe_code)]
 
 pub mod analysis;
-pub mod anchor;
-pub mod contact;
-pub mod element;
 pub mod error;
-pub mod joint;
 pub mod linalg;
-pub mod load;
 pub mod measured;
+pub mod mechanics;
 pub mod model;
 pub mod output;
-pub mod pair;
 pub mod reference;
 pub mod results;
-pub mod spring;
 pub mod system;
 
 pub use error::{AnalysisError, ModelError};

@@ -4,7 +4,7 @@
 //! and the constraint Hessian term ∂(C_qᵀλ)/∂q.
 
 mod common;
-use ancf_modal::element::{CableElement, CableSection, Mat8, Vec8};
+use ancf_modal::mechanics::element::{CableElement, CableSection, Mat8, Vec8};
 use ancf_modal::system::Linearization;
 use ancf_modal::System;
 use common::*;

@@ -18,7 +18,7 @@
 mod common;
 
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
-use ancf_modal::spring::ForceElement;
+use ancf_modal::mechanics::spring::ForceElement;
 use ancf_modal::{Model, System};
 
 /// Paper, Table 4 [N].

@@ -24,7 +24,7 @@
 //! the model does not give one.
 
 use super::{ModalResult, ModeKind};
-use crate::element::{gauss01, shape};
+use crate::mechanics::element::{gauss01, shape};
 use crate::model::Model;
 use crate::system::System;
 use nalgebra::Vector2;

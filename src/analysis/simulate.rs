@@ -17,9 +17,9 @@ use super::impulse::spectrum::resample_uniform;
 use super::statics::{solve_equilibrium, Equilibrium, StaticSettings};
 use super::transient::contacts::ContactStats;
 use super::transient::{Integrator, RunStats, State, TransientSettings};
-use crate::anchor::Anchor;
 use crate::error::{SimulationError, TransientError};
 use crate::linalg::vector::dot;
+use crate::mechanics::anchor::Anchor;
 use crate::system::System;
 
 /// Settings of a simulation.
@@ -104,7 +104,7 @@ pub struct Simulation {
     pub static_iterations: usize,
     /// The applied loads of the integrated system (released supports'
     /// reactions among them).
-    pub loads: Vec<crate::load::PointLoad>,
+    pub loads: Vec<crate::mechanics::load::PointLoad>,
 }
 
 fn energies(sys: &System, gravity: &[f64], st: &State) -> Energies {

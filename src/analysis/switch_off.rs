@@ -28,7 +28,7 @@ use super::statics::StaticSettings;
 use super::transient::contacts::ContactStats;
 use super::transient::TransientSettings;
 use crate::error::{Setting, SimulationError};
-use crate::load::load_magnitudes;
+use crate::mechanics::load::load_magnitudes;
 use crate::model::{Model, PointSpec};
 use crate::system::System;
 

@@ -6,7 +6,7 @@
 //! `energy`. The CSV has a column `contact_<id>_force_n` per contact.
 
 use crate::analysis::simulate::{Simulation, SimulationSettings};
-use crate::load::load_magnitudes;
+use crate::mechanics::load::load_magnitudes;
 use crate::model::SensorQuantity;
 use crate::output::plot::{Legend, LineFigure, Panel, Scale, Series};
 use crate::output::records_uff::{records_uff, Record, RecordKind};

@@ -6,11 +6,11 @@
 //! loaded state adds ∂(C_qᵀλ)/∂q.
 
 use super::System;
-use crate::anchor::Hess;
-use crate::element::{EnergySplit, Mat8, Vec8};
-use crate::joint::ConstraintJac;
 use crate::linalg::Scatter;
-use crate::pair::{PairGrad, PairHess};
+use crate::mechanics::anchor::Hess;
+use crate::mechanics::element::{EnergySplit, Mat8, Vec8};
+use crate::mechanics::joint::ConstraintJac;
+use crate::mechanics::pair::{PairGrad, PairHess};
 use faer::Mat;
 
 /// Strain energy of a coordinate vector by kind [SI: J].
@@ -26,7 +26,7 @@ pub struct EnergyBreakdown {
     /// energy, zero at an unloaded reference.
     pub other: f64,
     /// Quadratic forms only: an estimate of the form's round-off (beams:
-    /// [`crate::element::EnergySplit::roundoff`]; springs, loads and
+    /// [`crate::mechanics::element::EnergySplit::roundoff`]; springs, loads and
     /// constraint forces: ε|v|ᵀ|H||v|) [SI: J].
     pub roundoff: f64,
 }
@@ -271,17 +271,19 @@ impl System {
     }
 
     /// Adds the contacts' regularizing stiffness of static Newton
-    /// iterations into `out` (see [`crate::contact::ContactElement::regularization`]).
+    /// iterations into `out` (see [`crate::mechanics::contact::ContactElement::regularization`]).
     pub fn add_contact_regularization(
         &self,
         q: &[f64],
-        which: crate::contact::Regularize,
+        which: crate::mechanics::contact::Regularize,
         out: &mut impl Scatter,
     ) {
         let mut h = PairHess::zeros();
         for c in &self.contacts {
             if c.regularization(q, which, &mut h) {
-                let dofs: Vec<usize> = crate::spring::ForceElement::pair(c).dofs().collect();
+                let dofs: Vec<usize> = crate::mechanics::spring::ForceElement::pair(c)
+                    .dofs()
+                    .collect();
                 scatter_mat(&dofs, &h, out);
             }
         }
@@ -314,7 +316,7 @@ impl System {
 
     /// The quadratic form ½ φᵀ K φ of the tangent stiffness at `at`, split
     /// by kind. Beam parts come from strain variations (see
-    /// [`crate::element::CableElement::quadratic_form`]), so the result keeps
+    /// [`crate::mechanics::element::CableElement::quadratic_form`]), so the result keeps
     /// full relative precision for smooth shapes even on meshes with very
     /// short elements.
     pub fn stiffness_quadratic_form(&self, at: &Linearization, phi: &[f64]) -> EnergyBreakdown {

@@ -1,17 +1,17 @@
 //! Construction of a [`System`] from a validated [`Model`].
 
 use super::{BeamMesh, PointMassDofs, ReleasedSupport, RigidDofs, SensorPoint, System};
-use crate::anchor::{perp, Anchor};
-use crate::contact::law::NormalLaw;
-use crate::contact::{ContactElement, ContactKind};
-use crate::element::{CableElement, CableSection};
-use crate::joint::{Constraint, Pin, Slider, Weld};
-use crate::load::PointLoad;
+use crate::mechanics::anchor::{perp, Anchor};
+use crate::mechanics::contact::law::NormalLaw;
+use crate::mechanics::contact::{ContactElement, ContactKind};
+use crate::mechanics::element::{CableElement, CableSection};
+use crate::mechanics::joint::{Constraint, Pin, Slider, Weld};
+use crate::mechanics::load::PointLoad;
+use crate::mechanics::pair::Pair;
+use crate::mechanics::spring::{LinearSpring, TorsionSpring};
 use crate::model::{
     Contact, JointType, LoadFrame, Model, Placement, PointSpec, PointTarget, SegmentOwner, Side,
 };
-use crate::pair::Pair;
-use crate::spring::{LinearSpring, TorsionSpring};
 use nalgebra::Vector2;
 
 /// Relative distance below which an attachment node merges with a mesh node.

@@ -4,7 +4,7 @@
 //! exactly (4-point Gauss: r and ṙ are cubic in x).
 
 use super::System;
-use crate::element::{gauss01, shape};
+use crate::mechanics::element::{gauss01, shape};
 use nalgebra::Vector2;
 
 impl System {

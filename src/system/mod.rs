@@ -22,13 +22,13 @@ pub use mass::MassMatrix;
 pub use release::ReleasedSupport;
 pub use rigid_motion::{RigidMotions, SparseColumn};
 
-use crate::anchor::Anchor;
-use crate::contact::ContactElement;
-use crate::element::{CableElement, CableSection};
-use crate::joint::Constraint;
-use crate::load::PointLoad;
+use crate::mechanics::anchor::Anchor;
+use crate::mechanics::contact::ContactElement;
+use crate::mechanics::element::{CableElement, CableSection};
+use crate::mechanics::joint::Constraint;
+use crate::mechanics::load::PointLoad;
+use crate::mechanics::spring::ForceElement;
 use crate::model::{SensorFrame, SensorQuantity};
-use crate::spring::ForceElement;
 use nalgebra::Vector2;
 use std::sync::OnceLock;
 

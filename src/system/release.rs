@@ -13,7 +13,7 @@
 //! are those of the holding system: only constraints and loads change.
 
 use super::System;
-use crate::load::PointLoad;
+use crate::mechanics::load::PointLoad;
 use crate::model::TimeFunction;
 
 /// A joint that holds until a transient releases it.

@@ -16,7 +16,7 @@
 //! cluster's coordinates only.
 
 use super::System;
-use crate::anchor::Anchor;
+use crate::mechanics::anchor::Anchor;
 
 /// A sparse column over the global coordinates: (coordinate, value).
 pub type SparseColumn = Vec<(usize, f64)>;

@@ -22,9 +22,9 @@
 //!   with a preload the tension stays fixed and ∂K/∂k = ∇l ∇lᵀ.
 
 use super::params::{ParamTarget, ParameterSet};
+use crate::mechanics::pair::{PairGrad, PairHess};
+use crate::mechanics::spring::{ForceElement, LinearSpring};
 use crate::model::Model;
-use crate::pair::{PairGrad, PairHess};
-use crate::spring::{ForceElement, LinearSpring};
 use crate::system::System;
 use faer::Mat;
 
@@ -48,8 +48,8 @@ fn beam_forms(system: &System, beam: usize, phi: &[f64]) -> BeamForms {
     };
     for (k, el) in b.elements.iter().enumerate() {
         let dofs = b.element_dofs(k);
-        let e = crate::element::Vec8::from_fn(|i, _| q[dofs[i]]);
-        let v = crate::element::Vec8::from_fn(|i, _| phi[dofs[i]]);
+        let e = crate::mechanics::element::Vec8::from_fn(|i, _| q[dofs[i]]);
+        let v = crate::mechanics::element::Vec8::from_fn(|i, _| phi[dofs[i]]);
         let s = el.quadratic_form(&e, &v);
         out.axial += 2.0 * s.axial;
         out.bending += 2.0 * s.bending;

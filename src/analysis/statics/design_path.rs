@@ -26,8 +26,8 @@
 use super::{continue_equilibrium, solve_equilibrium, Equilibrium, StaticSettings};
 use crate::error::AnalysisError;
 pub use crate::error::DesignPathError;
+use crate::mechanics::spring::ForceElement;
 use crate::model::Model;
-use crate::spring::ForceElement;
 use crate::system::System;
 
 /// Smallest step in τ before the path gives up.

@@ -37,7 +37,7 @@
 //! body resting on a contact, or a small gap away from it, would make the
 //! Newton matrix singular: the Newton matrix (never the residual) gets a
 //! regularizing stiffness for each contact whose own tangent is below it
-//! ([`crate::contact::ContactElement::regularization`]), so the iteration
+//! ([`crate::mechanics::contact::ContactElement::regularization`]), so the iteration
 //! closes the gap and converges to the exact equilibrium, where the
 //! regularization has dropped out of any loaded contact stiffer than it.
 //!
@@ -56,12 +56,12 @@ pub mod design_path;
 pub mod prestress;
 mod reduced_tangent;
 
-use crate::contact::Regularize;
 use crate::error::AnalysisError;
 use crate::linalg::null_space::{symmetrize, NullSpace, Projected};
 use crate::linalg::sparse::mul_vec;
 pub(crate) use crate::linalg::vector::{argmax_abs, dot, norm2, norm_inf};
 use crate::linalg::{Scatter, Triplets};
+use crate::mechanics::contact::Regularize;
 use crate::system::{Linearization, System};
 use faer::linalg::solvers::Solve;
 use faer::sparse::SparseColMat;
@@ -517,7 +517,7 @@ impl<'a> Solver<'a> {
     /// (rigid rotations, mechanisms with springs); the continuation tries it
     /// before it cuts the load increment. `contacts` says which contacts'
     /// regularizing stiffness the Newton matrix gets (see
-    /// [`crate::contact::ContactElement::regularization`]).
+    /// [`crate::mechanics::contact::ContactElement::regularization`]).
     pub(crate) fn newton(
         &self,
         state: &mut State,

@@ -16,8 +16,6 @@
 use super::{
     argmax_abs, dot, norm2, norm_inf, Damping, NewtonFailure, Ramp, Snapshot, Solver, State,
 };
-use crate::anchor::Anchor;
-use crate::contact::Regularize;
 use crate::error::AnalysisError;
 use crate::linalg::dense::solve_generalized;
 use crate::linalg::krylov::{lowest_modes, KrylovSettings};
@@ -25,6 +23,8 @@ use crate::linalg::null_space::{symmetrize, NullSpace, Projected};
 use crate::linalg::sparse::mul_vec;
 use crate::linalg::EigenFailure;
 use crate::linalg::Triplets;
+use crate::mechanics::anchor::Anchor;
+use crate::mechanics::contact::Regularize;
 use crate::system::{Linearization, System};
 use faer::linalg::solvers::Solve;
 use faer::sparse::SparseColMat;

@@ -18,15 +18,15 @@
 //! most [`ONSET_FRACTION`] of the impact's expected largest penetration
 //! δ_max (an impact at the approach speed of the contact's effective mass
 //! on the elastic law: ½mv² = Kδⁿ⁺¹/(n + 1), see
-//! [`crate::contact::law::NormalLaw::max_penetration`]); otherwise it is
+//! [`crate::mechanics::contact::law::NormalLaw::max_penetration`]); otherwise it is
 //! repeated with a shorter step. While an impact lasts, steps are held to
 //! 1/[`STEPS_PER_IMPACT`] of its expected duration ≈ 3 δ_max/v (Hertz:
 //! 2.94 δ_max/v; linear: π δ_max/v).
 
-use crate::contact::Dissipation;
 use crate::linalg::Scatter;
-use crate::pair::PairGrad;
-use crate::spring::ForceElement;
+use crate::mechanics::contact::Dissipation;
+use crate::mechanics::pair::PairGrad;
+use crate::mechanics::spring::ForceElement;
 use crate::system::System;
 
 /// Largest first penetration, as a fraction of the expected δ_max.

@@ -6,7 +6,7 @@
 //! it was linearized at (grey) and at q + a·φ (colour):
 //!
 //! * beams as their centre lines r(ξ) = S(ξ)·e with the Hermite shape
-//!   functions of [`crate::element::shape`], sampled at
+//!   functions of [`crate::mechanics::element::shape`], sampled at
 //!   [`ModeShapeSettings::points_per_element`] points per element, so that
 //!   a bending mode is drawn curved as the element interpolates it, not as
 //!   straight lines between nodes;
@@ -25,7 +25,7 @@
 //! along its tangent for a mostly axial motion, making pictures repeatable.
 
 use crate::analysis::{ModalResult, Mode};
-use crate::element::shape;
+use crate::mechanics::element::shape;
 use crate::output::plot::{Geometry, ModeShape, ModeShapeFigure, Scale};
 use crate::system::System;
 use nalgebra::Vector2;

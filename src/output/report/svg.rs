@@ -132,7 +132,9 @@ pub fn assembly_svg(system: &System, q: &[f64], geometry: &Geometry, width: f64)
     for c in &system.contacts {
         let (x, y) = view.px(at(
             system,
-            crate::spring::ForceElement::pair(c).b.position(q),
+            crate::mechanics::spring::ForceElement::pair(c)
+                .b
+                .position(q),
         ));
         let _ = write!(
             s,

@@ -14,7 +14,7 @@
 //! The penetration δ(q) [SI: m] comes with its gradient ∇δ and Hessian
 //! ∇²δ in the pair's local coordinates (the segment body's, then the
 //! point's). The flat part is the slider's n(θ)·(P − A) (see
-//! [`crate::joint::Slider`]), so the turning normal and the body rotation
+//! [`crate::mechanics::joint::Slider`]), so the turning normal and the body rotation
 //! are in ∇²δ; a cap is a distance between two material points, whose
 //! Hessian has the curvature term Jᵀ(I − uuᵀ)J/|P − E|.
 //!
@@ -28,11 +28,11 @@
 
 pub mod law;
 
-use crate::anchor::perp;
-use crate::anchor::Anchor;
-use crate::joint::{Constraint, ConstraintJac, Slider};
-use crate::pair::{Pair, PairGrad, PairHess, PairJac2};
-use crate::spring::ForceElement;
+use crate::mechanics::anchor::perp;
+use crate::mechanics::anchor::Anchor;
+use crate::mechanics::joint::{Constraint, ConstraintJac, Slider};
+use crate::mechanics::pair::{Pair, PairGrad, PairHess, PairJac2};
+use crate::mechanics::spring::ForceElement;
 use law::{NormalForce, NormalLaw};
 use nalgebra::{Matrix2, Vector2};
 

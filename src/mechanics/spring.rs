@@ -10,7 +10,7 @@
 //! the geometric part from the force turning with the line), plus the damping
 //! force and its q̇-Jacobian. Everything is written into local pair buffers.
 
-use crate::pair::{Pair, PairGrad, PairHess, PairJac2};
+use crate::mechanics::pair::{Pair, PairGrad, PairHess, PairJac2};
 
 /// An elastic element with optional viscous damping.
 pub trait ForceElement: std::fmt::Debug + Send + Sync {

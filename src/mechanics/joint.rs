@@ -11,8 +11,8 @@
 //! the λ-weighted Hessian Σ λᵢ ∂²Cᵢ/∂q² (16 × 16) into caller buffers; the
 //! last one gives the ∂(C_qᵀλ)/∂q term of a linearization about a loaded state.
 
-use crate::anchor::perp;
-use crate::pair::{Pair, PairGrad, PairHess, PairJac2, MAX_PAIR_DOFS};
+use crate::mechanics::anchor::perp;
+use crate::mechanics::pair::{Pair, PairGrad, PairHess, PairJac2, MAX_PAIR_DOFS};
 use nalgebra::{SMatrix, Vector2};
 
 /// Most rows of one joint.

@@ -2,7 +2,7 @@
 //! springs. Local coordinates are a's followed by b's (at most 16); results
 //! go into fixed-size buffers that the caller scatters with [`Pair::dofs`].
 
-use crate::anchor::{Anchor, Grad, Hess, PosJac, MAX_ANCHOR_DOFS};
+use crate::mechanics::anchor::{Anchor, Grad, Hess, PosJac, MAX_ANCHOR_DOFS};
 use nalgebra::{SMatrix, SVector, Vector2};
 
 /// Most local coordinates of a pair.

@@ -11,7 +11,7 @@
 //! touches at most [`MAX_ANCHOR_DOFS`] coordinates; its derivatives are
 //! written into fixed-size local buffers that the system scatters.
 
-use crate::element::{shape, ShapeValues};
+use crate::mechanics::element::{shape, ShapeValues};
 use nalgebra::{SMatrix, SVector, Vector2};
 
 /// Most coordinates one anchor depends on (an ANCF element).

@@ -5,7 +5,7 @@
 //! initial configuration). Its generalized force is `Q = (∂r/∂q)ᵀ F`
 //! (paper Eq. 7); on a rigid-body point off the centre, `∂Q/∂q ≠ 0`.
 
-use crate::anchor::{Anchor, Hess, PosJac};
+use crate::mechanics::anchor::{Anchor, Hess, PosJac};
 use crate::model::TimeFunction;
 use nalgebra::Vector2;
 
