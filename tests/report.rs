@@ -42,6 +42,7 @@ fn paper_report() -> (System, String) {
             system: &system,
             q: &system.q0,
             modal: &r,
+            damping_ratio: Vec::new(),
         }],
         sections: vec![Section {
             id: "impulse".into(),

@@ -8,10 +8,9 @@ use super::common::{load_model, source_label, write_output};
 use super::identify::{compute, Identified, IdentifyArgs};
 use super::impulse::ExperimentArgs;
 use ancf_modal::analysis::impulse::excitation;
-use ancf_modal::analysis::statics::prestress::prestressed_modal;
 use ancf_modal::analysis::statics::StaticSettings;
 use ancf_modal::analysis::switch_off::{run_switch_off, SwitchOffSettings};
-use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings};
+use ancf_modal::analysis::{ModalResult, ModalSettings};
 use ancf_modal::model::Model;
 use ancf_modal::output::frf_report::ResponseQuantity;
 use ancf_modal::output::provenance::{model_sha256, tool_version, utc_now};
@@ -85,12 +84,13 @@ pub fn run(args: ReportArgs) -> Result<()> {
             modes: Some(IDENTIFY_MODES),
             ..ModalSettings::default()
         };
-        let modal = modal_at_reference(&system, &settings)
+        let (modal, output) = ancf_modal::results::modal::modal(&model, &system, &settings)
             .with_context(|| source_label(path.as_deref()))?;
         let parts = Parts {
             model: &model,
             system: &system,
             modal: &modal,
+            damping_ratio: output.modes.iter().map(|m| m.damping_ratio).collect(),
             sections: Vec::new(),
         };
         write(&out, parts, path.as_deref(), prestress)?;
@@ -130,6 +130,13 @@ pub fn write_report(
         model: &id.model,
         system: &id.system,
         modal: &id.modal,
+        damping_ratio: id
+            .output
+            .modal
+            .modes
+            .iter()
+            .map(|m| m.damping_ratio)
+            .collect(),
         sections,
     };
     write(out, parts, path, prestress)
@@ -140,6 +147,8 @@ struct Parts<'a> {
     model: &'a Model,
     system: &'a System,
     modal: &'a ModalResult,
+    /// Each mode's damping ratio [–].
+    damping_ratio: Vec<Option<f64>>,
     sections: Vec<Section>,
 }
 
@@ -152,8 +161,13 @@ fn write(out: &Path, p: Parts, path: Option<&Path>, prestress: bool) -> Result<(
     };
     let prestressed = if prestress {
         Some(
-            prestressed_modal(p.system, &StaticSettings::default(), &settings)
-                .with_context(label)?,
+            ancf_modal::results::modal::prestressed(
+                p.model,
+                p.system,
+                &StaticSettings::default(),
+                &settings,
+            )
+            .with_context(label)?,
         )
     } else {
         None
@@ -172,13 +186,15 @@ fn write(out: &Path, p: Parts, path: Option<&Path>, prestress: bool) -> Result<(
         system: p.system,
         q: &p.system.q0,
         modal: p.modal,
+        damping_ratio: p.damping_ratio,
     }];
-    if let Some(e) = &prestressed {
+    if let Some((e, output)) = &prestressed {
         mode_sets.push(ModeSet {
             title: "Modes at the pre-stressed equilibrium",
             system: p.system,
             q: &e.equilibrium.q,
             modal: &e.prestressed,
+            damping_ratio: output.modes.iter().map(|m| m.damping_ratio).collect(),
         });
     }
     let input = ReportInput {

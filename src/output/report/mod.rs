@@ -65,7 +65,7 @@ pub struct Section {
 }
 
 /// Modes linearized at a state of a system.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct ModeSet<'a> {
     /// Heading of the modes' section, e.g. "Modes at the reference".
     pub title: &'a str,
@@ -73,6 +73,9 @@ pub struct ModeSet<'a> {
     /// The state the modes were linearized at.
     pub q: &'a [f64],
     pub modal: &'a ModalResult,
+    /// Each mode's damping ratio ζ [–] (null for zero-frequency modes);
+    /// empty when not computed.
+    pub damping_ratio: Vec<Option<f64>>,
 }
 
 /// Everything a report shows.
@@ -143,12 +146,18 @@ fn modes_section(id: &str, set: &ModeSet) -> String {
         r.mechanism_modes,
         escape(r.solver),
     );
-    s.push_str("<table class=\"modes-table\"><thead><tr><th>mode</th><th>frequency [Hz]</th><th>kind</th><th>bending %</th><th>axial %</th><th>spring %</th><th>error bound</th></tr></thead><tbody>");
-    for m in &r.modes {
+    s.push_str("<table class=\"modes-table\"><thead><tr><th>mode</th><th>frequency [Hz]</th><th>kind</th><th>bending %</th><th>axial %</th><th>spring %</th><th>error bound</th><th>damping ζ</th></tr></thead><tbody>");
+    for (k, m) in r.modes.iter().enumerate() {
         let bound = m.error_bound.map_or(String::new(), |b| format!("{b:.1e}"));
+        let zeta = set
+            .damping_ratio
+            .get(k)
+            .copied()
+            .flatten()
+            .map_or(String::new(), |z| format!("{:.3} %", 100.0 * z));
         let _ = write!(
             s,
-            "<tr data-mode=\"{}\" data-frequency-hz=\"{:?}\" data-kind=\"{}\"><td>{}</td><td class=\"num\">{:.3}</td><td>{}</td><td class=\"num\">{:.2}</td><td class=\"num\">{:.2}</td><td class=\"num\">{:.2}</td><td class=\"num\">{bound}</td></tr>",
+            "<tr data-mode=\"{}\" data-frequency-hz=\"{:?}\" data-kind=\"{}\"><td>{}</td><td class=\"num\">{:.3}</td><td>{}</td><td class=\"num\">{:.2}</td><td class=\"num\">{:.2}</td><td class=\"num\">{:.2}</td><td class=\"num\">{bound}</td><td class=\"num\">{zeta}</td></tr>",
             m.index,
             m.frequency_hz,
             m.kind,
