@@ -17,7 +17,6 @@ pub mod measured;
 pub mod mechanics;
 pub mod model;
 pub mod output;
-pub mod reference;
 pub mod results;
 pub mod system;
 

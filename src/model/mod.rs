@@ -5,6 +5,7 @@
 mod contact;
 mod interpolate;
 mod placement;
+pub mod reference;
 mod rigid;
 pub mod sanity;
 mod types;

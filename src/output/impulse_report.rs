@@ -1,7 +1,7 @@
 //! Impulse results as a table, a JSON document and CSV.
 
 use crate::analysis::impulse::{Excitation, ImpulseResult};
-use crate::reference::Errors;
+use crate::model::reference::Errors;
 
 use std::fmt::Write;
 

@@ -11,8 +11,8 @@
 use super::{CalibrationOutput, ImpulseOutput, ModalOutput};
 use crate::analysis::impulse::ImpulseResult;
 use crate::measured::analysis::FrfAnalysis;
+use crate::model::reference::{self, Errors};
 use crate::model::{JointType, Model, PointSpec};
-use crate::reference::{self, Errors};
 use schemars::JsonSchema;
 use serde::Serialize;
 

@@ -7,7 +7,7 @@ use crate::analysis::impulse::{Excitation, ImpulseResult};
 use crate::analysis::simulate::{EnergyBalance, Simulation, SimulationSettings};
 use crate::analysis::switch_off::{Calibrated, SwitchOffResult, SwitchOffRun};
 use crate::analysis::transient::contacts::ContactStats;
-use crate::reference::Errors;
+use crate::model::reference::Errors;
 use schemars::JsonSchema;
 use serde::Serialize;
 use std::collections::BTreeMap;

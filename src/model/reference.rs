@@ -4,7 +4,7 @@
 use serde_json::Value;
 
 /// The reference file's text.
-pub const PAPER_TABLES_JSON: &str = include_str!("../reference/paper_tables.json");
+pub const PAPER_TABLES_JSON: &str = include_str!("../../reference/paper_tables.json");
 
 /// Table 3: first bending frequency of the free-free assembly [SI: Hz].
 #[derive(Debug, Clone, Copy, PartialEq)]
