@@ -12,7 +12,7 @@ use ancf::analysis::calibrate::{
 };
 use ancf::analysis::ModeKind;
 use ancf::model::Model;
-use ancf::output::provenance::sha256_hex;
+use ancf::results::provenance::sha256_hex;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};

@@ -71,7 +71,7 @@ fn _panic(py: Python<'_>, message: String) -> PyResult<()> {
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
-    m.add("__version__", ancf::output::provenance::tool_version())?;
+    m.add("__version__", ancf::results::provenance::tool_version())?;
     m.add("ModelError", py.get_type::<errors::ModelError>())?;
     m.add("AnalysisError", py.get_type::<errors::AnalysisError>())?;
     m.add_class::<model::PyModel>()?;

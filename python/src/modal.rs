@@ -300,7 +300,7 @@ impl PyModalResult {
     fn write_uff(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
         compute(py, || {
             let system = System::new(&self.model);
-            let provenance = ancf::output::provenance::header_lines(&self.sha256);
+            let provenance = ancf::results::provenance::header_lines(&self.sha256);
             let text =
                 ancf::output::modal_uff::modal_uff(&system, self.outcome.result(), &provenance);
             ancf::output::files::write_atomic(&path, text.as_bytes())

@@ -8,7 +8,7 @@ use ancf::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf::analysis::sweep::{Quantity, Sweep, SweepSettings};
 use ancf::error::{ModelError, Source};
 use ancf::model::Model;
-use ancf::output::provenance::sha256_hex;
+use ancf::results::provenance::sha256_hex;
 use ancf::System;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};

@@ -142,7 +142,7 @@ pub fn run(
     };
     let document = compute(py, move || {
         Ok(SweepDocument {
-            tool_version: Some(ancf::output::provenance::tool_version().to_string()),
+            tool_version: Some(ancf::results::provenance::tool_version().to_string()),
             model_sha256: Some(model.sha256.clone()),
             warnings,
             ..run.document()

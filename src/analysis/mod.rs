@@ -6,6 +6,7 @@ pub mod convergence;
 pub mod damped_modes;
 pub mod impulse;
 pub mod modal;
+pub mod model_frf;
 pub mod shear;
 pub mod simulate;
 pub mod statics;

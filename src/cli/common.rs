@@ -63,7 +63,7 @@ pub fn model_sha256(path: Option<&Path>) -> Result<String> {
 /// As [`model_sha256`] for a command whose built-in model is `builtin`.
 pub fn model_sha256_or(path: Option<&Path>, builtin: &str) -> Result<String> {
     use anyhow::Context;
-    ancf_modal::output::provenance::model_sha256_or(path, builtin)
+    ancf_modal::results::provenance::model_sha256_or(path, builtin)
         .with_context(|| format!("{}: cannot read the file", source_label(path)))
 }
 

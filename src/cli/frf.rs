@@ -45,7 +45,7 @@ fn model_overlay(
     use anyhow::Context;
     let bytes =
         std::fs::read(path).with_context(|| format!("{}: cannot read the file", path.display()))?;
-    let sha = ancf_modal::output::provenance::sha256_hex(&bytes);
+    let sha = ancf_modal::results::provenance::sha256_hex(&bytes);
     let model = ancf_modal::Model::from_file(path)?;
     super::common::check_units(&model, Some(path));
     let (overlay, h) =

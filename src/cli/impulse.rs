@@ -111,7 +111,7 @@ pub fn run(args: ImpulseArgs) -> Result<()> {
         write_output(&spectrum_path(path), &spectrum_csv(&result))?;
     }
     if let Some(path) = &args.output.uff {
-        let provenance = ancf_modal::output::provenance::header_lines(
+        let provenance = ancf_modal::results::provenance::header_lines(
             &super::common::model_sha256(args.model.as_deref())?,
         );
         let text = ancf_modal::output::records_uff::time_records_uff(

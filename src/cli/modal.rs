@@ -40,7 +40,7 @@ pub fn run(args: ModalArgs) -> Result<()> {
         write_output(path, &modal_csv(&result))?;
     }
     if let Some(path) = &args.output.uff {
-        let provenance = ancf_modal::output::provenance::header_lines(
+        let provenance = ancf_modal::results::provenance::header_lines(
             &super::common::model_sha256(args.model.as_deref())?,
         );
         write_output(path, &modal_uff(&system, &result, &provenance))?;

@@ -13,13 +13,13 @@ use ancf_modal::analysis::switch_off::{run_switch_off, SwitchOffSettings};
 use ancf_modal::analysis::{ModalResult, ModalSettings};
 use ancf_modal::model::Model;
 use ancf_modal::output::frf_report::ResponseQuantity;
-use ancf_modal::output::provenance::{model_sha256, tool_version, utc_now};
 use ancf_modal::output::report::sections::{
     calibration_section, comparison_section, has_release, impulse_section, measured_section,
     switch_off_section,
 };
 use ancf_modal::output::report::{report_html, ModeSet, Provenance, ReportInput, Section};
 use ancf_modal::results::identify::IDENTIFY_MODES;
+use ancf_modal::results::provenance::{model_sha256, tool_version, utc_now};
 use ancf_modal::results::ModelOverlay;
 use ancf_modal::System;
 use anyhow::{Context, Result};

@@ -11,8 +11,8 @@ use ancf_modal::analysis::sweep::{
     DEFAULT_TRACKED_MODES,
 };
 use ancf_modal::output::figures::sweep::{check_plottable, write_sweep_figure};
-use ancf_modal::output::provenance::tool_version;
 use ancf_modal::output::sweep_report::{sweep_csv, sweep_table};
+use ancf_modal::results::provenance::tool_version;
 use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};

@@ -5,7 +5,7 @@ use super::output::OutputArgs;
 use super::sweep::{emit, SWEEP_OUTPUTS};
 use ancf_modal::analysis::sweep::{merge, SweepDocument, SweepError};
 use ancf_modal::output::figures::sweep::check_plottable;
-use ancf_modal::output::provenance::tool_version;
+use ancf_modal::results::provenance::tool_version;
 use anyhow::{anyhow, Result};
 use clap::Args;
 use std::path::PathBuf;

@@ -81,7 +81,7 @@ pub fn run(args: TransientArgs) -> Result<()> {
         write_output(path, &transient_csv(&sim))?;
     }
     if let Some(path) = &args.output.uff {
-        let provenance = ancf_modal::output::provenance::header_lines(
+        let provenance = ancf_modal::results::provenance::header_lines(
             &super::common::model_sha256(args.model.as_deref())?,
         );
         write_output(path, &transient_uff(&sim, &provenance))?;

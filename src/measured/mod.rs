@@ -32,11 +32,12 @@ pub mod error;
 pub mod fit;
 pub mod frf;
 pub mod mac;
-pub mod model_frf;
+mod quantity;
 pub mod uff;
 pub mod window;
 
 pub use error::MeasuredError;
+pub use quantity::ResponseQuantity;
 
 use std::path::{Path, PathBuf};
 

@@ -4,6 +4,7 @@
 
 mod contact;
 mod interpolate;
+pub mod number;
 mod placement;
 pub mod reference;
 mod rigid;

@@ -3,6 +3,12 @@
 
 use serde_json::Value;
 
+/// Paper, Fig. 7: node 0 travels ~2 mm in ~1.75 ms at switch-off [SI: s].
+pub const PAPER_TIME_TO_2MM_S: f64 = 1.75e-3;
+/// Paper, Fig. 8: the rigid model departs from the measurement after
+/// ~1.26 ms [SI: s].
+pub const PAPER_RIGID_DEPARTURE_S: f64 = 1.26e-3;
+
 /// The reference file's text.
 pub const PAPER_TABLES_JSON: &str = include_str!("../../reference/paper_tables.json");
 

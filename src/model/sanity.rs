@@ -38,7 +38,7 @@ pub enum UnitWarning {
     Young { path: String, value: f64 },
     #[error("{path}: density {value} kg/m³ is outside {}–{} kg/m³: is the model in SI units?", DENSITY_RANGE.0, DENSITY_RANGE.1)]
     Density { path: String, value: f64 },
-    #[error("{path}: the wave speed √(E/ρ) = {} m/s is outside {}–{} m/s: is the model in SI units?", crate::output::number::significant(*value, 4), WAVE_SPEED_RANGE.0, WAVE_SPEED_RANGE.1)]
+    #[error("{path}: the wave speed √(E/ρ) = {} m/s is outside {}–{} m/s: is the model in SI units?", crate::model::number::significant(*value, 4), WAVE_SPEED_RANGE.0, WAVE_SPEED_RANGE.1)]
     WaveSpeed { path: String, value: f64 },
 }
 

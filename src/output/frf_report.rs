@@ -14,46 +14,7 @@ use crate::output::plot::{
     Guide, Legend, LineFigure, MarkerShape, Panel, PointMarker, Scale, Series, SeriesStyle,
 };
 
-/// What the response channel measures (the FRF's numerator).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum ResponseQuantity {
-    Displacement,
-    #[default]
-    Velocity,
-    Acceleration,
-}
-
-impl ResponseQuantity {
-    pub fn name(self) -> &'static str {
-        match self {
-            ResponseQuantity::Displacement => "displacement",
-            ResponseQuantity::Velocity => "velocity",
-            ResponseQuantity::Acceleration => "acceleration",
-        }
-    }
-    /// SI unit of the FRF (response per newton).
-    pub fn frf_unit(self) -> &'static str {
-        match self {
-            ResponseQuantity::Displacement => "m/N",
-            ResponseQuantity::Velocity => "m/s/N",
-            ResponseQuantity::Acceleration => "m/s²/N",
-        }
-    }
-    fn unit(self) -> &'static str {
-        match self {
-            ResponseQuantity::Displacement => "m",
-            ResponseQuantity::Velocity => "m/s",
-            ResponseQuantity::Acceleration => "m/s^2",
-        }
-    }
-    fn uff_type(self) -> SpecDataType {
-        match self {
-            ResponseQuantity::Displacement => SpecDataType::DISPLACEMENT,
-            ResponseQuantity::Velocity => SpecDataType::VELOCITY,
-            ResponseQuantity::Acceleration => SpecDataType::ACCELERATION,
-        }
-    }
-}
+pub use crate::measured::ResponseQuantity;
 
 /// Identified modes as a readable table.
 pub fn frf_table(a: &FrfAnalysis, q: ResponseQuantity) -> String {
@@ -66,7 +27,7 @@ pub fn frf_table(a: &FrfAnalysis, q: ResponseQuantity) -> String {
             "{} hit(s) of {} samples at {} Hz ({:.4} s, Δf = {:.4} Hz), {} window",
             e.averages,
             e.samples,
-            crate::output::number::significant(e.sample_rate_hz, 7),
+            crate::model::number::significant(e.sample_rate_hz, 7),
             e.samples as f64 / e.sample_rate_hz,
             e.df(),
             e.window
@@ -158,7 +119,7 @@ pub fn frf_uff(a: &FrfAnalysis, q: ResponseQuantity, model_sha256: Option<&str>)
     } else {
         0.0
     };
-    let [tool, model] = super::provenance::header_lines(model_sha256.unwrap_or("none"));
+    let [tool, model] = crate::results::provenance::header_lines(model_sha256.unwrap_or("none"));
     let base = Function {
         id: [
             "H1".into(),

@@ -38,7 +38,7 @@ pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f
         r.sensor,
         r.quantity,
         r.signal.len(),
-        crate::output::number::significant(r.sample_rate_hz, 7),
+        crate::model::number::significant(r.sample_rate_hz, 7),
         r.spectrum.window.name()
     );
     let _ = writeln!(s, "spectrum peaks:");

@@ -13,10 +13,7 @@ use crate::analysis::switch_off::{SwitchOffResult, DEPARTURE_FRACTION};
 
 use std::fmt::Write;
 
-/// Paper, Fig. 7: ~2 mm at ~1.75 ms.
-pub const PAPER_TIME_TO_2MM_S: f64 = 1.75e-3;
-/// Paper, Fig. 8: the rigid model departs after ~1.26 ms.
-pub const PAPER_RIGID_DEPARTURE_S: f64 = 1.26e-3;
+pub use crate::model::reference::{PAPER_RIGID_DEPARTURE_S, PAPER_TIME_TO_2MM_S};
 
 fn ms(t: Option<f64>) -> String {
     t.map_or_else(

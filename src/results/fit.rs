@@ -8,8 +8,8 @@ use crate::analysis::calibrate::CalibrationResult;
 use crate::analysis::convergence::{ConvergenceData, ReferenceKind};
 use crate::measured::analysis::FrfAnalysis;
 use crate::measured::fit::{DiagramPole, RejectReason};
+use crate::measured::ResponseQuantity;
 use crate::model::{Model, RayleighDamping};
-use crate::output::frf_report::ResponseQuantity;
 use crate::System;
 use schemars::JsonSchema;
 use serde::Serialize;
@@ -170,7 +170,7 @@ pub enum OverlayError {
     #[error(transparent)]
     Analysis(#[from] crate::error::AnalysisError),
     #[error(transparent)]
-    Frf(#[from] crate::measured::model_frf::ModelFrfError),
+    Frf(#[from] crate::analysis::model_frf::ModelFrfError),
 }
 
 impl ModelOverlay {
@@ -199,7 +199,7 @@ impl ModelOverlay {
             ResponseQuantity::Velocity => 1,
             ResponseQuantity::Acceleration => 2,
         };
-        let h = crate::measured::model_frf::model_frf(
+        let h = crate::analysis::model_frf::model_frf(
             &system,
             &modal,
             sensor,

@@ -28,13 +28,15 @@
 pub mod fit;
 pub mod identify;
 pub mod modal;
+pub mod provenance;
+pub mod statics;
 pub mod time;
 
 pub use crate::analysis::sweep::SweepDocument;
-pub use crate::output::static_report::{static_report, StaticReport};
 pub use fit::{CalibrationOutput, ConvergenceOutput, FrfOutput, ModelOverlay};
 pub use identify::IdentifyOutput;
 pub use modal::{ModalJson, ModalOutput, ModeEntry, PrestressedOutput};
+pub use statics::{static_report, StaticReport};
 pub use time::{ImpulseOutput, SwitchOffOutput, TransientOutput};
 
 use schemars::JsonSchema;
@@ -174,7 +176,7 @@ pub fn document(
         map.insert("warnings".into(), Value::Array(all));
         map.insert(
             "tool_version".into(),
-            Value::from(crate::output::provenance::tool_version()),
+            Value::from(crate::results::provenance::tool_version()),
         );
         map.insert("model_sha256".into(), Value::from(model_sha256));
     }

@@ -310,7 +310,7 @@ pub struct SwitchOffOutput {
 impl SwitchOffOutput {
     /// The document of `r`.
     pub fn new(r: &SwitchOffResult) -> Self {
-        use crate::output::switch_off_report::{PAPER_RIGID_DEPARTURE_S, PAPER_TIME_TO_2MM_S};
+        use crate::model::reference::{PAPER_RIGID_DEPARTURE_S, PAPER_TIME_TO_2MM_S};
         SwitchOffOutput {
             model: r.model.clone(),
             tracked_point: r.point_label.clone(),
