@@ -225,11 +225,13 @@ pub enum DesignPathError {
     Start(AnalysisError),
     #[error("contact `{contact}` opens at {at:.4} of the way to the design: no equilibrium with it closed")]
     ContactOpens { contact: String, at: f64 },
-    #[error("no equilibrium found beyond {at:.4} of the way to the design (steps below {min_step} of it): {source}")]
+    /// `last`: why the last, smallest step failed (in the message, not a
+    /// `source`: the chain would print it twice).
+    #[error("no equilibrium found beyond {at:.4} of the way to the design (steps below {min_step} of it): {last}")]
     Stalled {
         at: f64,
         min_step: f64,
-        source: AnalysisError,
+        last: AnalysisError,
     },
 }
 

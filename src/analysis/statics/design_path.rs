@@ -95,7 +95,7 @@ pub fn equilibrium_along(
                         None => DesignPathError::Stalled {
                             at: tau,
                             min_step: MIN_STEP,
-                            source,
+                            last: source,
                         },
                     });
                 }
