@@ -34,9 +34,19 @@ pub struct IdentifyArgs {
     pub out_dir: Option<PathBuf>,
     #[command(flatten)]
     pub experiment: ExperimentArgs,
+    #[command(flatten)]
+    pub comparison: ComparisonArgs,
+    /// Also write everything as one self-contained HTML report (see `report`).
+    #[arg(long, value_name = "FILE.html")]
+    pub html: Option<PathBuf>,
+}
+
+/// What the model is compared with and fitted to (`identify`, `report`).
+#[derive(Debug, Args)]
+pub struct ComparisonArgs {
     /// Also fit the equivalent beam height that matches the experiment's
     /// first bending frequency (eigenvalue-based `calibrate`); with
-    /// --out-dir the calibrated model is written as calibrated.json.
+    /// `identify --out-dir` the calibrated model is written as calibrated.json.
     #[arg(long)]
     pub calibrate: bool,
     /// Measured hammer records (CSV or UFF 58, as for `frf`): their fitted
@@ -50,9 +60,6 @@ pub struct IdentifyArgs {
     /// Fit band of the measured records, LO:HI in Hz (see `frf --band`).
     #[arg(long, value_name = "LO:HI", requires = "measured", value_parser = super::frf::parse_band)]
     pub measured_band: Option<(f64, f64)>,
-    /// Also write everything as one self-contained HTML report (see `report`).
-    #[arg(long, value_name = "FILE.html")]
-    pub html: Option<PathBuf>,
 }
 
 /// What `identify` computed.
@@ -111,23 +118,24 @@ pub fn compute(args: &IdentifyArgs) -> Result<Identified> {
     let (modal, modal_output) = ancf_modal::results::modal::modal(&model, &system, &settings)
         .with_context(|| source_label(args.model.as_deref()))?;
     let impulse = experiment(&model, args.model.as_deref(), &args.experiment)?;
-    let measured = if args.measured.is_empty() {
+    let c = &args.comparison;
+    let measured = if c.measured.is_empty() {
         None
     } else {
         let m = super::frf::MeasuredArgs {
             force: None,
             response: None,
             response_quantity: super::frf::Quantity::Velocity,
-            window: args.measured_window,
+            window: c.measured_window,
             estimator: super::frf::EstimatorArg::H1,
-            band: args.measured_band,
+            band: c.measured_band,
             max_order: 40,
         };
-        Some(m.analyse(&args.measured)?)
+        Some(m.analyse(&c.measured)?)
     };
     let (experiment, paper) =
         choose_experiment(&model, modal_output.first_bending_hz, measured.as_ref());
-    let calibration = match (args.calibrate, &experiment) {
+    let calibration = match (c.calibrate, &experiment) {
         (true, Some(e)) => Some(super::calibrate::equivalent_height(&model, e.frequency_hz)?),
         (true, None) => anyhow::bail!(
             "--calibrate needs an experiment: the model has no `reference` and no --measured records were given"

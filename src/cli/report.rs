@@ -5,7 +5,7 @@
 //! the switch-off when the model releases something.
 
 use super::common::{load_model, source_label, write_output};
-use super::identify::{compute, Identified, IdentifyArgs};
+use super::identify::{compute, ComparisonArgs, Identified, IdentifyArgs};
 use super::impulse::ExperimentArgs;
 use ancf_modal::analysis::impulse::excitation;
 use ancf_modal::analysis::statics::StaticSettings;
@@ -39,19 +39,8 @@ pub struct ReportArgs {
     pub prestress: bool,
     #[command(flatten)]
     pub experiment: ExperimentArgs,
-    /// Also fit the equivalent beam height that matches the experiment
-    /// (as `identify --calibrate`).
-    #[arg(long)]
-    pub calibrate: bool,
-    /// Measured hammer records (as `identify --measured`).
-    #[arg(long, value_name = "FILE", num_args = 1..)]
-    pub measured: Vec<PathBuf>,
-    /// Window of the measured records (see `frf --window`).
-    #[arg(long, value_name = "W", default_value = "rect", requires = "measured", value_parser = |s: &str| s.parse::<ancf_modal::measured::window::Window>())]
-    pub measured_window: ancf_modal::measured::window::Window,
-    /// Fit band of the measured records, LO:HI in Hz (see `frf --band`).
-    #[arg(long, value_name = "LO:HI", requires = "measured", value_parser = super::frf::parse_band)]
-    pub measured_band: Option<(f64, f64)>,
+    #[command(flatten)]
+    pub comparison: ComparisonArgs,
 }
 
 pub fn run(args: ReportArgs) -> Result<()> {
@@ -65,15 +54,12 @@ pub fn run(args: ReportArgs) -> Result<()> {
             output: Default::default(),
             out_dir: None,
             experiment: args.experiment,
-            calibrate: args.calibrate,
-            measured: args.measured,
-            measured_window: args.measured_window,
-            measured_band: args.measured_band,
+            comparison: args.comparison,
             html: None,
         })?;
         write_report(&out, &id, path.as_deref(), prestress)?;
     } else {
-        if args.calibrate || !args.measured.is_empty() {
+        if args.comparison.calibrate || !args.comparison.measured.is_empty() {
             anyhow::bail!(
                 "{}: --calibrate and --measured need the impulse experiment, and the model has no half-sine or step load",
                 source_label(path.as_deref())
