@@ -5,11 +5,28 @@ use super::svg::escape;
 use super::Provenance;
 use std::fmt::Write;
 
-/// Nothing may be loaded: inline styles and scripts only, images only as
-/// data. A reference to anything else is refused and reported in the
-/// browser's console.
-const CSP: &str =
-    "default-src 'none'; style-src 'unsafe-inline'; script-src 'unsafe-inline'; img-src data:";
+/// The content security policy: nothing may be loaded; the page's one
+/// stylesheet and one script run, named by their SHA-256 (any other inline
+/// style or script is refused too); images only as data. A reference to
+/// anything else is refused and reported in the browser's console.
+fn csp(style: &str, script: &str) -> String {
+    format!(
+        "default-src 'none'; style-src '{}'; script-src '{}'; img-src data:",
+        source_hash(style),
+        source_hash(script)
+    )
+}
+
+/// A CSP hash source: `sha256-` and the base64 of the text's SHA-256.
+fn source_hash(text: &str) -> String {
+    use base64::Engine;
+    use sha2::{Digest, Sha256};
+    let digest = Sha256::digest(text.as_bytes());
+    format!(
+        "sha256-{}",
+        base64::engine::general_purpose::STANDARD.encode(digest)
+    )
+}
 
 const STYLE: &str = r#"
 :root { color-scheme: light; --ink: #222; --grey: #999; --accent: #0072b2; }
@@ -139,10 +156,12 @@ const SCRIPT: &str = r#"
 /// The whole document around `body`; `modes`: the numbers of the
 /// animated modes (the picker's choices).
 pub fn document(p: &Provenance, nav: &[(String, String)], modes: &[usize], body: &str) -> String {
+    let script = SCRIPT.replace("PERIOD", &super::animate::PERIOD_S.to_string());
+    let csp = csp(STYLE, &script);
     let mut s = String::with_capacity(body.len() + 8192);
     let _ = write!(
         s,
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><meta http-equiv=\"Content-Security-Policy\" content=\"{CSP}\"><title>ancf-modal report: {}</title><style>{STYLE}</style></head><body><header><h1>Modal report: {}</h1><dl class=\"provenance\"><dt>tool</dt><dd>ancf-modal {}</dd><dt>model</dt><dd>{}</dd><dt>model SHA-256</dt><dd><code>{}</code></dd><dt>command</dt><dd><code>{}</code></dd><dt>written</dt><dd>{}</dd></dl><nav><ul>",
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><meta http-equiv=\"Content-Security-Policy\" content=\"{csp}\"><title>ancf-modal report: {}</title><style>{STYLE}</style></head><body><header><h1>Modal report: {}</h1><dl class=\"provenance\"><dt>tool</dt><dd>ancf-modal {}</dd><dt>model</dt><dd>{}</dd><dt>model SHA-256</dt><dd><code>{}</code></dd><dt>command</dt><dd><code>{}</code></dd><dt>written</dt><dd>{}</dd></dl><nav><ul>",
         escape(&p.model_name),
         escape(&p.model_name),
         escape(&p.tool_version),
@@ -165,10 +184,6 @@ pub fn document(p: &Provenance, nav: &[(String, String)], modes: &[usize], body:
     }
     s.push_str("</select></label><label>amplitude <input id=\"amplitude\" type=\"range\" min=\"0\" max=\"2\" step=\"0.05\" value=\"1\"></label><button id=\"play\" type=\"button\">Pause</button></div></header><main>");
     s.push_str(body);
-    let _ = writeln!(
-        s,
-        "</main><script>{}</script></body></html>",
-        SCRIPT.replace("PERIOD", &super::animate::PERIOD_S.to_string())
-    );
+    let _ = writeln!(s, "</main><script>{script}</script></body></html>");
     s
 }
