@@ -5,8 +5,8 @@
 
 use ancf_modal::measured::analysis::{analyse, AnalysisSettings};
 use ancf_modal::measured::csv::parse_csv;
-use ancf_modal::measured::window::Window;
 use ancf_modal::measured::{Channels, Measurement, TimeRecord};
+use ancf_modal::signal::Window;
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::f64::consts::PI;
 use std::fmt::Write;

@@ -10,6 +10,7 @@
 set -uo pipefail
 out=${1:?usage: capture-outputs.sh OUTDIR [BINARY]}
 bin=${2:-target/release/ancf-modal}
+bin=$(realpath "$bin")
 cd "$(dirname "$0")/.."
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
@@ -18,7 +19,7 @@ out=$(cd "$out" && pwd)
 run() {
     local name=$1 dir=$2
     shift 2
-    (cd "$dir" && "$OLDPWD/$bin" "$@" >"$name.out" 2>"$name.err"; echo $? >"$name.rc")
+    (cd "$dir" && "$bin" "$@" >"$name.out" 2>"$name.err"; echo $? >"$name.rc")
 }
 
 for model in builtin models/*.json; do

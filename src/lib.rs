@@ -18,6 +18,7 @@ pub mod mechanics;
 pub mod model;
 pub mod output;
 pub mod results;
+pub mod signal;
 pub mod system;
 
 pub use error::{AnalysisError, ModelError};

@@ -14,8 +14,8 @@
 mod measured_support;
 
 use ancf_modal::measured::analysis::{analyse, AnalysisSettings, BandEnd};
-use ancf_modal::measured::fit::RejectReason;
 use ancf_modal::measured::{Measurement, TimeRecord};
+use ancf_modal::signal::fit::RejectReason;
 use measured_support::{peak, pulse, respond, Noise, TestMode};
 use std::path::PathBuf;
 

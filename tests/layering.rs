@@ -1,7 +1,7 @@
 //! The library's folders form an order without cycles (README, Layout):
 //!
-//!   error → model → linalg, mechanics → system → measured → analysis
-//!         → results → output → cli
+//!   error → model → linalg, mechanics, signal → system → measured
+//!         → analysis → results → output → cli
 //!
 //! A file in one folder may name (`crate::FOLDER`) only folders before its
 //! own; `error.rs` names none. Doc comments are left out (a link is not a
@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 const ORDER: &[&[&str]] = &[
     &["error"],
     &["model"],
-    &["linalg", "mechanics"],
+    &["linalg", "mechanics", "signal"],
     &["system"],
     &["measured"],
     &["analysis"],

@@ -3,7 +3,7 @@
 //! least the designed stop band; a tone in the pass band passes within the
 //! pass-band ripple.
 
-use ancf_modal::measured::decimate::{resample, AntiAlias};
+use ancf_modal::signal::resample::{resample, AntiAlias};
 use std::f64::consts::PI;
 
 const F_IN: f64 = 1.0e6;

@@ -5,9 +5,9 @@
 
 mod measured_support;
 
-use ancf_modal::measured::fit::{fit, FitSettings};
 use ancf_modal::measured::frf::estimate;
-use ancf_modal::measured::window::Window;
+use ancf_modal::signal::fit::{fit, FitSettings};
+use ancf_modal::signal::Window;
 use measured_support::{hammer_records, peak, pulse, respond, TestMode};
 
 const FS: f64 = 10_240.0;

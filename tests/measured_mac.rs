@@ -2,9 +2,9 @@
 
 mod common;
 use ancf_modal::analysis::{modal_at_reference, ModalSettings};
-use ancf_modal::measured::mac::{mac, mac_weighted};
 use ancf_modal::measured::uff::d55::read_modes;
 use ancf_modal::output::modal_uff::{export_nodes, modal_uff, translations};
+use ancf_modal::signal::mac::{mac, mac_weighted};
 use ancf_modal::{Model, System};
 use assert_cmd::Command;
 use serde_json::Value;

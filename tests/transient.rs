@@ -5,9 +5,9 @@
 mod common;
 use ancf_modal::analysis::dispersion::GenAlpha;
 use ancf_modal::analysis::impulse::{run_impulse, ImpulseSettings};
-use ancf_modal::analysis::spectrum::{amplitude_spectrum, dominant_peak_in, SpectrumSettings};
 use ancf_modal::analysis::transient::{Integrator, TransientSettings};
 use ancf_modal::analysis::{modal_at_reference, ModalSettings, ModeKind};
+use ancf_modal::signal::spectrum::{amplitude_spectrum, dominant_peak_in, SpectrumSettings};
 use ancf_modal::{Model, System};
 use common::*;
 use std::f64::consts::PI;
@@ -343,7 +343,7 @@ fn a_damped_spring_decays_at_its_damping_ratio() {
 /// its peak; tests/measured_alias.rs checks that it leaves no folded peak).
 #[test]
 fn sampled_signal_equals_the_step_values_at_step_times() {
-    use ancf_modal::measured::decimate::{resample, AntiAlias};
+    use ancf_modal::signal::resample::{resample, AntiAlias};
     let model = Model::builtin();
     let mut every_step = ImpulseSettings::default();
     every_step.transient.end_time = 2e-3;

@@ -6,9 +6,9 @@
 use crate::errors::{compute, Failure};
 use crate::model::{choice, finite};
 use ancf::measured::analysis::{analyse, AnalysisSettings, Estimator, FrfAnalysis};
-use ancf::measured::window::Window;
 use ancf::measured::{check_force, read_measurement, Channel, Channels, Measurement, TimeRecord};
 use ancf::output::frf_report::ResponseQuantity;
+use ancf::signal::Window;
 use numpy::{Complex64, PyArray1, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -29,7 +29,9 @@ fn options(
 ) -> Result<Options, Failure> {
     let window: Window = window
         .parse()
-        .map_err(|why: String| Failure::argument("window", window, &why))?;
+        .map_err(|why: ancf::signal::window::WindowError| {
+            Failure::argument("window", window, &why.to_string())
+        })?;
     let estimator = match choice("estimator", estimator, &["h1", "h2"])? {
         "h2" => Estimator::H2,
         _ => Estimator::H1,

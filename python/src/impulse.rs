@@ -6,8 +6,8 @@
 use crate::errors::{compute, Failure};
 use crate::model::PyModel;
 use ancf::analysis::impulse::{run_impulse, ImpulseError, ImpulseResult, ImpulseSettings};
-use ancf::analysis::spectrum::Window;
 use ancf::model::Model;
+use ancf::signal::Window;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use std::sync::Arc;

@@ -274,7 +274,7 @@ impl PyModalResult {
             }
             let (_, x) = a.elastic_translations(&sa);
             let (_, y) = b.elastic_translations(&sb);
-            let m = ancf::measured::mac::mac(&x, &y);
+            let m = ancf::signal::mac::mac(&x, &y);
             Ok((0..m.nrows())
                 .map(|i| m.row(i).iter().copied().collect::<Vec<f64>>())
                 .collect::<Vec<_>>())

@@ -15,7 +15,7 @@ pub mod switch_off;
 pub mod transient;
 pub mod zero_modes;
 
-pub use impulse::{sensor, spectrum};
+pub use impulse::sensor;
 pub use statics::prestress;
 pub use transient::{dispersion, frame};
 

@@ -13,13 +13,13 @@
 //! numerical damping (ρ∞ < 1) and the Newton tolerance leave.
 
 use super::impulse::sensor::SensorProbe;
-use super::impulse::spectrum::resample_uniform;
 use super::statics::{solve_equilibrium, Equilibrium, StaticSettings};
 use super::transient::contacts::ContactStats;
 use super::transient::{Integrator, RunStats, State, TransientSettings};
 use crate::error::{SimulationError, TransientError};
 use crate::linalg::vector::dot;
 use crate::mechanics::anchor::Anchor;
+use crate::signal::resample::resample_uniform;
 use crate::system::System;
 
 /// Settings of a simulation.

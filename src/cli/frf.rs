@@ -3,11 +3,11 @@
 
 use super::common::write_output;
 use ancf_modal::measured::analysis::{analyse, AnalysisSettings, Estimator, FrfAnalysis};
-use ancf_modal::measured::window::Window;
 use ancf_modal::measured::{read_measurement, Channel, Channels};
 use ancf_modal::output::frf_report::{frf_csv, frf_figure, frf_table, frf_uff, ResponseQuantity};
 use ancf_modal::output::plot::{render, Figure, Format, PlotSize};
 use ancf_modal::results::fit::{FrfOutput, ModelOverlay};
+use ancf_modal::signal::Window;
 use anyhow::Result;
 use clap::Args;
 use std::path::PathBuf;
@@ -67,9 +67,10 @@ pub struct MeasuredArgs {
     /// What the response measures (the FRF's unit).
     #[arg(long, value_enum, default_value_t = Quantity::Velocity)]
     pub response_quantity: Quantity,
-    /// rect, hann, force:P (keep the first fraction P of the force record),
-    /// exponential:P (decay to P at the end; its damping is removed).
-    #[arg(long, default_value = "rect", value_parser = parse_window)]
+    /// rect, hann, flattop, blackman, force:P (keep the first fraction P of
+    /// the force record), exponential:P (decay to P at the end; its damping
+    /// is removed).
+    #[arg(long, default_value = "rect")]
     pub window: Window,
     /// FRF estimator the modal fit uses.
     #[arg(long, value_enum, default_value_t = EstimatorArg::H1)]
@@ -104,10 +105,6 @@ impl From<Quantity> for ResponseQuantity {
 pub enum EstimatorArg {
     H1,
     H2,
-}
-
-fn parse_window(s: &str) -> Result<Window, String> {
-    s.parse()
 }
 
 pub fn parse_band(s: &str) -> Result<(f64, f64), String> {

@@ -55,8 +55,8 @@ pub struct ComparisonArgs {
     #[arg(long, value_name = "FILE", num_args = 1..)]
     pub measured: Vec<PathBuf>,
     /// Window of the measured records (see `frf --window`).
-    #[arg(long, value_name = "W", default_value = "rect", requires = "measured", value_parser = |s: &str| s.parse::<ancf_modal::measured::window::Window>())]
-    pub measured_window: ancf_modal::measured::window::Window,
+    #[arg(long, value_name = "W", default_value = "rect", requires = "measured")]
+    pub measured_window: ancf_modal::signal::Window,
     /// Fit band of the measured records, LO:HI in Hz (see `frf --band`).
     #[arg(long, value_name = "LO:HI", requires = "measured", value_parser = super::frf::parse_band)]
     pub measured_band: Option<(f64, f64)>,

@@ -2,12 +2,12 @@
 
 use super::common::{load_model, print_json, source_label, write_output};
 use ancf_modal::analysis::impulse::{run_impulse, ImpulseResult, ImpulseSettings};
-use ancf_modal::analysis::spectrum::Window;
 use ancf_modal::model::Model;
 use ancf_modal::output::figures::{response_path, write_impulse_figures};
 use ancf_modal::output::impulse_report::{impulse_table, signal_csv, spectrum_csv};
 use ancf_modal::output::plot::{Format, PlotSize};
 use ancf_modal::results::ImpulseOutput;
+use ancf_modal::signal::Window;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::io::{IsTerminal, Write};
@@ -37,7 +37,8 @@ pub struct ExperimentArgs {
     /// Sensor id (default: the model's first sensor).
     #[arg(long)]
     pub sensor: Option<String>,
-    /// FFT window: hann, rect, blackman, flattop.
+    /// FFT window: hann, rect, blackman, flattop (or force:P, exponential:P,
+    /// as `frf --window`).
     #[arg(long, default_value = "hann")]
     pub window: Window,
 }

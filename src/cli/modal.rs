@@ -3,12 +3,12 @@
 use super::args::ModalArgs;
 use super::common::{load_model, print_json, source_label, write_output};
 use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings, Mode};
-use ancf_modal::measured::mac::mac;
 use ancf_modal::measured::uff::d55::read_modes;
 use ancf_modal::model::Model;
 use ancf_modal::output::modal_report::{modal_csv, modal_table};
 use ancf_modal::output::modal_uff::{export_nodes, modal_uff, translations};
 use ancf_modal::results::modal::MacTable;
+use ancf_modal::signal::mac::mac;
 use ancf_modal::System;
 use anyhow::{Context, Result};
 use std::path::Path;

@@ -1,6 +1,6 @@
 //! The `frf` pipeline as one call: measurement files → averaged H1, H2 and
 //! coherence (or an FRF read as such) → the band the hammer excited → the
-//! modal fit ([`super::fit`]) of the chosen estimator.
+//! modal fit ([`crate::signal::fit`]) of the chosen estimator.
 //!
 //! Default band: [`super::band::automatic_band`] (the force drop, the
 //! noise floor of the quiet tail, 0.8 × Nyquist, whichever comes first).
@@ -15,10 +15,10 @@ use realfft::num_complex::Complex64;
 
 use super::band::automatic_band;
 pub use super::band::BandEnd;
-use super::fit::{fit, FitSettings, ModalFit, RejectReason, RejectedPole};
 use super::frf::{estimate, FrfEstimate};
-use super::window::Window;
 use super::{MeasuredError, Measurement};
+use crate::signal::fit::{fit, FitSettings, ModalFit, RejectReason, RejectedPole};
+use crate::signal::Window;
 
 /// Which estimator the fit uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -143,6 +143,9 @@ pub enum MeasuredError {
     MixedKinds { file: PathBuf },
     #[error("{}: {what}", file.display())]
     NoChannel { file: PathBuf, what: &'static str },
-    #[error("{}: the record is {duration:e} s long; the exponential window needs a positive length", file.display())]
-    ShortRecord { file: PathBuf, duration: f64 },
+    #[error("{}: {source}", file.display())]
+    Spectrum {
+        file: PathBuf,
+        source: crate::signal::spectrum::SpectrumError,
+    },
 }

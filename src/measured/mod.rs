@@ -9,17 +9,13 @@
 //!   together at a uniform rate (time data, [`TimeRecord`]), or an FRF
 //!   already estimated elsewhere ([`MeasuredFrf`]). Bad files are typed
 //!   errors naming the file and line ([`MeasuredError`]).
-//! * [`window`] weights each record before the FFT (rectangular, Hann, the
-//!   force window and the exponential window of impact testing);
-//! * [`frf`] averages the auto and cross spectra of several hits into the
-//!   estimators H1 = G_fx/G_ff and H2 = G_xx/G_xf and the coherence
-//!   γ² = |G_fx|²/(G_ff G_xx);
-//! * [`fit`] identifies natural frequencies and damping ratios from an FRF
-//!   with the least-squares complex-frequency method (LSCF) over a band, a
-//!   stabilization diagram over model orders, and residues by least squares;
-//! * [`decimate`] resamples a record to a lower rate behind a steep
-//!   anti-aliasing low-pass, as acquisition hardware does;
-//! * [`mac`] compares two mode sets.
+//! * [`frf`] checks that the hits of one test agree (rate, length) and
+//!   averages them with the one estimator of [`crate::signal::frf`]
+//!   (H1, H2, coherence), windowed by [`crate::signal::Window`];
+//! * [`analysis`] runs the hammer-test pipeline: the band the hammer
+//!   excited, the modal fit of [`crate::signal::fit`] over it and over the
+//!   rest of the spectrum, and the modes outside the band;
+//! * [`band`] chooses that band from the force spectrum.
 //!
 //! Units: time in s, frequency in Hz, force in N, response in the unit of
 //! its quantity (m, m/s or m/s²); an FRF is response per newton.
@@ -27,14 +23,10 @@
 pub mod analysis;
 pub mod band;
 pub mod csv;
-pub mod decimate;
 pub mod error;
-pub mod fit;
 pub mod frf;
-pub mod mac;
 mod quantity;
 pub mod uff;
-pub mod window;
 
 pub use error::MeasuredError;
 pub use quantity::ResponseQuantity;

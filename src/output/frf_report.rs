@@ -8,11 +8,11 @@ use std::fmt::Write;
 use realfft::num_complex::Complex64;
 
 use crate::measured::analysis::FrfAnalysis;
-use crate::measured::fit::Stability;
 use crate::measured::uff::{d58, Function, FunctionType, Ordinate, SpecDataType};
 use crate::output::plot::{
     Guide, Legend, LineFigure, MarkerShape, Panel, PointMarker, Scale, Series, SeriesStyle,
 };
+use crate::signal::fit::Stability;
 
 pub use crate::measured::ResponseQuantity;
 

@@ -39,7 +39,7 @@ pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f
         r.quantity,
         r.signal.len(),
         crate::model::number::significant(r.sample_rate_hz, 7),
-        r.spectrum.window.name()
+        r.spectrum.window
     );
     let _ = writeln!(s, "spectrum peaks:");
     let _ = writeln!(s, "  {:>12}  {:>12}", "f [Hz]", "magnitude");

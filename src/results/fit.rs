@@ -7,9 +7,9 @@
 use crate::analysis::calibrate::CalibrationResult;
 use crate::analysis::convergence::{ConvergenceData, ReferenceKind};
 use crate::measured::analysis::FrfAnalysis;
-use crate::measured::fit::{DiagramPole, RejectReason};
 use crate::measured::ResponseQuantity;
 use crate::model::{Model, RayleighDamping};
+use crate::signal::fit::{DiagramPole, RejectReason};
 use crate::System;
 use schemars::JsonSchema;
 use serde::Serialize;

@@ -24,7 +24,6 @@
 pub mod brent;
 mod error;
 pub mod evaluate;
-pub mod lm;
 pub mod params;
 pub mod sensitivity;
 
@@ -36,6 +35,8 @@ pub use params::{ParamTarget, Parameter, ParameterSet, ParameterSpec};
 
 use crate::analysis::{ModalSettings, ModeKind};
 use crate::model::Model;
+use crate::signal::lm;
+use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 
 /// What to fit and to what.
@@ -467,42 +468,44 @@ fn fit_many(
             singular_values: c0.singular_values,
         });
     }
-    let point = |p: &[f64], e: &Evaluation| lm::Point {
-        p: p.to_vec(),
-        f: e.frequencies_hz.clone(),
-        dfdp: e.sensitivities.clone().unwrap_or_default(),
+    let tolerance_hz = targets.iter().map(|&t| tolerance(settings, t)).collect();
+    let (lower, upper): (Vec<f64>, Vec<f64>) = run
+        .set
+        .params
+        .iter()
+        .map(|p| (p.lower.ln(), p.upper.ln()))
+        .unzip();
+    let mut problem = Frequencies {
+        run,
+        targets,
+        tolerance_hz,
     };
-    let ls = lm::LmSettings {
-        tolerance_hz: targets.iter().map(|&t| tolerance(settings, t)).collect(),
-        step_tolerance: 1e-13,
+    let start = (p0.clone(), e0.clone());
+    let u0 = p0.iter().map(|p| p.ln()).collect();
+    let lm_settings = lm::Settings {
         max_evaluations: settings.max_evaluations,
+        ..LM
     };
-    let (lower, upper): (Vec<f64>, Vec<f64>) =
-        run.set.params.iter().map(|p| (p.lower, p.upper)).unzip();
-    let start = point(&p0, e0);
-    let out = lm::solve(start, targets, &lower, &upper, &ls, |p| {
-        let e = run.eval(p)?;
-        Ok::<_, CalibrationError>(point(p, &e))
-    })?;
-    let worst = out
-        .best
-        .f
+    let out = lm::solve(&mut problem, u0, start, &lower, &upper, &lm_settings)?;
+    let (best_p, best) = out.best;
+    let worst = best
+        .frequencies_hz
         .iter()
         .zip(targets)
         .map(|(f, t)| (f - t).abs())
         .fold(0.0, f64::max);
     let square = targets.len() == names.len();
     let failed = match out.stop {
-        lm::LmStop::Converged => false,
-        lm::LmStop::Stalled => square && worst > settings.accept_hz,
-        lm::LmStop::Exhausted => !square || worst > settings.accept_hz,
+        lm::Stop::Converged => false,
+        lm::Stop::Stalled => square && worst > settings.accept_hz,
+        lm::Stop::Exhausted => !square || worst > settings.accept_hz,
     };
     if failed {
-        if out.stop == lm::LmStop::Stalled {
+        if out.stop == lm::Stop::Stalled {
             return Err(CalibrationError::NotReached {
-                parameters: names.into_iter().zip(out.best.p.iter().copied()).collect(),
+                parameters: names.into_iter().zip(best_p.iter().copied()).collect(),
                 targets_hz: targets.to_vec(),
-                achieved_hz: out.best.f.clone(),
+                achieved_hz: best.frequencies_hz,
             });
         }
         return Err(CalibrationError::NotConverged {
@@ -510,7 +513,78 @@ fn fit_many(
             residual_hz: worst,
         });
     }
-    Ok((out.best.p, out.accepted))
+    Ok((best_p, out.accepted))
+}
+
+/// The Levenberg–Marquardt settings of a calibration: μ from 10⁻³ of the
+/// largest diagonal of JᵀJ, ×10 on a rejected trial, ÷10 (down to 10⁻¹²
+/// of it) on a taken step, stalled above 10¹⁶ of it, after a step below
+/// 10⁻¹³ in every ln p, or a taken step that lowers |r|² by 10⁻¹² of
+/// itself; the evaluation budget is set per calibration.
+const LM: lm::Settings = lm::Settings {
+    initial_damping: lm::Scale::Relative(1e-3),
+    grow: 10.0,
+    shrink: 10.0,
+    damping_floor: lm::Scale::Relative(1e-12),
+    damping_ceiling: 1e16,
+    max_rejections: usize::MAX,
+    step_tolerance: 1e-13,
+    min_relative_decrease: 1e-12,
+    max_evaluations: usize::MAX,
+    max_iterations: usize::MAX,
+};
+
+/// The frequencies' relative misfit as a least-squares problem in u = ln p
+/// (parameters stay positive, bounds are ratios, parameters of different
+/// units weigh alike): rᵢ = (fᵢ − tᵢ)/tᵢ, Jᵢⱼ = pⱼ (∂fᵢ/∂pⱼ)/tᵢ from the
+/// analytic sensitivities.
+struct Frequencies<'r, 'a> {
+    run: &'r mut Run<'a>,
+    targets: &'r [f64],
+    /// Converged when every |fᵢ − tᵢ| ≤ tolerance_hz[i].
+    tolerance_hz: Vec<f64>,
+}
+
+impl lm::Problem for Frequencies<'_, '_> {
+    type Point = (Vec<f64>, Evaluation);
+    type Error = CalibrationError;
+
+    fn evaluate(&mut self, u: &[f64]) -> Result<Self::Point, CalibrationError> {
+        let p: Vec<f64> = u.iter().map(|v| v.exp()).collect();
+        let e = self.run.eval(&p)?;
+        Ok((p, e))
+    }
+
+    fn residuals(&self, (_, e): &Self::Point) -> DVector<f64> {
+        let t = self.targets;
+        DVector::from_fn(t.len(), |i, _| (e.frequencies_hz[i] - t[i]) / t[i])
+    }
+
+    fn jacobian(
+        &mut self,
+        _: &[f64],
+        (p, e): &Self::Point,
+        _: &DVector<f64>,
+    ) -> Result<DMatrix<f64>, CalibrationError> {
+        let dfdp = e
+            .sensitivities
+            .as_ref()
+            .ok_or(CalibrationError::NeedsSensitivities {
+                method: self.run.evaluator.method(),
+            })?;
+        let t = self.targets;
+        Ok(DMatrix::from_fn(t.len(), p.len(), |i, k| {
+            p[k] * dfdp[i][k] / t[i]
+        }))
+    }
+
+    fn converged(&self, (_, e): &Self::Point) -> bool {
+        e.frequencies_hz
+            .iter()
+            .zip(self.targets)
+            .zip(&self.tolerance_hz)
+            .all(|((f, t), tol)| (f - t).abs() <= *tol)
+    }
 }
 
 /// Densities that `keep_mass` changed.

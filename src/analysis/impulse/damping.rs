@@ -4,7 +4,7 @@
 //! The force and the sensor records (after the anti-aliasing resampler)
 //! form one hit; H1 = G_fx/G_ff with a rectangular window (the response of
 //! a damped model has died out within the record, and any window would add
-//! its own damping), then the LSCF fit of [`crate::measured::fit`] over the
+//! its own damping), then the LSCF fit of [`crate::signal::fit`] over the
 //! first bending band (half-way to the neighbouring eigenfrequencies, and
 //! within ±[`BAND_HALF_WIDTH`] of the eigenfrequency) gives the pole
 //! s = −ζω + iω√(1 − ζ²) nearest the eigenfrequency.
@@ -25,10 +25,9 @@
 //! reported. Without damping in the model the response does not decay
 //! within the record and the fitted ratio only measures the truncation.
 
-use crate::measured::fit::{fit, FitSettings};
-use crate::measured::frf::estimate;
-use crate::measured::window::Window;
-use crate::measured::TimeRecord;
+use crate::signal::fit::{fit, FitSettings};
+use crate::signal::frf::{CrossSpectra, CrossSpectraSettings};
+use crate::signal::Window;
 
 /// Half-width of the fit band relative to the eigenfrequency.
 pub const BAND_HALF_WIDTH: f64 = 0.3;
@@ -84,19 +83,15 @@ pub fn identify_damping(
     sample_rate_hz: f64,
     band: &DampingBand,
 ) -> Option<DampingCheck> {
-    let record = TimeRecord {
-        file: "simulation".into(),
-        sample_rate_hz,
-        force: force.to_vec(),
-        response: signal.to_vec(),
-        force_label: "force".into(),
-        response_label: "sensor".into(),
-        lines: Vec::new(),
+    let settings = CrossSpectraSettings {
+        window: Window::Rectangular,
+        fft_len: force.len(),
+        remove_mean: false,
     };
-    let h = estimate(&[record], Window::Rectangular).ok()?;
+    let h = CrossSpectra::estimate([(force, signal)], sample_rate_hz, settings).ok()?;
     let fitted = fit(
         &h.frequency_hz,
-        &h.h1,
+        &h.h1(),
         &FitSettings {
             f_lo: band.lo_hz,
             f_hi: band.hi_hz,

@@ -21,24 +21,26 @@
 //!
 //! The sensor is read at every step and, with a sample rate, resampled
 //! behind an anti-aliasing low-pass (band-limited interpolation,
-//! [`crate::measured::decimate`]), as an acquisition system filters before
+//! [`crate::signal::resample`]), as an acquisition system filters before
 //! it samples: the modes above the Nyquist frequency (29.3 and 30.6 kHz of
 //! the paper's assembly at 51.2 kHz) do not fold into the spectrum.
 
 pub mod damping;
 pub mod sensor;
-pub mod spectrum;
 
 use super::modal::{modal_at_reference, ModalResult, ModalSettings};
 use super::transient::dispersion::{DispersionError, GenAlpha};
 use super::transient::{Integrator, RunStats, State, TransientSettings};
 use crate::error::{AnalysisError, TransientError};
-use crate::measured::decimate::{resample, AntiAlias};
 use crate::model::{Model, SensorQuantity, TimeFunction};
+use crate::signal::frf::{frf_h1, Frf};
+use crate::signal::resample::{resample, AntiAlias};
+use crate::signal::spectrum::{
+    self, Peak, PeakSettings, Spectrum, SpectrumError, SpectrumSettings,
+};
 use crate::system::System;
 use damping::{identify_damping, DampingBand, DampingCheck};
 use sensor::SensorProbe;
-use spectrum::{Frf, Peak, PeakSettings, Spectrum, SpectrumError, SpectrumSettings};
 use std::f64::consts::PI;
 
 /// Why the impulse experiment failed.
@@ -305,7 +307,7 @@ pub fn run_impulse(
     let first_bending = identify_first_bending(&modal, &spectrum, settings)?;
     let damping = damping_band(&modal, &transient)?
         .and_then(|band| identify_damping(&force, &signal, sample_rate_hz, &band));
-    let frf = spectrum::frf_h1(&force, &signal, sample_rate_hz, &settings.spectrum).ok();
+    let frf = frf_h1(&force, &signal, sample_rate_hz, &settings.spectrum).ok();
     Ok(ImpulseResult {
         excitation: kind,
         excitation_loads,
@@ -405,7 +407,7 @@ fn identify_first_bending(
 
 /// The sensor read at every integrator step; with a sample rate, resampled
 /// at the end behind the anti-aliasing low-pass of
-/// [`crate::measured::decimate`] (pass band to 0.4 f_s, −90 dB from the
+/// [`crate::signal::resample`] (pass band to 0.4 f_s, −90 dB from the
 /// new Nyquist frequency f_s/2), as acquisition hardware filters before it
 /// samples: modes above f_s/2 leave no folded peak below it. The force
 /// passes the same filter.

@@ -1,5 +1,5 @@
-//! Amplitude spectra, spectral peaks and frequency-response functions of
-//! sampled signals.
+//! Amplitude spectra and spectral peaks of sampled signals, and the
+//! windowed FFT that the FRF estimator ([`super::frf`]) shares.
 //!
 //! Everything here works on uniformly sampled real signals: time in seconds
 //! (s), sample rates and frequencies in hertz (Hz). Amplitudes keep the unit
@@ -11,28 +11,17 @@
 //!   gain: a sinusoid `A cos(2π f t)` gives a peak of height ≈ `A` at `f`.
 //! * [`find_peaks`] and [`dominant_peak_in`] pick local maxima and refine them
 //!   below the bin spacing by fitting a parabola to the log magnitude.
-//! * [`frf_h1`] estimates the frequency-response function `H1 = S_fx / S_ff`
-//!   from a force and a response record.
-//! * [`resample_uniform`] brings non-uniformly stepped output (for example an
-//!   adaptive integrator's) onto the uniform grid the FFT needs.
 //!
-//! Windows are the periodic ("DFT-even") cosine-sum windows of
-//! F. J. Harris, "On the use of windows for harmonic analysis with the
-//! discrete Fourier transform", Proc. IEEE 66(1), 1978.
-
-use std::fmt;
-use std::str::FromStr;
+//! The windows are [`super::window::Window`]'s.
 
 use realfft::num_complex::Complex;
-use realfft::RealFftPlanner;
+use realfft::{RealFftPlanner, RealToComplex};
 use serde::{Deserialize, Serialize};
+
+use super::window::Window;
 
 /// Fewest samples any function here accepts.
 pub const MIN_SAMPLES: usize = 4;
-
-/// Force bins whose power is this far (in dB) below the strongest force bin
-/// are treated as carrying no excitation: [`frf_h1`] returns NaN there.
-pub const FRF_FORCE_FLOOR_DB: f64 = -120.0;
 
 /// Errors of the spectrum functions.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -63,115 +52,6 @@ pub enum SpectrumError {
     /// The padded FFT length does not fit in `usize`.
     #[error("FFT length overflows for {n} samples and zero-pad factor {factor}")]
     TooLong { n: usize, factor: usize },
-    /// [`Window::from_str`] did not recognise the name.
-    #[error("unknown window {0:?}: expected hann, rectangular, flattop or blackman")]
-    UnknownWindow(String),
-}
-
-/// Data window applied before the FFT.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, schemars::JsonSchema,
-)]
-#[serde(rename_all = "lowercase")]
-pub enum Window {
-    /// Hann (raised cosine): good default for peak frequencies.
-    #[default]
-    Hann,
-    /// No window: for transients that decay inside the record (impact tests).
-    Rectangular,
-    /// Flat top (MATLAB `flattopwin` coefficients): most accurate amplitudes,
-    /// but the ripple on its flat main lobe moves the maximum by up to
-    /// 0.27 / T (its continuous transform peaks there, +0.0023 dB), so do
-    /// not use it to locate frequencies.
-    FlatTop,
-    /// Classic Blackman (0.42, 0.5, 0.08).
-    Blackman,
-}
-
-impl Window {
-    /// Coefficients `a_k` of `w[i] = Σ_k (-1)^k a_k cos(2π k i / n)`.
-    fn cosine_terms(self) -> &'static [f64] {
-        match self {
-            Window::Rectangular => &[1.0],
-            Window::Hann => &[0.5, 0.5],
-            Window::Blackman => &[0.42, 0.5, 0.08],
-            Window::FlatTop => &[
-                0.215_578_95,
-                0.416_631_58,
-                0.277_263_158,
-                0.083_578_947,
-                0.006_947_368,
-            ],
-        }
-    }
-
-    /// The `n` periodic window samples.
-    pub fn samples(self, n: usize) -> Vec<f64> {
-        let terms = self.cosine_terms();
-        (0..n)
-            .map(|i| {
-                let x = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
-                terms
-                    .iter()
-                    .enumerate()
-                    .map(|(k, a)| {
-                        let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
-                        sign * a * (k as f64 * x).cos()
-                    })
-                    .sum()
-            })
-            .collect()
-    }
-
-    /// Coherent gain `Σw / n`: the factor by which the window scales the
-    /// amplitude of a sinusoid (0.5 for Hann).
-    pub fn coherent_gain(self) -> f64 {
-        self.cosine_terms()[0]
-    }
-
-    /// Equivalent noise bandwidth `n Σw² / (Σw)²` in bins (1.5 for Hann).
-    pub fn enbw_bins(self) -> f64 {
-        let terms = self.cosine_terms();
-        let a0 = terms[0];
-        let rest: f64 = terms[1..].iter().map(|a| 0.5 * a * a).sum();
-        (a0 * a0 + rest) / (a0 * a0)
-    }
-
-    /// Half width of the main lobe (first zero) in bins of `1/T`: the number
-    /// of cosine terms (1 rectangular, 2 Hann, 3 Blackman, 5 flat top).
-    pub fn main_lobe_half_width_bins(self) -> f64 {
-        self.cosine_terms().len() as f64
-    }
-
-    /// Canonical lower-case name, as accepted by `FromStr`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Window::Hann => "hann",
-            Window::Rectangular => "rectangular",
-            Window::FlatTop => "flattop",
-            Window::Blackman => "blackman",
-        }
-    }
-}
-
-impl fmt::Display for Window {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Window {
-    type Err = SpectrumError;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "hann" | "hanning" => Ok(Window::Hann),
-            "rect" | "rectangular" | "boxcar" | "none" => Ok(Window::Rectangular),
-            "flattop" | "flat-top" | "flat_top" => Ok(Window::FlatTop),
-            "blackman" => Ok(Window::Blackman),
-            _ => Err(SpectrumError::UnknownWindow(s.to_string())),
-        }
-    }
 }
 
 /// How a record is turned into a spectrum.
@@ -260,41 +140,7 @@ impl Default for PeakSettings {
     }
 }
 
-/// Frequency-response function estimate.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
-pub struct Frf {
-    /// Bin frequencies, Hz.
-    pub frequency_hz: Vec<f64>,
-    /// Real part of H (response unit per force unit); NaN where the force
-    /// carries no excitation (see [`FRF_FORCE_FLOOR_DB`]).
-    pub re: Vec<f64>,
-    /// Imaginary part of H; NaN where `re` is.
-    pub im: Vec<f64>,
-    /// Bin spacing, Hz.
-    pub df: f64,
-}
-
-impl Frf {
-    /// `|H|` per bin.
-    pub fn magnitude(&self) -> Vec<f64> {
-        self.re
-            .iter()
-            .zip(&self.im)
-            .map(|(r, i)| r.hypot(*i))
-            .collect()
-    }
-
-    /// Phase of H in radians, in (−π, π].
-    pub fn phase_rad(&self) -> Vec<f64> {
-        self.re
-            .iter()
-            .zip(&self.im)
-            .map(|(r, i)| i.atan2(*r))
-            .collect()
-    }
-}
-
-fn check_rate(sample_rate_hz: f64) -> Result<(), SpectrumError> {
+pub(super) fn check_rate(sample_rate_hz: f64) -> Result<(), SpectrumError> {
     if sample_rate_hz > 0.0 && sample_rate_hz.is_finite() {
         Ok(())
     } else {
@@ -302,7 +148,7 @@ fn check_rate(sample_rate_hz: f64) -> Result<(), SpectrumError> {
     }
 }
 
-fn check_samples(x: &[f64], signal: &'static str) -> Result<(), SpectrumError> {
+pub(super) fn check_samples(x: &[f64], signal: &'static str) -> Result<(), SpectrumError> {
     if x.len() < MIN_SAMPLES {
         return Err(SpectrumError::TooFewSamples {
             n: x.len(),
@@ -315,51 +161,64 @@ fn check_samples(x: &[f64], signal: &'static str) -> Result<(), SpectrumError> {
     }
 }
 
-/// Windowed, zero-padded FFT of one record.
-struct Transformed {
-    bins: Vec<Complex<f64>>,
-    fft_len: usize,
-    window_sum: f64,
-}
-
-fn transform(
-    x: &[f64],
-    signal: &'static str,
-    settings: &SpectrumSettings,
-) -> Result<Transformed, SpectrumError> {
-    check_samples(x, signal)?;
-    let n = x.len();
-    let factor = settings.zero_pad_factor;
+/// `next_pow2(n) · factor`: the FFT length of a record of n samples
+/// zero-padded by `factor` (at least 1).
+pub fn padded_length(n: usize, factor: usize) -> Result<usize, SpectrumError> {
     if factor == 0 {
         return Err(SpectrumError::InvalidZeroPadFactor(factor));
     }
-    let fft_len = n
-        .checked_next_power_of_two()
+    n.checked_next_power_of_two()
         .and_then(|p| p.checked_mul(factor))
-        .ok_or(SpectrumError::TooLong { n, factor })?;
-    let mean = if settings.remove_mean {
-        x.iter().sum::<f64>() / n as f64
-    } else {
-        0.0
-    };
-    let w = settings.window.samples(n);
-    let window_sum: f64 = w.iter().sum();
-    let mut buf = vec![0.0; fft_len];
-    for ((b, xi), wi) in buf.iter_mut().zip(x).zip(&w) {
-        *b = (xi - mean) * wi;
-    }
-    let fft = RealFftPlanner::<f64>::new().plan_fft_forward(fft_len);
-    let mut bins = fft.make_output_vec();
-    fft.process(&mut buf, &mut bins)
-        .expect("buffers are sized by the plan");
-    Ok(Transformed {
-        bins,
-        fft_len,
-        window_sum,
-    })
+        .ok_or(SpectrumError::TooLong { n, factor })
 }
 
-fn bin_frequencies(count: usize, df: f64) -> Vec<f64> {
+/// The windowed, zero-padded real FFT of records of one length: one plan,
+/// one buffer, reused for every record.
+pub(super) struct WindowedFft {
+    fft: std::sync::Arc<dyn RealToComplex<f64>>,
+    buf: Vec<f64>,
+}
+
+impl WindowedFft {
+    /// A plan for records padded to `fft_len` samples.
+    pub(super) fn new(fft_len: usize) -> Self {
+        let fft = RealFftPlanner::<f64>::new().plan_fft_forward(fft_len);
+        let buf = fft.make_input_vec();
+        WindowedFft { fft, buf }
+    }
+
+    /// FFT length.
+    pub(super) fn len(&self) -> usize {
+        self.buf.len()
+    }
+
+    /// Bins 0..=len/2 of the FFT of (x − mean)·w, zero-padded; the mean is
+    /// removed when `remove_mean`. `x` and `weights` have equal lengths, at
+    /// most the FFT length.
+    pub(super) fn transform(
+        &mut self,
+        x: &[f64],
+        weights: &[f64],
+        remove_mean: bool,
+        bins: &mut Vec<Complex<f64>>,
+    ) {
+        let mean = if remove_mean {
+            x.iter().sum::<f64>() / x.len() as f64
+        } else {
+            0.0
+        };
+        self.buf.fill(0.0);
+        for ((b, xi), wi) in self.buf.iter_mut().zip(x).zip(weights) {
+            *b = (xi - mean) * wi;
+        }
+        bins.resize(self.len() / 2 + 1, Complex::new(0.0, 0.0));
+        self.fft
+            .process(&mut self.buf, bins)
+            .expect("buffers are sized by the plan");
+    }
+}
+
+pub(super) fn bin_frequencies(count: usize, df: f64) -> Vec<f64> {
     (0..count).map(|k| k as f64 * df).collect()
 }
 
@@ -374,11 +233,15 @@ pub fn amplitude_spectrum(
     settings: &SpectrumSettings,
 ) -> Result<Spectrum, SpectrumError> {
     check_rate(sample_rate_hz)?;
-    let t = transform(samples, "samples", settings)?;
-    let last = t.bins.len() - 1;
-    let nyquist_bin = t.fft_len % 2 == 0;
-    let magnitude = t
-        .bins
+    check_samples(samples, "samples")?;
+    let mut fft = WindowedFft::new(padded_length(samples.len(), settings.zero_pad_factor)?);
+    let w = settings.window.response_weights(samples.len());
+    let window_sum: f64 = w.iter().sum();
+    let mut bins = Vec::new();
+    fft.transform(samples, &w, settings.remove_mean, &mut bins);
+    let last = bins.len() - 1;
+    let nyquist_bin = fft.len().is_multiple_of(2);
+    let magnitude = bins
         .iter()
         .enumerate()
         .map(|(k, c)| {
@@ -387,12 +250,12 @@ pub fn amplitude_spectrum(
             } else {
                 2.0
             };
-            one_sided * c.norm() / t.window_sum
+            one_sided * c.norm() / window_sum
         })
         .collect();
-    let df = sample_rate_hz / t.fft_len as f64;
+    let df = sample_rate_hz / fft.len() as f64;
     Ok(Spectrum {
-        frequency_hz: bin_frequencies(t.bins.len(), df),
+        frequency_hz: bin_frequencies(bins.len(), df),
         magnitude,
         df,
         resolution_hz: sample_rate_hz / samples.len() as f64,
@@ -499,100 +362,4 @@ pub fn dominant_peak_in(spec: &Spectrum, f_lo_hz: f64, f_hi_hz: f64) -> Option<P
         return None;
     }
     Some(interpolate_peak(spec, k))
-}
-
-/// H1 estimate of the frequency-response function from `force` to
-/// `response`, both sampled at `sample_rate_hz`.
-///
-/// One segment over the whole record: `H1 = S_fx / S_ff = conj(F) X / |F|²`,
-/// both records windowed and padded alike. For impact tests whose response
-/// decays inside the record use [`Window::Rectangular`] and
-/// `remove_mean = false`: the transforms are then samples of the continuous
-/// Fourier transforms and H1 is free of leakage.
-pub fn frf_h1(
-    force: &[f64],
-    response: &[f64],
-    sample_rate_hz: f64,
-    settings: &SpectrumSettings,
-) -> Result<Frf, SpectrumError> {
-    check_rate(sample_rate_hz)?;
-    if force.len() != response.len() {
-        return Err(SpectrumError::LengthMismatch {
-            first: "force",
-            first_len: force.len(),
-            second: "response",
-            second_len: response.len(),
-        });
-    }
-    let f = transform(force, "force", settings)?;
-    let x = transform(response, "response", settings)?;
-    let sff: Vec<f64> = f.bins.iter().map(|c| c.norm_sqr()).collect();
-    let floor = sff.iter().cloned().fold(0.0, f64::max) * 10f64.powf(FRF_FORCE_FLOOR_DB / 10.0);
-    let (re, im) = f
-        .bins
-        .iter()
-        .zip(&x.bins)
-        .zip(&sff)
-        .map(|((fk, xk), &s)| {
-            if s > floor && s > 0.0 {
-                let h = fk.conj() * xk / s;
-                (h.re, h.im)
-            } else {
-                (f64::NAN, f64::NAN)
-            }
-        })
-        .unzip();
-    let df = sample_rate_hz / f.fft_len as f64;
-    Ok(Frf {
-        frequency_hz: bin_frequencies(f.bins.len(), df),
-        re,
-        im,
-        df,
-    })
-}
-
-/// Linear interpolation of `(t, x)` onto `t[0] + k / rate_hz`,
-/// `k = 0, 1, …` up to the last time stamp (inclusive when it falls on the
-/// grid). `t` must be strictly increasing; at least two points are needed.
-pub fn resample_uniform(t: &[f64], x: &[f64], rate_hz: f64) -> Result<Vec<f64>, SpectrumError> {
-    check_rate(rate_hz)?;
-    if t.len() != x.len() {
-        return Err(SpectrumError::LengthMismatch {
-            first: "time",
-            first_len: t.len(),
-            second: "values",
-            second_len: x.len(),
-        });
-    }
-    if t.len() < 2 {
-        return Err(SpectrumError::TooFewSamples { n: t.len(), min: 2 });
-    }
-    if let Some(index) = t.iter().position(|v| !v.is_finite()) {
-        return Err(SpectrumError::NonFinite {
-            signal: "time",
-            index,
-        });
-    }
-    if let Some(index) = x.iter().position(|v| !v.is_finite()) {
-        return Err(SpectrumError::NonFinite {
-            signal: "values",
-            index,
-        });
-    }
-    if let Some(index) = (1..t.len()).find(|&i| t[i] <= t[i - 1]) {
-        return Err(SpectrumError::NonIncreasingTime { index });
-    }
-    let (t0, t_end) = (t[0], t[t.len() - 1]);
-    let count = ((t_end - t0) * rate_hz * (1.0 + 4.0 * f64::EPSILON)).floor() as usize + 1;
-    let mut out = Vec::with_capacity(count);
-    let mut j = 0;
-    for k in 0..count {
-        let tq = (t0 + k as f64 / rate_hz).min(t_end);
-        while j + 2 < t.len() && t[j + 1] < tq {
-            j += 1;
-        }
-        let s = (tq - t[j]) / (t[j + 1] - t[j]);
-        out.push(x[j] + s * (x[j + 1] - x[j]));
-    }
-    Ok(out)
 }

@@ -1,6 +1,10 @@
-//! Resampling to a lower rate behind an anti-aliasing low-pass.
+//! Resampling: onto a uniform grid, and to a lower rate.
 //!
-//! Sampling at f_s folds every component above the Nyquist frequency f_s/2
+//! **Onto a uniform grid.** [`resample_uniform`] interpolates linearly
+//! non-uniformly stepped samples (an adaptive integrator's output) onto the
+//! uniform grid t₀ + k/f that the FFT needs.
+//!
+//! **To a lower rate.** Sampling at f_s folds every component above the Nyquist frequency f_s/2
 //! back into the band: a mode at 29.3 kHz sampled at 51.2 kHz appears at
 //! 21.9 kHz. Acquisition hardware therefore low-pass filters before it
 //! samples; a simulated measurement must do the same.
@@ -25,6 +29,54 @@
 //! 10^(−A/20) in amplitude. Default: f_p = 0.40 f_out, f_st = 0.50 f_out
 //! (the new Nyquist frequency: nothing above it survives to fold), A = 90 dB,
 //! so the −6 dB point is at 0.45 f_out.
+
+use super::spectrum::{check_rate, SpectrumError};
+
+/// Linear interpolation of `(t, x)` onto `t[0] + k / rate_hz`,
+/// `k = 0, 1, …` up to the last time stamp (inclusive when it falls on the
+/// grid). `t` must be strictly increasing; at least two points are needed.
+pub fn resample_uniform(t: &[f64], x: &[f64], rate_hz: f64) -> Result<Vec<f64>, SpectrumError> {
+    check_rate(rate_hz)?;
+    if t.len() != x.len() {
+        return Err(SpectrumError::LengthMismatch {
+            first: "time",
+            first_len: t.len(),
+            second: "values",
+            second_len: x.len(),
+        });
+    }
+    if t.len() < 2 {
+        return Err(SpectrumError::TooFewSamples { n: t.len(), min: 2 });
+    }
+    if let Some(index) = t.iter().position(|v| !v.is_finite()) {
+        return Err(SpectrumError::NonFinite {
+            signal: "time",
+            index,
+        });
+    }
+    if let Some(index) = x.iter().position(|v| !v.is_finite()) {
+        return Err(SpectrumError::NonFinite {
+            signal: "values",
+            index,
+        });
+    }
+    if let Some(index) = (1..t.len()).find(|&i| t[i] <= t[i - 1]) {
+        return Err(SpectrumError::NonIncreasingTime { index });
+    }
+    let (t0, t_end) = (t[0], t[t.len() - 1]);
+    let count = ((t_end - t0) * rate_hz * (1.0 + 4.0 * f64::EPSILON)).floor() as usize + 1;
+    let mut out = Vec::with_capacity(count);
+    let mut j = 0;
+    for k in 0..count {
+        let tq = (t0 + k as f64 / rate_hz).min(t_end);
+        while j + 2 < t.len() && t[j + 1] < tq {
+            j += 1;
+        }
+        let s = (tq - t[j]) / (t[j + 1] - t[j]);
+        out.push(x[j] + s * (x[j + 1] - x[j]));
+    }
+    Ok(out)
+}
 
 /// An anti-aliasing design relative to the output rate.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -36,13 +36,15 @@
 //! mode is kept in [`ModalFit::rejected`] with its reason: the refinement
 //! drove it unstable or to a negative frequency, or its modal peak is under
 //! the 1 % floor. (Modes outside the band are found by
-//! [`super::analysis::analyse`], which fits the rest of the spectrum too.)
+//! `measured::analysis::analyse`, which fits the rest of the spectrum too.)
 //!
-//! **Exponential window.** Its decay σ_w (see [`super::window`]) is added
+//! **Exponential window.** Its decay σ_w (see [`super::window::Window::decay_rate`]) is added
 //! back to every pole, Re s_r += σ_w, before f and ζ are computed.
 
 use nalgebra::{DMatrix, DVector};
 use realfft::num_complex::Complex64;
+
+use super::lm;
 
 /// Settings of [`fit`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -500,35 +502,30 @@ fn clusters(all: &[Vec<(f64, f64, Complex64)>], needed: usize) -> Vec<Complex64>
     out
 }
 
-/// Squared misfit of the modal model with `poles` (residues and residual
-/// terms by linear least squares) to the band.
-fn misfit(band: &[(f64, Complex64)], poles: &[Complex64]) -> f64 {
-    let (res, u, l) = residues(band, poles);
-    band.iter()
-        .map(|(f, h)| {
-            let iw = Complex64::new(0.0, 2.0 * std::f64::consts::PI * f);
-            let mut m = Complex64::new(u, 0.0) + l / (iw * iw);
-            for (p, r) in poles.iter().zip(&res) {
-                m += r / (iw - p) + r.conj() / (iw - p.conj());
-            }
-            (m - h).norm_sqr()
-        })
-        .sum()
+/// The modal model's misfit to the band as a least-squares problem in the
+/// poles' real and imaginary parts x = (Re s₁, Im s₁, Re s₂, …), the
+/// residues and residual terms eliminated by linear least squares
+/// (variable projection).
+struct PoleRefinement<'a> {
+    band: &'a [(f64, Complex64)],
 }
 
-/// Nonlinear least-squares refinement of the poles (variable projection:
-/// residues eliminated linearly; Levenberg–Marquardt on the poles' real and
-/// imaginary parts with a forward-difference Jacobian). LSCF's linearised
-/// equation error is biased by noise; the output error minimised here is
-/// not (for noise of equal variance across the band).
-fn refine(band: &[(f64, Complex64)], poles: &mut [Complex64]) {
-    if poles.is_empty() {
-        return;
+impl PoleRefinement<'_> {
+    fn poles(x: &[f64]) -> Vec<Complex64> {
+        x.chunks(2).map(|c| Complex64::new(c[0], c[1])).collect()
     }
-    let residual = |p: &[Complex64]| -> DVector<f64> {
-        let (res, u, l) = residues(band, p);
-        let mut r = DVector::zeros(2 * band.len());
-        for (k, (f, h)) in band.iter().enumerate() {
+}
+
+impl lm::Problem for PoleRefinement<'_> {
+    type Point = DVector<f64>;
+    type Error = std::convert::Infallible;
+
+    /// Model minus measurement, real and imaginary parts per bin.
+    fn evaluate(&mut self, x: &[f64]) -> Result<DVector<f64>, Self::Error> {
+        let p = Self::poles(x);
+        let (res, u, l) = residues(self.band, &p);
+        let mut r = DVector::zeros(2 * self.band.len());
+        for (k, (f, h)) in self.band.iter().enumerate() {
             let iw = Complex64::new(0.0, 2.0 * std::f64::consts::PI * f);
             let mut m = Complex64::new(u, 0.0) + l / (iw * iw);
             for (pp, rr) in p.iter().zip(&res) {
@@ -537,56 +534,64 @@ fn refine(band: &[(f64, Complex64)], poles: &mut [Complex64]) {
             r[2 * k] = m.re - h.re;
             r[2 * k + 1] = m.im - h.im;
         }
-        r
-    };
-    let np = 2 * poles.len();
-    let mut mu = 1e-3;
-    let mut r0 = residual(poles);
-    let mut cost = r0.norm_squared();
-    for _ in 0..50 {
-        let mut jac = DMatrix::<f64>::zeros(r0.len(), np);
-        for j in 0..np {
-            let mut p = poles.to_vec();
-            let step = 1e-7 * p[j / 2].norm();
-            if j % 2 == 0 {
-                p[j / 2].re += step;
-            } else {
-                p[j / 2].im += step;
-            }
-            let rj = residual(&p);
-            jac.set_column(j, &((rj - &r0) / step));
-        }
-        let jtj = jac.transpose() * &jac;
-        let jtr = jac.transpose() * &r0;
-        let mut improved = false;
-        for _ in 0..10 {
-            let mut a = jtj.clone();
-            for i in 0..np {
-                a[(i, i)] += mu * jtj[(i, i)].max(f64::MIN_POSITIVE);
-            }
-            let Some(delta) = a.lu().solve(&(-&jtr)) else {
-                mu *= 4.0;
-                continue;
-            };
-            let trial: Vec<Complex64> = poles
-                .iter()
-                .enumerate()
-                .map(|(i, p)| p + Complex64::new(delta[2 * i], delta[2 * i + 1]))
-                .collect();
-            let c = misfit(band, &trial);
-            if c < cost {
-                let gain = (cost - c) / cost;
-                poles.copy_from_slice(&trial);
-                cost = c;
-                r0 = residual(poles);
-                mu = (mu / 3.0).max(1e-12);
-                improved = gain > 1e-12;
-                break;
-            }
-            mu *= 4.0;
-        }
-        if !improved {
-            break;
-        }
+        Ok(r)
     }
+
+    fn residuals(&self, point: &DVector<f64>) -> DVector<f64> {
+        point.clone()
+    }
+
+    /// Forward differences, step 1e-7 |s| for each pole's parts.
+    fn jacobian(
+        &mut self,
+        x: &[f64],
+        _: &DVector<f64>,
+        r: &DVector<f64>,
+    ) -> Result<DMatrix<f64>, Self::Error> {
+        let mut jac = DMatrix::<f64>::zeros(r.len(), x.len());
+        for j in 0..x.len() {
+            let mut xj = x.to_vec();
+            let step = 1e-7 * Complex64::new(x[j / 2 * 2], x[j / 2 * 2 + 1]).norm();
+            xj[j] += step;
+            let rj = self.evaluate(&xj)?;
+            jac.set_column(j, &((rj - r) / step));
+        }
+        Ok(jac)
+    }
+}
+
+/// Settings of the refinement's Levenberg–Marquardt loop: μ from 10⁻³,
+/// ×4 on a rejected trial, ÷3 (down to 10⁻¹²) on a taken step; at most 50
+/// taken steps, 10 rejected trials in a row, or a taken step that lowers
+/// the misfit by 10⁻¹² of itself.
+const REFINE: lm::Settings = lm::Settings {
+    initial_damping: lm::Scale::Absolute(1e-3),
+    grow: 4.0,
+    shrink: 3.0,
+    damping_floor: lm::Scale::Absolute(1e-12),
+    damping_ceiling: f64::INFINITY,
+    max_rejections: 10,
+    step_tolerance: 0.0,
+    min_relative_decrease: 1e-12,
+    max_evaluations: usize::MAX,
+    max_iterations: 50,
+};
+
+/// Nonlinear least-squares refinement of the poles (variable projection:
+/// residues eliminated linearly; the one Levenberg–Marquardt loop,
+/// [`lm::solve`], on the poles' real and imaginary parts with a
+/// forward-difference Jacobian). LSCF's linearised equation error is biased
+/// by noise; the output error minimised here is not (for noise of equal
+/// variance across the band).
+fn refine(band: &[(f64, Complex64)], poles: &mut [Complex64]) {
+    if poles.is_empty() {
+        return;
+    }
+    let mut problem = PoleRefinement { band };
+    let x0: Vec<f64> = poles.iter().flat_map(|p| [p.re, p.im]).collect();
+    let unbounded = vec![f64::INFINITY; x0.len()];
+    let lower: Vec<f64> = unbounded.iter().map(|v| -v).collect();
+    let Ok(start) = lm::Problem::evaluate(&mut problem, &x0);
+    let Ok(out) = lm::solve(&mut problem, x0, start, &lower, &unbounded, &REFINE);
+    poles.copy_from_slice(&PoleRefinement::poles(&out.x));
 }

@@ -1,0 +1,31 @@
+//! Signal processing on sampled records, for simulated and measured data
+//! alike: nothing here knows a model or a file.
+//!
+//! * [`window`] — the one [`Window`] type: rect, hann, flattop, blackman,
+//!   force:P and exponential:P, with their coherent gains and noise
+//!   bandwidths in closed form and the exponential window's decay rate;
+//! * [`spectrum`] — the windowed, zero-padded FFT, single-sided amplitude
+//!   spectra and sub-bin peaks;
+//! * [`frf`] — the one FRF estimator: averaged auto and cross spectra of
+//!   force–response pairs, giving H1, H2 and the coherence γ²;
+//! * [`resample`] — linear interpolation of non-uniform samples onto a
+//!   uniform grid, and Kaiser-windowed sinc resampling to a lower rate;
+//! * [`fit`] — modal parameters from an FRF: LSCF poles with a
+//!   stabilization diagram, residues by least squares, poles refined;
+//! * [`lm`] — the one bounded Levenberg–Marquardt loop (the calibration of
+//!   model parameters and the pole refinement both use it);
+//! * [`mac`] — the modal assurance criterion between two mode sets.
+//!
+//! Units: time in s, frequency and sample rates in Hz, decay rates in 1/s;
+//! amplitudes keep the unit of the signal (an FRF: response unit per force
+//! unit).
+
+pub mod fit;
+pub mod frf;
+pub mod lm;
+pub mod mac;
+pub mod resample;
+pub mod spectrum;
+pub mod window;
+
+pub use window::Window;
