@@ -21,9 +21,8 @@
 //! the bins (at least ±2), so a single noise bin does not decide.
 //! Frequencies in Hz, spectra in (unit)² of an unscaled DFT.
 
-use realfft::RealFftPlanner;
-
 use super::TimeRecord;
+use crate::signal::spectrum::power_spectrum;
 
 /// Force level (dB below its maximum) that bounds the automatic band.
 pub const FORCE_BAND_DB: f64 = 20.0;
@@ -90,17 +89,6 @@ fn half_width(bins: usize) -> usize {
     (bins / 200).max(2)
 }
 
-/// |DFT|² of `x` (unscaled), bins 0..=n/2.
-fn power(x: &[f64]) -> Vec<f64> {
-    let mut input = x.to_vec();
-    let fft = RealFftPlanner::<f64>::new().plan_fft_forward(input.len());
-    let mut out = fft.make_output_vec();
-    if fft.process(&mut input, &mut out).is_err() {
-        return vec![0.0; out.len()];
-    }
-    out.iter().map(|c| c.norm_sqr()).collect()
-}
-
 /// Highest bin at which the smoothed `spectrum` is at least `floor(k)`.
 fn last_above(spectrum: &[f64], floor: impl Fn(usize) -> f64) -> Option<usize> {
     let s = smooth(spectrum, half_width(spectrum.len()));
@@ -121,10 +109,10 @@ fn noise_floor_end(records: &[TimeRecord], bins: usize) -> Option<usize> {
         if r.response.len() != n {
             return None;
         }
-        for (a, p) in response.iter_mut().zip(power(&r.response)) {
+        for (a, p) in response.iter_mut().zip(power_spectrum(&r.response)) {
             *a += p;
         }
-        for (a, p) in tail.iter_mut().zip(power(&r.response[n - m..])) {
+        for (a, p) in tail.iter_mut().zip(power_spectrum(&r.response[n - m..])) {
             *a += p;
         }
     }

@@ -26,6 +26,14 @@ pub fn mac_weighted(
     DMatrix::from_fn(a.len(), b.len(), |i, j| pair(&a[i], &b[j], w))
 }
 
+/// MAC(a, b) of one pair; 0 when the lengths differ or a shape is zero.
+pub fn mac_pair(a: &[f64], b: &[f64]) -> f64 {
+    if a.len() != b.len() {
+        return 0.0;
+    }
+    pair(a, b, dot)
+}
+
 fn dot(x: &[f64], y: &[f64]) -> f64 {
     x.iter().zip(y).map(|(a, b)| a * b).sum()
 }

@@ -218,6 +218,18 @@ impl WindowedFft {
     }
 }
 
+/// |DFT|² of `x` per bin 0..=n/2, unscaled, unwindowed and unpadded (the
+/// auto spectrum [`super::frf::CrossSpectra`] sums, of one record).
+pub fn power_spectrum(x: &[f64]) -> Vec<f64> {
+    if x.is_empty() {
+        return Vec::new();
+    }
+    let mut fft = WindowedFft::new(x.len());
+    let mut bins = Vec::new();
+    fft.transform(x, &vec![1.0; x.len()], false, &mut bins);
+    bins.iter().map(|c| c.norm_sqr()).collect()
+}
+
 pub(super) fn bin_frequencies(count: usize, df: f64) -> Vec<f64> {
     (0..count).map(|k| k as f64 * df).collect()
 }

@@ -7,7 +7,7 @@
 //!
 //! - one parameter, one target: a bracketing root finder (Brent, [`brent`])
 //!   on f(p) − f_target;
-//! - otherwise damped Gauss–Newton (Levenberg–Marquardt, [`lm`]) in ln p on
+//! - otherwise damped Gauss–Newton (Levenberg–Marquardt, [`crate::signal::lm`]) in ln p on
 //!   relative residuals, with the analytic sensitivities of
 //!   [`sensitivity`]. More parameters than targets, or a Jacobian whose
 //!   relative singular values fall below

@@ -24,6 +24,7 @@
 
 use super::grid::parent;
 use super::quantity::RawMode;
+use crate::signal::mac::mac_pair;
 
 /// A tracked mode at one point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,24 +36,6 @@ pub struct TrackedMode {
     pub mac: Option<f64>,
     /// Position among the point's computed elastic modes (ascending).
     pub raw: usize,
-}
-
-/// MAC of two shapes (0 if either is zero or they differ in length).
-pub fn mac(a: &[f64], b: &[f64]) -> f64 {
-    if a.len() != b.len() {
-        return 0.0;
-    }
-    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
-    for (x, y) in a.iter().zip(b) {
-        ab += x * y;
-        aa += x * x;
-        bb += y * y;
-    }
-    if aa == 0.0 || bb == 0.0 {
-        0.0
-    } else {
-        ab * ab / (aa * bb)
-    }
 }
 
 /// Tracks `n` modes over the points of a grid of `shape` (row-major;
@@ -113,7 +96,7 @@ fn follow(
         let Some(t) = t else { continue };
         let shape = &ancestor_modes[t.raw].shape;
         for (r, m) in modes.iter().enumerate() {
-            pairs.push((mac(shape, &m.shape), j, r));
+            pairs.push((mac_pair(shape, &m.shape), j, r));
         }
     }
     pairs.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
@@ -168,7 +151,7 @@ mod tests {
 
     #[test]
     fn mac_is_scale_and_sign_free() {
-        assert_eq!(mac(&[1.0, 2.0], &[-2.0, -4.0]), 1.0);
-        assert_eq!(mac(&[1.0, 0.0], &[0.0, 3.0]), 0.0);
+        assert_eq!(mac_pair(&[1.0, 2.0], &[-2.0, -4.0]), 1.0);
+        assert_eq!(mac_pair(&[1.0, 0.0], &[0.0, 3.0]), 0.0);
     }
 }
