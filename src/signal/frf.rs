@@ -110,10 +110,7 @@ impl CrossSpectra {
             out.averages += 1;
         }
         if out.averages == 0 {
-            return Err(SpectrumError::TooFewSamples {
-                n: 0,
-                min: super::spectrum::MIN_SAMPLES,
-            });
+            return Err(SpectrumError::NoRecords);
         }
         Ok(out)
     }
@@ -137,9 +134,9 @@ impl CrossSpectra {
             }
         }
         if expected > self.settings.fft_len {
-            return Err(SpectrumError::TooLong {
+            return Err(SpectrumError::LongerThanFft {
                 n: expected,
-                factor: 1,
+                fft_len: self.settings.fft_len,
             });
         }
         Ok(())
@@ -280,4 +277,74 @@ pub fn frf_h1(
         im,
         df,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A decaying two-tone response to a short pulse, n samples at 1 kHz.
+    fn pair(n: usize) -> (Vec<f64>, Vec<f64>) {
+        let force = (0..n).map(|i| if i < 3 { 1.0 } else { 0.0 }).collect();
+        let response = (0..n)
+            .map(|i| {
+                let t = i as f64 * 1e-3;
+                (-20.0 * t).exp() * (2.0 * std::f64::consts::PI * 60.0 * t).sin()
+                    + 0.3 * (-35.0 * t).exp() * (2.0 * std::f64::consts::PI * 170.0 * t).cos()
+            })
+            .collect();
+        (force, response)
+    }
+
+    fn settings(fft_len: usize) -> CrossSpectraSettings {
+        CrossSpectraSettings {
+            window: Window::Rectangular,
+            fft_len,
+            remove_mean: false,
+        }
+    }
+
+    /// Zero padding samples the same transform more densely: bin p·k of
+    /// the padded estimate is bin k of the unpadded one.
+    #[test]
+    fn padding_interpolates_between_the_bins() {
+        let (f, x) = pair(1024);
+        let plain = CrossSpectra::estimate([(&f[..], &x[..])], 1e3, settings(1024)).unwrap();
+        let padded = CrossSpectra::estimate([(&f[..], &x[..])], 1e3, settings(4096)).unwrap();
+        let (h, hp) = (plain.h1(), padded.h1());
+        let scale = h.iter().map(|v| v.norm()).fold(0.0, f64::max);
+        for (k, v) in h.iter().enumerate() {
+            assert!((hp[4 * k] - v).norm() < 1e-12 * scale, "bin {k}");
+            assert_eq!(padded.frequency_hz[4 * k], plain.frequency_hz[k]);
+        }
+        // One pair: γ² = 1 and H1 = H2 wherever the force is excited.
+        for ((c, a), b) in plain.coherence().iter().zip(&h).zip(plain.h2()) {
+            assert!((c - 1.0).abs() < 1e-12 && (a - b).norm() < 1e-12 * scale);
+        }
+    }
+
+    #[test]
+    fn mismatched_records_are_refused() {
+        let (f, x) = pair(64);
+        let e = |pairs: Vec<(&[f64], &[f64])>, fft_len| {
+            CrossSpectra::estimate(pairs, 1e3, settings(fft_len)).unwrap_err()
+        };
+        assert!(matches!(
+            e(vec![(&f[..], &x[..63])], 64),
+            SpectrumError::LengthMismatch { second_len: 63, .. }
+        ));
+        assert!(matches!(
+            e(vec![(&f[..], &x[..]), (&f[..32], &x[..32])], 64),
+            SpectrumError::LengthMismatch {
+                first_len: 64,
+                second_len: 32,
+                ..
+            }
+        ));
+        assert_eq!(
+            e(vec![(&f[..], &x[..])], 32),
+            SpectrumError::LongerThanFft { n: 64, fft_len: 32 }
+        );
+        assert_eq!(e(Vec::new(), 64), SpectrumError::NoRecords);
+    }
 }

@@ -49,6 +49,12 @@ pub enum SpectrumError {
     /// `zero_pad_factor` must be at least 1.
     #[error("zero-pad factor must be at least 1, got {0}")]
     InvalidZeroPadFactor(usize),
+    /// A record is longer than the FFT it is to be padded to.
+    #[error("a record of {n} samples does not fit an FFT of {fft_len}")]
+    LongerThanFft { n: usize, fft_len: usize },
+    /// An estimate was asked of no records at all.
+    #[error("no records to estimate from")]
+    NoRecords,
     /// The padded FFT length does not fit in `usize`.
     #[error("FFT length overflows for {n} samples and zero-pad factor {factor}")]
     TooLong { n: usize, factor: usize },
