@@ -106,12 +106,14 @@ class Model:
         spectral_radius: float = 0.9,
         sample_rate: float = 51200.0,
         sensor: Optional[str] = None,
-        window: Literal["hann", "rect", "blackman", "flattop"] = "hann",
+        window: str = "hann",
     ) -> "ImpulseResult":
         """The time-domain test (``ancf-modal impulse``): the half-sine
         loads (``amplitude`` [N], ``duration`` [s] override them), ``end_time``
         [s] in steps of ``step`` [s], generalized-α with ``spectral_radius``
-        [–], the sensor recorded at ``sample_rate`` [Hz] (0: every step)."""
+        [–], the sensor recorded at ``sample_rate`` [Hz] (0: every step),
+        ``window`` one of rect, hann, flattop, blackman, force:P,
+        exponential:P (as ``frf``)."""
     def calibrate(
         self,
         target_hz: Union[float, Sequence[float], None] = None,
