@@ -9,6 +9,7 @@ mod placement;
 pub mod reference;
 mod rigid;
 pub mod sanity;
+mod section;
 mod types;
 pub mod validate;
 

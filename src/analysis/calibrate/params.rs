@@ -241,9 +241,7 @@ impl ParameterSet {
                     .iter()
                     .any(|p| p.target.section_beam() == Some(i));
                 if touched {
-                    let a0 = b0.section.height * b0.section.width;
-                    let a = b.section.height * b.section.width;
-                    b.material.density = b0.material.density * a0 / a;
+                    b.material.density = b0.material.density * b0.section.area() / b.section.area();
                 }
             }
         }
