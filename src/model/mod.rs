@@ -5,6 +5,7 @@
 mod contact;
 mod interpolate;
 pub mod number;
+pub mod path;
 mod placement;
 pub mod reference;
 mod rigid;
