@@ -70,7 +70,8 @@ impl Parameter {
             given: given.to_string(),
         };
         let (name, range) = given.split_once('=').ok_or_else(syntax)?;
-        if name.trim().trim_end_matches('+').trim().is_empty() {
+        let bare = name.trim();
+        if bare.strip_suffix('+').unwrap_or(bare).trim().is_empty() {
             return Err(syntax());
         }
         let axis = Axis::parse(range, given)?;
