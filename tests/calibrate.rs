@@ -15,6 +15,7 @@ use ancf_modal::analysis::calibrate::{
 };
 use ancf_modal::analysis::{ModalSettings, ModeKind};
 use ancf_modal::error::Source;
+use ancf_modal::model::path::PathError;
 use ancf_modal::Model;
 use assert_cmd::Command;
 use common::{free_beam, freqs, modal_all, model, H, W};
@@ -462,7 +463,7 @@ fn bad_requests_are_typed_errors() {
     }
     let e = calibrate(&m, &request(&["blade.thickness"], &[4600.0]), &s).unwrap_err();
     match e {
-        CalibrationError::UnknownParameter { available, .. } => {
+        CalibrationError::Parameter(PathError::UnknownShortName { available, .. }) => {
             assert!(available.contains(&"blade.height".to_string()))
         }
         e => panic!("{e}"),

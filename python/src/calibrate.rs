@@ -141,8 +141,7 @@ fn keyword(e: &CalibrationError) -> Option<&'static str> {
     use CalibrationError as E;
     Some(match e {
         E::NoParameters
-        | E::UnknownParameter { .. }
-        | E::AmbiguousParameter { .. }
+        | E::Parameter(_)
         | E::DuplicateParameter { .. }
         | E::InvalidBounds { .. }
         | E::Unreachable { .. } => "params",

@@ -5,7 +5,7 @@ use crate::builtin;
 use crate::errors::{compute, Failure};
 use crate::matrices;
 use ancf::analysis::statics::{solve_equilibrium, StaticSettings};
-use ancf::analysis::sweep::{Quantity, Sweep, SweepSettings};
+use ancf::analysis::sweep::param;
 use ancf::error::{ModelError, Source};
 use ancf::model::Model;
 use ancf::results::provenance::sha256_hex;
@@ -173,24 +173,21 @@ impl PyModel {
     /// value to the model's number), values SI as in the model file. The
     /// new model is validated like a model file.
     fn with_params(&self, py: Python<'_>, params: &Bound<'_, PyDict>) -> PyResult<PyModel> {
-        let mut specs = Vec::with_capacity(params.len());
-        let mut values = Vec::with_capacity(params.len());
+        let mut named = Vec::with_capacity(params.len());
         for (k, v) in params.iter() {
-            let name: String = k.extract()?;
-            let value: f64 = v.extract()?;
-            specs.push(format!("{name}={value:?}:{value:?}:1"));
-            values.push(value);
+            named.push((k.extract::<String>()?, v.extract::<f64>()?));
         }
         let model = Arc::clone(&self.model);
         let source = self.source.clone();
         compute(py, move || {
-            let sweep = Sweep::new(&model, &specs, SweepSettings::new(Quantity::FirstBendingHz))
-                .map_err(|e| {
-                    // The command line names its flag (`--param: …`), this
-                    // the argument.
-                    Failure::Input(format!("params: {}", crate::errors::one_line(&e)))
-                })?;
-            let changed = sweep.model_at(&values).map_err(|e| {
+            let json = serde_json::to_value(&*model).expect("models serialize");
+            let resolved = param::at_values(&model, &json, &named).map_err(|e| {
+                // The command line names its flag (`--param: …`), this
+                // the argument.
+                Failure::Input(format!("params: {}", crate::errors::one_line(&e)))
+            })?;
+            let values: Vec<f64> = named.iter().map(|(_, v)| *v).collect();
+            let changed = param::apply(&json, &resolved, &values).map_err(|e| {
                 Failure::Input(format!("{source}: {}", crate::errors::one_line(&e)))
             })?;
             let text = changed.to_json();

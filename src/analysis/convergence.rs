@@ -101,9 +101,8 @@ pub fn euler_bernoulli_free_free(model: &Model, modes: usize) -> Option<Vec<f64>
     if !free {
         return None;
     }
-    let (h, w) = (beam.section.height, beam.section.width);
-    let ei = beam.material.young * w * h.powi(3) / 12.0;
-    let rho_a = beam.material.density * w * h;
+    let ei = beam.section.bending_stiffness(beam.material.young);
+    let rho_a = beam.section.mass_per_length(beam.material.density);
     let l = beam.length;
     let bl = |k: usize| {
         FREE_FREE_BL

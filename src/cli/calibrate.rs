@@ -10,6 +10,7 @@ use ancf_modal::analysis::calibrate::{
     ParameterSpec,
 };
 use ancf_modal::analysis::ModeKind;
+use ancf_modal::model::path::{available_names, PathError};
 use ancf_modal::model::Model;
 use ancf_modal::output::calibrate_report::{calibrate_table, calibration_plot};
 use ancf_modal::output::plot::{
@@ -294,10 +295,11 @@ pub fn equivalent_height(model: &Model, target_hz: f64) -> Result<CalibrationRes
     let beam = model
         .beams
         .first()
-        .ok_or(CalibrationError::UnknownParameter {
+        .ok_or(PathError::UnknownShortName {
             name: String::from("height"),
-            available: ancf_modal::analysis::calibrate::params::available_names(model),
-        })?;
+            available: available_names(model),
+        })
+        .map_err(CalibrationError::from)?;
     let request = CalibrationRequest {
         parameters: vec![ParameterSpec::named(format!("{}.height", beam.id))],
         targets_hz: vec![target_hz],
@@ -313,8 +315,7 @@ fn flagged(e: CalibrationError) -> anyhow::Error {
     use CalibrationError as E;
     let flag = match &e {
         E::NoParameters
-        | E::UnknownParameter { .. }
-        | E::AmbiguousParameter { .. }
+        | E::Parameter(_)
         | E::DuplicateParameter { .. }
         | E::InvalidBounds { .. }
         | E::Unreachable { .. } => "--param",

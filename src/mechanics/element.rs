@@ -14,6 +14,7 @@
 //! Quadrature: 5 Gauss points for the axial part (exact for the linear part,
 //! whose integrand is of degree 4) and 3 for bending (degree 2).
 
+use crate::model::{Material, Section};
 use nalgebra::{Matrix2, Matrix4, SMatrix, SVector, Vector2, Vector4};
 
 /// 8×8 element matrix.
@@ -33,14 +34,32 @@ pub struct CableSection {
 }
 
 impl CableSection {
-    /// Rectangular section of height `h` (bending plane) and width `w`.
-    pub fn rectangle(young: f64, density: f64, h: f64, w: f64) -> Self {
-        let a = h * w;
+    /// The model's rectangular `section` in `material` (the properties of
+    /// [`Section`]).
+    pub fn of(section: &Section, material: &Material) -> Self {
         CableSection {
-            ea: young * a,
-            ei: young * w * h.powi(3) / 12.0,
-            rho_a: density * a,
+            ea: section.axial_stiffness(material.young),
+            ei: section.bending_stiffness(material.young),
+            rho_a: section.mass_per_length(material.density),
         }
+    }
+
+    /// Rectangular section of height `h` (bending plane) and width `w`
+    /// [SI: m], Young's modulus `young` [SI: Pa], density `density` [SI:
+    /// kg/m³].
+    pub fn rectangle(young: f64, density: f64, h: f64, w: f64) -> Self {
+        let material = Material {
+            young,
+            density,
+            poisson: None,
+        };
+        CableSection::of(
+            &Section {
+                height: h,
+                width: w,
+            },
+            &material,
+        )
     }
 }
 

@@ -20,7 +20,9 @@
 //! v_s = `friction_velocity` [SI: m/s].
 
 use super::types::PointSpec;
-use super::validate::{Failure, PointTarget};
+use super::validate::{
+    check_finite_pair, check_non_negative, check_positive, Failure, PointTarget,
+};
 use super::Model;
 use crate::error::Problem;
 use serde::{Deserialize, Serialize};
@@ -284,16 +286,8 @@ impl Model {
             Contact::PointLine { .. } => format!("{p}.line"),
         };
         let owner = self.segment_owner(seg, &seg_path)?;
-        for (key, v) in [("from", seg.from), ("to", seg.to)] {
-            for (k, x) in v.iter().enumerate() {
-                if !x.is_finite() {
-                    return Err((
-                        format!("{seg_path}.{key}[{k}]"),
-                        Problem::NotFinite { value: *x },
-                    ));
-                }
-            }
-        }
+        check_finite_pair(seg.from, &format!("{seg_path}.from"))?;
+        check_finite_pair(seg.to, &format!("{seg_path}.to"))?;
         let length = (seg.to[0] - seg.from[0]).hypot(seg.to[1] - seg.from[1]);
         if length <= super::validate::COINCIDENCE_TOLERANCE {
             return Err((seg_path, Problem::DegenerateSegment { length }));
@@ -321,11 +315,11 @@ impl Model {
             Contact::PinSlot {
                 pin_radius, slot, ..
             } => {
-                positive(*pin_radius, &format!("{p}.pin_radius"))?;
+                check_positive(*pin_radius, &format!("{p}.pin_radius"))?;
                 let width = slot
                     .width
                     .ok_or_else(|| (format!("{p}.slot"), Problem::MissingKey { key: "width" }))?;
-                positive(width, &format!("{p}.slot.width"))?;
+                check_positive(width, &format!("{p}.slot.width"))?;
                 if *pin_radius >= 0.5 * width {
                     return Err((
                         format!("{p}.pin_radius"),
@@ -339,9 +333,7 @@ impl Model {
             Contact::PointLine {
                 radius, line, side, ..
             } => {
-                if !(radius.is_finite() && *radius >= 0.0) {
-                    return Err((format!("{p}.radius"), Problem::Negative { value: *radius }));
-                }
+                check_non_negative(*radius, &format!("{p}.radius"))?;
                 if line.width.is_some() {
                     return Err((
                         format!("{p}.line.width"),
@@ -369,16 +361,14 @@ impl Model {
             }
         }
         if let Some((mu, v)) = c.friction() {
-            if !(mu.is_finite() && mu >= 0.0) {
-                return Err((format!("{p}.friction"), Problem::Negative { value: mu }));
-            }
-            positive(v, &format!("{p}.friction_velocity"))?;
+            check_non_negative(mu, &format!("{p}.friction"))?;
+            check_positive(v, &format!("{p}.friction_velocity"))?;
         }
         self.validate_law(c.law(), &format!("{p}.law"))
     }
 
     fn validate_law(&self, law: &ContactLaw, p: &str) -> Result<(), Failure> {
-        positive(law.stiffness, &format!("{p}.stiffness"))?;
+        check_positive(law.stiffness, &format!("{p}.stiffness"))?;
         let not = |key: &'static str, why: &'static str| {
             Err((format!("{p}.{key}"), Problem::KeyNotAllowed { key, why }))
         };
@@ -387,16 +377,14 @@ impl Model {
             Some(_) if !linear => {
                 return not("damping", "only the `linear` law has a damping coefficient")
             }
-            Some(d) if !(d.is_finite() && d >= 0.0) => {
-                return Err((format!("{p}.damping"), Problem::Negative { value: d }))
-            }
-            _ => {}
+            Some(d) => check_non_negative(d, &format!("{p}.damping"))?,
+            None => {}
         }
         if let Some(n) = law.exponent {
             if linear {
                 return not("exponent", "the `linear` law has exponent 1");
             }
-            positive(n, &format!("{p}.exponent"))?;
+            check_positive(n, &format!("{p}.exponent"))?;
         }
         match (law.is_dissipative(), law.restitution) {
             (true, None) => {
@@ -421,19 +409,8 @@ impl Model {
             _ => {}
         }
         if let Some(v) = law.min_impact_velocity {
-            positive(v, &format!("{p}.min_impact_velocity"))?;
+            check_positive(v, &format!("{p}.min_impact_velocity"))?;
         }
         Ok(())
-    }
-}
-
-fn positive(value: f64, path: &str) -> Result<(), Failure> {
-    if !value.is_finite() {
-        return Err((path.to_string(), Problem::NotFinite { value }));
-    }
-    if value > 0.0 {
-        Ok(())
-    } else {
-        Err((path.to_string(), Problem::NotPositive { value }))
     }
 }

@@ -5,10 +5,12 @@
 mod contact;
 mod interpolate;
 pub mod number;
+pub mod path;
 mod placement;
 pub mod reference;
 mod rigid;
 pub mod sanity;
+mod section;
 mod types;
 pub mod validate;
 

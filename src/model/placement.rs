@@ -73,8 +73,7 @@ impl Model {
             }
         };
         for b in &self.beams {
-            let m = b.material.density * b.section.height * b.section.width * b.length;
-            add(m, b.point_at(0.5 * b.length));
+            add(b.mass(), b.point_at(0.5 * b.length));
         }
         for r in &self.rigid_bodies {
             add(r.mass, r.position);

@@ -15,7 +15,7 @@ use super::types::{Beam, LoadFrame, Model, PointSpec, RigidBody, SensorFrame};
 impl Beam {
     /// The rigid body with this beam's mass, centre and inertia.
     pub fn as_rigid_body(&self) -> RigidBody {
-        let mass = self.material.density * self.section.height * self.section.width * self.length;
+        let mass = self.mass();
         RigidBody {
             id: self.id.clone(),
             mass,

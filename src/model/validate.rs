@@ -624,12 +624,12 @@ fn check_finite(value: f64, path: &str) -> Result<(), Failure> {
     }
 }
 
-fn check_finite_pair(v: [f64; 2], path: &str) -> Result<(), Failure> {
+pub(super) fn check_finite_pair(v: [f64; 2], path: &str) -> Result<(), Failure> {
     check_finite(v[0], &format!("{path}[0]"))?;
     check_finite(v[1], &format!("{path}[1]"))
 }
 
-fn check_positive(value: f64, path: &str) -> Result<(), Failure> {
+pub(super) fn check_positive(value: f64, path: &str) -> Result<(), Failure> {
     check_finite(value, path)?;
     if value > 0.0 {
         Ok(())
@@ -638,7 +638,7 @@ fn check_positive(value: f64, path: &str) -> Result<(), Failure> {
     }
 }
 
-fn check_non_negative(value: f64, path: &str) -> Result<(), Failure> {
+pub(super) fn check_non_negative(value: f64, path: &str) -> Result<(), Failure> {
     check_finite(value, path)?;
     if value >= 0.0 {
         Ok(())

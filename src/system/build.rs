@@ -78,12 +78,7 @@ impl System {
         let mut beams = Vec::new();
         for b in &model.beams {
             let node_s = mesh_nodes(model, b);
-            let section = CableSection::rectangle(
-                b.material.young,
-                b.material.density,
-                b.section.height,
-                b.section.width,
-            );
+            let section = CableSection::of(&b.section, &b.material);
             let elements = node_s
                 .windows(2)
                 .map(|w| CableElement::new(w[1] - w[0], section))

@@ -3,6 +3,7 @@
 use crate::analysis::impulse::ImpulseError;
 use crate::analysis::ModeKind;
 use crate::error::AnalysisError;
+use crate::model::path::PathError;
 
 /// "mode at 6819.3 Hz: ∂f/∂ln(blade.height) = 6819.3 Hz, …; relative
 /// singular values 1.41, 1.3e-16".
@@ -46,16 +47,9 @@ pub enum CalibrationError {
     NoTargets,
     #[error("target frequency must be positive and finite, got {value:?} Hz")]
     TargetNotPositive { value: f64 },
-    #[error("unknown parameter `{name}`; this model has: {}", available.join(", "))]
-    UnknownParameter {
-        name: String,
-        available: Vec<String>,
-    },
-    #[error("parameter `{name}` is ambiguous; name one of: {}", candidates.join(", "))]
-    AmbiguousParameter {
-        name: String,
-        candidates: Vec<String>,
-    },
+    /// A parameter name the model does not have, or an ambiguous one.
+    #[error(transparent)]
+    Parameter(#[from] PathError),
     #[error("parameter `{name}` is given twice (as `{canonical}`)")]
     DuplicateParameter { name: String, canonical: String },
     #[error(

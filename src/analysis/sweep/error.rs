@@ -6,6 +6,7 @@
 //! failure of one point, which the sweep records and goes on.
 
 use crate::error::{AnalysisError, Problem};
+use crate::model::path::PathError;
 
 /// A problem with the set-up of a sweep or with joining its shards.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -41,31 +42,9 @@ pub enum SweepError {
         name: String,
         short_names: Vec<String>,
     },
-    #[error("parameter `{name}` is ambiguous; name one of: {}", candidates.join(", "))]
-    AmbiguousParameter {
-        name: String,
-        candidates: Vec<String>,
-    },
-    #[error("`{name}`: malformed JSON path at `{at}` (write keys with dots and elements as [INDEX] or [ID], e.g. `beams[blade].section.height`)")]
-    PathSyntax { name: String, at: String },
-    #[error("`{name}`: the model has no `{path}`{}", hint_list(available))]
-    PathNotFound {
-        name: String,
-        path: String,
-        available: Vec<String>,
-    },
-    #[error("`{name}`: `{path}` is {kind}, not a number")]
-    NotNumeric {
-        name: String,
-        path: String,
-        kind: &'static str,
-    },
-    #[error("`{name}`: `{path}` cannot take a number: {message}")]
-    NotSettable {
-        name: String,
-        path: String,
-        message: String,
-    },
+    /// A name that does not resolve to a number of the model.
+    #[error(transparent)]
+    Path(#[from] PathError),
     #[error("`{name}`: the model has no load `{id}`; its loads are: {}", if available.is_empty() { String::from("none") } else { available.join(", ") })]
     UnknownLoad {
         name: String,
@@ -122,14 +101,6 @@ pub enum SweepError {
         missing_shards: Vec<usize>,
         shards: usize,
     },
-}
-
-fn hint_list(available: &[String]) -> String {
-    if available.is_empty() {
-        String::new()
-    } else {
-        format!(" (there: {})", available.join(", "))
-    }
 }
 
 /// Why one point of a sweep failed; recorded with the point.

@@ -109,15 +109,7 @@ impl Sweep {
         let base = serde_json::to_value(model).expect("models serialize");
         let mut parameters: Vec<Parameter> = Vec::with_capacity(specs.len());
         for spec in specs {
-            let p = Parameter::parse(model, &base, spec)?;
-            if let Some(other) = parameters.iter().find(|o| o.overlaps(&p)) {
-                return Err(SweepError::DuplicateParameter {
-                    name: p.name.clone(),
-                    other: other.name.clone(),
-                    target: p.target.clone(),
-                });
-            }
-            parameters.push(p);
+            param::add_distinct(&mut parameters, Parameter::parse(model, &base, spec)?)?;
         }
         let mut settings = settings;
         if settings.tracked_modes == 0 {

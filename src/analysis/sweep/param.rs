@@ -2,21 +2,18 @@
 //!
 //! A parameter is named in one of three ways:
 //!
-//! * a JSON path to a number of the model file (section 4 of the design),
-//!   keys joined by dots and array elements as `[INDEX]` or `[ID]` (the
-//!   element whose `"id"` is ID): `beams[blade].section.height`,
-//!   `springs[0].stiffness`, `springs[main].b.ground[1]`, `gravity[1]`.
-//!   An optional key the file leaves out (a pin's `torsion_stiffness`) may
-//!   be named too; it is added with the value.
-//! * a short name of `calibrate --param` (`height`, `blade.young`,
-//!   `slot.mass`, …), resolved by [`crate::analysis::calibrate::params`]
-//!   and then treated as its JSON path;
+//! * a JSON path to a number of the model file or a short name of
+//!   `calibrate --param` (`height`, `blade.young`, `slot.mass`, …), both
+//!   resolved by [`crate::model::path`] into the number's canonical path
+//!   (`beams[0].section.height`);
 //! * `load_scale:ID[,ID…]` — the value multiplies the force of each named
 //!   load (an id, or `loads[i]` for a load without one) and the preload of
 //!   each named spring (by its id; the whole pre-stress of the switch-off
 //!   scales with `load_scale:F_x2,F_c,helical_spring`): the paper's
 //!   "pre-stress" factor. It only acts through a static equilibrium, so a
 //!   sweep with it linearizes there.
+//!
+//! `NAME+=…` adds the values to the model's number instead (an offset).
 //!
 //! Values are SI, like the model file. Each point gets its own copy of the
 //! model with the values written in; the copy is then parsed and validated
@@ -25,17 +22,9 @@
 
 use super::error::{PointError, SweepError};
 use super::grid::Axis;
-use crate::analysis::calibrate::params::{available_names, resolve_name};
-use crate::analysis::calibrate::CalibrationError;
+use crate::model::path::{NumberPath, PathError, Step};
 use crate::model::Model;
-use serde_json::{Map, Number, Value};
-
-/// One step of a resolved path.
-#[derive(Debug, Clone, PartialEq, Eq)]
-enum Step {
-    Key(String),
-    Index(usize),
-}
+use serde_json::{Number, Value};
 
 /// What a value does to one number of the model.
 #[derive(Debug, Clone, PartialEq)]
@@ -51,7 +40,7 @@ enum Op {
 /// One number a parameter changes.
 #[derive(Debug, Clone, PartialEq)]
 struct Edit {
-    path: Vec<Step>,
+    path: NumberPath,
     op: Op,
     /// The model holds a whole number here (e.g. `elements`): whole values
     /// are written as integers.
@@ -77,56 +66,73 @@ impl Parameter {
     /// `NAME+=LO:HI:N` adds the values to the model's number (an offset,
     /// e.g. a point moved by 0 → −1 mm).
     pub fn parse(model: &Model, json: &Value, given: &str) -> Result<Parameter, SweepError> {
-        let (name, range) = given
-            .split_once('=')
-            .ok_or_else(|| SweepError::ParamSyntax {
-                given: given.to_string(),
-            })?;
+        let syntax = || SweepError::ParamSyntax {
+            given: given.to_string(),
+        };
+        let (name, range) = given.split_once('=').ok_or_else(syntax)?;
+        let bare = name.trim();
+        if bare.strip_suffix('+').unwrap_or(bare).trim().is_empty() {
+            return Err(syntax());
+        }
+        let axis = Axis::parse(range, given)?;
+        Parameter::resolve(model, json, name, axis).map_err(|e| match e {
+            SweepError::ParamSyntax { .. } => syntax(),
+            e => e,
+        })
+    }
+
+    /// Resolves `NAME` (or `NAME+`, an offset) with the values of `axis`.
+    pub fn resolve(
+        model: &Model,
+        json: &Value,
+        name: &str,
+        axis: Axis,
+    ) -> Result<Parameter, SweepError> {
         let (name, offset) = match name.trim().strip_suffix('+') {
             Some(n) => (n.trim(), true),
             None => (name.trim(), false),
         };
+        let syntax = || SweepError::ParamSyntax {
+            given: format!("{name}{}", if offset { "+" } else { "" }),
+        };
         if name.is_empty() {
-            return Err(SweepError::ParamSyntax {
-                given: given.to_string(),
-            });
+            return Err(syntax());
         }
-        let axis = Axis::parse(range, given)?;
         let (target, edits, scales_loads) = match name.strip_prefix("load_scale:") {
-            Some(_) if offset => {
-                return Err(SweepError::ParamSyntax {
-                    given: given.to_string(),
-                })
-            }
+            Some(_) if offset => return Err(syntax()),
             Some(ids) => {
                 let (t, e) = load_scale(model, json, name, ids)?;
                 (t, e, true)
             }
             None => {
-                let path = resolve_number(model, json, name)?;
-                let mut target = display(&path);
-                let current = get(json, &path);
+                let path = NumberPath::resolve(model, json, name).map_err(unknown_or_path)?;
+                let current = path.get(json);
                 let integer = current.is_some_and(|v| v.is_i64() || v.is_u64());
-                let op = match (offset, current.and_then(Value::as_f64)) {
-                    (false, _) => Op::Set,
-                    (true, Some(base)) => Op::Shift { base },
+                let (op, lowest) = match (offset, current.and_then(Value::as_f64)) {
+                    (false, _) => (Op::Set, axis.lo),
+                    (true, Some(base)) => (Op::Shift { base }, base + axis.lo),
                     (true, None) => {
                         return Err(SweepError::NoValueToOffset {
                             name: name.to_string(),
-                            path: target,
+                            path: path.to_string(),
                         })
                     }
                 };
-                let lowest = match op {
-                    Op::Shift { base } => base + axis.lo,
-                    _ => axis.lo,
-                };
+                let mut target = path.to_string();
                 if offset {
                     target.push_str(" offset");
                 }
-                let edit = Edit { path, op, integer };
-                check_settable(json, name, &target, &edit, lowest)?;
-                (target, vec![edit], false)
+                path.check_settable(json, name, number(lowest, integer))
+                    .map_err(|e| match e {
+                        // The message names the offset as the target does.
+                        PathError::NotSettable { name, message, .. } => PathError::NotSettable {
+                            name,
+                            path: target.clone(),
+                            message,
+                        },
+                        e => e,
+                    })?;
+                (target, vec![Edit { path, op, integer }], false)
             }
         };
         Ok(Parameter {
@@ -140,6 +146,29 @@ impl Parameter {
             scales_loads,
             edits,
         })
+    }
+
+    /// Resolves `NAME` (or `NAME+`) at the one value `value`.
+    pub fn at(
+        model: &Model,
+        json: &Value,
+        name: &str,
+        value: f64,
+    ) -> Result<Parameter, SweepError> {
+        if !value.is_finite() {
+            return Err(SweepError::NotANumber {
+                given: name.to_string(),
+                what: "the value",
+                text: format!("{value:?}"),
+            });
+        }
+        let axis = Axis {
+            lo: value,
+            hi: value,
+            count: 1,
+            log: false,
+        };
+        Parameter::resolve(model, json, name, axis)
     }
 
     /// Whether `self` and `other` change a common number.
@@ -157,11 +186,38 @@ impl Parameter {
                 Op::Scale { base } => base * value,
                 Op::Shift { base } => base + value,
             };
-            if let Some(slot) = slot_mut(json, &e.path) {
-                *slot = number(v, e.integer);
-            }
+            e.path.set(json, number(v, e.integer));
         }
     }
+}
+
+/// Adds `p` to `parameters`, refusing a second name of a number one of
+/// them changes.
+pub fn add_distinct(parameters: &mut Vec<Parameter>, p: Parameter) -> Result<(), SweepError> {
+    if let Some(other) = parameters.iter().find(|o| o.overlaps(&p)) {
+        return Err(SweepError::DuplicateParameter {
+            name: p.name.clone(),
+            other: other.name.clone(),
+            target: p.target.clone(),
+        });
+    }
+    parameters.push(p);
+    Ok(())
+}
+
+/// The parameters of one point, each `NAME` (or `NAME+`) at its value:
+/// what `apply` needs to write them into `json` (the model's JSON form);
+/// Python's `Model.with_params`.
+pub fn at_values(
+    model: &Model,
+    json: &Value,
+    named: &[(String, f64)],
+) -> Result<Vec<Parameter>, SweepError> {
+    let mut parameters = Vec::with_capacity(named.len());
+    for (name, value) in named {
+        add_distinct(&mut parameters, Parameter::at(model, json, name, *value)?)?;
+    }
+    Ok(parameters)
 }
 
 /// The model with each parameter at its value: written into a copy of the
@@ -188,168 +244,15 @@ fn number(v: f64, integer: bool) -> Value {
     Number::from_f64(v).map_or(Value::Null, Value::Number)
 }
 
-/// The path of a number named by a JSON path or a short name.
-fn resolve_number(model: &Model, json: &Value, name: &str) -> Result<Vec<Step>, SweepError> {
-    let looks_like_path = name.contains('[');
-    if !looks_like_path {
-        match resolve_name(model, name) {
-            Ok((_, target)) => return resolve_path(json, name, &target.json_path()),
-            Err(CalibrationError::AmbiguousParameter { candidates, .. }) => {
-                return Err(SweepError::AmbiguousParameter {
-                    name: name.to_string(),
-                    candidates,
-                })
-            }
-            Err(_) => {}
+/// A name that is neither a short name nor a path: the sweep's message
+/// (which also offers `load_scale:`); other path errors as they are.
+fn unknown_or_path(e: PathError) -> SweepError {
+    match e {
+        PathError::Unknown { name, short_names } => {
+            SweepError::UnknownParameter { name, short_names }
         }
+        e => SweepError::Path(e),
     }
-    // A first key the model file does not have: not meant as a path.
-    let first = name.split(['.', '[']).next().unwrap_or_default().trim();
-    if json.get(first).is_none() {
-        return Err(SweepError::UnknownParameter {
-            name: name.to_string(),
-            short_names: available_names(model),
-        });
-    }
-    resolve_path(json, name, name)
-}
-
-/// `[ID]`/`[INDEX]` element or key of a path as written.
-enum Written<'a> {
-    Key(&'a str),
-    Element(&'a str),
-}
-
-/// Splits `a.b[c][2].d` into its steps.
-fn split_path<'a>(name: &str, text: &'a str) -> Result<Vec<Written<'a>>, SweepError> {
-    let err = |at: &str| SweepError::PathSyntax {
-        name: name.to_string(),
-        at: at.to_string(),
-    };
-    let mut steps = Vec::new();
-    for segment in text.split('.') {
-        let (key, mut rest) = match segment.find('[') {
-            Some(i) => segment.split_at(i),
-            None => (segment, ""),
-        };
-        if key.is_empty() || key.contains(']') {
-            return Err(err(segment));
-        }
-        steps.push(Written::Key(key.trim()));
-        while !rest.is_empty() {
-            let inner = rest.strip_prefix('[').ok_or_else(|| err(rest))?;
-            let close = inner.find(']').ok_or_else(|| err(rest))?;
-            let token = inner[..close].trim();
-            if token.is_empty() || token.contains('[') {
-                return Err(err(rest));
-            }
-            steps.push(Written::Element(token));
-            rest = &inner[close + 1..];
-        }
-    }
-    Ok(steps)
-}
-
-/// Resolves a written path against the model's JSON: ids become indices.
-/// The end must be a number, or a key the object leaves out.
-fn resolve_path(json: &Value, name: &str, text: &str) -> Result<Vec<Step>, SweepError> {
-    let written = split_path(name, text)?;
-    let mut path = Vec::with_capacity(written.len());
-    let mut at = Some(json);
-    let count = written.len();
-    for (n, w) in written.into_iter().enumerate() {
-        let last = n + 1 == count;
-        let here = display(&path);
-        let not_found = |what: String, available: Vec<String>| SweepError::PathNotFound {
-            name: name.to_string(),
-            path: if here.is_empty() {
-                what
-            } else {
-                format!("{here}{what}")
-            },
-            available,
-        };
-        let current = at.ok_or_else(|| not_found(String::new(), vec![]))?;
-        match w {
-            Written::Key(k) => {
-                let Value::Object(map) = current else {
-                    return Err(not_found(format!(".{k}"), vec![]));
-                };
-                let sep = if path.is_empty() { "" } else { "." };
-                match map.get(k) {
-                    Some(v) => at = Some(v),
-                    // An optional key the file left out: only at the end.
-                    None if last => at = None,
-                    None => {
-                        return Err(not_found(
-                            format!("{sep}{k}"),
-                            map.keys().cloned().collect(),
-                        ))
-                    }
-                }
-                path.push(Step::Key(k.to_string()));
-            }
-            Written::Element(token) => {
-                let Value::Array(items) = current else {
-                    return Err(not_found(format!("[{token}]"), vec![]));
-                };
-                let index = match token.parse::<usize>() {
-                    Ok(i) if i < items.len() => Some(i),
-                    Ok(_) => None,
-                    Err(_) => items
-                        .iter()
-                        .position(|v| v.get("id") == Some(&Value::from(token))),
-                };
-                let Some(index) = index else {
-                    let ids: Vec<String> = items
-                        .iter()
-                        .enumerate()
-                        .map(|(i, v)| match v.get("id").and_then(Value::as_str) {
-                            Some(id) => format!("[{id}]"),
-                            None => format!("[{i}]"),
-                        })
-                        .collect();
-                    return Err(not_found(format!("[{token}]"), ids));
-                };
-                at = items.get(index);
-                path.push(Step::Index(index));
-            }
-        }
-    }
-    let kind = match at {
-        None | Some(Value::Null) | Some(Value::Number(_)) => return Ok(path),
-        Some(Value::Bool(_)) => "a true/false value",
-        Some(Value::String(_)) => "a text",
-        Some(Value::Array(_)) => "a list (name one element, e.g. [0])",
-        Some(Value::Object(_)) => "a group of values (name one of its keys)",
-    };
-    Err(SweepError::NotNumeric {
-        name: name.to_string(),
-        path: display(&path),
-        kind,
-    })
-}
-
-/// Refuses a path the model file cannot hold a number at (e.g. an unknown
-/// key added at the end): the model with `value` written in must parse.
-fn check_settable(
-    json: &Value,
-    name: &str,
-    target: &str,
-    edit: &Edit,
-    value: f64,
-) -> Result<(), SweepError> {
-    let mut trial = json.clone();
-    if let Some(slot) = slot_mut(&mut trial, &edit.path) {
-        *slot = number(value, edit.integer);
-    }
-    serde_json::from_value::<Model>(trial)
-        .map(drop)
-        .map_err(|e| SweepError::NotSettable {
-            name: name.to_string(),
-            path: target.to_string(),
-            message: e.to_string(),
-        })
 }
 
 /// The names `load_scale:` accepts for the model's loads: the id, or
@@ -406,13 +309,13 @@ fn load_scale(
     let mut edits = Vec::new();
     for &i in &indices {
         for c in 0..2 {
-            let path = vec![
+            let path = NumberPath::new(vec![
                 Step::Key("loads".into()),
                 Step::Index(i),
                 Step::Key("force".into()),
                 Step::Index(c),
-            ];
-            let base = get(json, &path).and_then(Value::as_f64).unwrap_or(0.0);
+            ]);
+            let base = path.number(json).unwrap_or(0.0);
             edits.push(Edit {
                 path,
                 op: Op::Scale { base },
@@ -421,12 +324,12 @@ fn load_scale(
         }
     }
     for &k in &springs {
-        let path = vec![
+        let path = NumberPath::new(vec![
             Step::Key("springs".into()),
             Step::Index(k),
             Step::Key("preload".into()),
-        ];
-        let base = get(json, &path).and_then(Value::as_f64).unwrap_or(0.0);
+        ]);
+        let base = path.number(json).unwrap_or(0.0);
         edits.push(Edit {
             path,
             op: Op::Scale { base },
@@ -439,49 +342,6 @@ fn load_scale(
         .chain(springs.iter().map(|k| format!("springs[{k}]")))
         .collect();
     Ok((format!("load_scale:{}", target.join(",")), edits))
-}
-
-fn get<'a>(json: &'a Value, path: &[Step]) -> Option<&'a Value> {
-    path.iter().try_fold(json, |v, s| match s {
-        Step::Key(k) => v.get(k.as_str()),
-        Step::Index(i) => v.get(*i),
-    })
-}
-
-/// The value at `path`, creating a missing last key.
-fn slot_mut<'a>(json: &'a mut Value, path: &[Step]) -> Option<&'a mut Value> {
-    let (last, head) = path.split_last()?;
-    let parent = head.iter().try_fold(json, |v, s| match s {
-        Step::Key(k) => v.get_mut(k.as_str()),
-        Step::Index(i) => v.get_mut(*i),
-    })?;
-    match last {
-        Step::Key(k) => match parent {
-            Value::Object(map) => Some(map_entry(map, k)),
-            _ => None,
-        },
-        Step::Index(i) => parent.get_mut(*i),
-    }
-}
-
-fn map_entry<'a>(map: &'a mut Map<String, Value>, key: &str) -> &'a mut Value {
-    map.entry(key.to_string()).or_insert(Value::Null)
-}
-
-/// `beams[0].section.height`.
-fn display(path: &[Step]) -> String {
-    let mut s = String::new();
-    for step in path {
-        match step {
-            Step::Key(k) if s.is_empty() => s.push_str(k),
-            Step::Key(k) => {
-                s.push('.');
-                s.push_str(k);
-            }
-            Step::Index(i) => s.push_str(&format!("[{i}]")),
-        }
-    }
-    s
 }
 
 #[cfg(test)]
@@ -524,27 +384,27 @@ mod tests {
         ));
         assert!(matches!(
             resolve("mass"),
-            Err(SweepError::AmbiguousParameter { .. })
+            Err(SweepError::Path(PathError::Ambiguous { .. }))
         ));
         assert!(matches!(
             resolve("beams[wing].section.height"),
-            Err(SweepError::PathNotFound { .. })
+            Err(SweepError::Path(PathError::NotFound { .. }))
         ));
         assert!(matches!(
             resolve("beams[0].section"),
-            Err(SweepError::NotNumeric { .. })
+            Err(SweepError::Path(PathError::NotNumeric { .. }))
         ));
         assert!(matches!(
             resolve("beams[0].id"),
-            Err(SweepError::NotNumeric { .. })
+            Err(SweepError::Path(PathError::NotNumeric { .. }))
         ));
         assert!(matches!(
             resolve("beams[0].colour"),
-            Err(SweepError::NotSettable { .. })
+            Err(SweepError::Path(PathError::NotSettable { .. }))
         ));
         assert!(matches!(
             resolve("beams[0.height"),
-            Err(SweepError::PathSyntax { .. })
+            Err(SweepError::Path(PathError::Syntax { .. }))
         ));
         assert!(matches!(
             resolve("load_scale:nope"),
@@ -590,6 +450,40 @@ mod tests {
         assert!(matches!(
             apply(&json, &[h], &[-1e-3]),
             Err(PointError::Invalid { .. })
+        ));
+    }
+
+    #[test]
+    fn one_value_per_name_is_a_one_point_sweep() {
+        let m = Model::builtin();
+        let json = serde_json::to_value(&m).unwrap();
+        let named = [
+            (String::from("young"), 1.1e11),
+            (String::from("beams[0].section.width+"), 1e-4),
+        ];
+        let at = at_values(&m, &json, &named).unwrap();
+        let swept: Vec<Parameter> = [
+            "young=1.1e11:1.1e11:1",
+            "beams[0].section.width+=1e-4:1e-4:1",
+        ]
+        .iter()
+        .map(|g| Parameter::parse(&m, &json, g).unwrap())
+        .collect();
+        assert_eq!(at, swept);
+        let out = apply(&json, &at, &[1.1e11, 1e-4]).unwrap();
+        assert_eq!(out.beams[0].material.young, 1.1e11);
+        assert_eq!(out.beams[0].section.width, m.beams[0].section.width + 1e-4);
+        let twice = [
+            (String::from("height"), 1e-3),
+            (String::from("beams[0].section.height"), 2e-3),
+        ];
+        assert!(matches!(
+            at_values(&m, &json, &twice),
+            Err(SweepError::DuplicateParameter { .. })
+        ));
+        assert!(matches!(
+            at_values(&m, &json, &[(String::from("height"), f64::NAN)]),
+            Err(SweepError::NotANumber { .. })
         ));
     }
 }
