@@ -131,21 +131,32 @@ pub fn solve<Q: Problem>(
     let mut iterations = 1;
     let mut accepted = vec![0];
     let mut r = problem.residuals(&current);
-    let mut j = problem.jacobian(&x, &current, &r)?;
-    let mut cost = r.norm_squared();
+    // The Jacobian at the current point, computed when a step needs it:
+    // not after the step the loop stops on.
+    let j0 = problem.jacobian(&x, &current, &r)?;
     let largest = |m: &DMatrix<f64>| (0..m.ncols()).map(|k| m[(k, k)]).fold(0.0, f64::max);
     let mut mu = settings
         .initial_damping
-        .of(largest(&(j.transpose() * &j)))
+        .of(largest(&(j0.transpose() * &j0)))
         .max(1e-300);
+    let mut jacobian = Some(j0);
+    let mut cost = r.norm_squared();
     let mut rejections = 0;
     let stop = loop {
         if problem.converged(&current) {
             break Stop::Converged;
         }
-        if evaluations >= settings.max_evaluations || iterations > settings.max_iterations {
+        if evaluations >= settings.max_evaluations {
             break Stop::Exhausted;
         }
+        let j = match jacobian.take() {
+            Some(j) => j,
+            None if iterations >= settings.max_iterations => break Stop::Exhausted,
+            None => {
+                iterations += 1;
+                problem.jacobian(&x, &current, &r)?
+            }
+        };
         let jtj = j.transpose() * &j;
         let g = j.transpose() * &r;
         let free: Vec<usize> = (0..n)
@@ -167,6 +178,7 @@ pub fn solve<Q: Problem>(
         }
         let rhs = DVector::from_fn(nf, |i, _| -g[free[i]]);
         let Some(delta_free) = a.cholesky().map(|c| c.solve(&rhs)) else {
+            jacobian = Some(j);
             mu *= settings.grow;
             rejections += 1;
             if rejections >= settings.max_rejections {
@@ -190,10 +202,8 @@ pub fn solve<Q: Problem>(
             let small = cost - cost_new <= settings.min_relative_decrease * cost;
             x = x_new;
             current = trial;
-            j = problem.jacobian(&x, &current, &r_new)?;
             r = r_new;
             cost = cost_new;
-            iterations += 1;
             rejections = 0;
             accepted.push(evaluations - 1);
             mu = (mu / settings.shrink).max(settings.damping_floor.of(scale));
@@ -201,6 +211,7 @@ pub fn solve<Q: Problem>(
                 break Stop::Stalled;
             }
         } else {
+            jacobian = Some(j);
             mu *= settings.grow;
             rejections += 1;
             if mu > settings.damping_ceiling * scale || rejections >= settings.max_rejections {
