@@ -203,18 +203,60 @@ pub enum AnalysisError {
         residual: f64,
     },
     /// Statics: the equilibrium loses stability on the load path.
-    #[error("the static equilibrium loses stability at load factor {load_factor:.6}: the stiffness against a motion that moves {dof} most reaches zero there (buckling or snap-through); past it no stable equilibrium follows the load path")]
-    Unstable { load_factor: f64, dof: String },
+    #[error("the static equilibrium loses stability at load factor {load_factor:.6} (load path: {path}): the stiffness against a motion that moves {dof} most reaches zero there (buckling or snap-through); past it no stable equilibrium follows the load path")]
+    Unstable {
+        load_factor: f64,
+        dof: String,
+        path: LoadPath,
+    },
     /// Statics: gravity alone, ramped up, makes the equilibrium unstable.
     #[error("the static equilibrium under gravity alone loses stability at {gravity_factor:.6} × g: the stiffness against a motion that moves {dof} most reaches zero there")]
     UnstableUnderGravity { gravity_factor: f64, dof: String },
     /// Statics: the equilibrium continued from another design of the
     /// assembly was not reached.
-    #[error("continued from the design of `{from}`: {reason}")]
+    /// `fallback`: why solving the design from its own reference failed
+    /// too.
+    #[error("continued from the design of `{from}`: {reason}; solved from its own reference instead: {fallback}")]
     FromDesign {
         from: String,
         reason: Box<DesignPathError>,
+        fallback: Box<AnalysisError>,
     },
+}
+
+/// The order in which a static solve applies gravity and the applied
+/// loads from the reference ([`crate::analysis::statics`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, schemars::JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum LoadPath {
+    /// Gravity ramped to 1 g, then the loads to their factor.
+    GravityFirst,
+    /// Gravity and the loads ramped together.
+    Together,
+    /// The loads ramped to their factor, then gravity.
+    LoadsFirst,
+}
+
+impl std::fmt::Display for LoadPath {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            LoadPath::GravityFirst => "gravity first, then the loads",
+            LoadPath::Together => "gravity and the loads together",
+            LoadPath::LoadsFirst => "the loads first, then gravity",
+        })
+    }
+}
+
+/// Why a state of one design cannot be carried to another
+/// ([`crate::system::System::transfer_from`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum TransferError {
+    /// The target has a part the source does not (by kind and id).
+    #[error("{kind} `{id}` of the target design has no counterpart in the source design")]
+    Missing { kind: &'static str, id: String },
+    /// The source vector does not belong to the source system.
+    #[error("the source state has {got} coordinates, its system {expected}")]
+    Length { got: usize, expected: usize },
 }
 
 /// Why a continuation in the design did not reach the design
@@ -232,6 +274,20 @@ pub enum DesignPathError {
         at: f64,
         min_step: f64,
         last: AnalysisError,
+    },
+    /// A state of one design could not be carried to the next.
+    #[error("at {at:.4} of the way to the design: {source}")]
+    Transfer { at: f64, source: TransferError },
+    /// The state reached holds more total potential energy than the
+    /// design's unloaded reference: a jump to another branch.
+    #[error("the state reached holds a total potential energy of {found:.6e} J, above the {reference:.6e} J of the design's reference: a jump to another branch, refused")]
+    EnergyAboveReference { found: f64, reference: f64 },
+    /// The state reached does not balance the design's own system.
+    #[error("the state reached does not balance the design's own system: unbalanced force {unbalanced:.3e} N against {scale:.3e} N, constraint violation {violation:.3e} m")]
+    Unbalanced {
+        unbalanced: f64,
+        scale: f64,
+        violation: f64,
     },
 }
 

@@ -186,7 +186,9 @@ fn first_frequency_vanishes_at_euler_load() {
             ..Default::default()
         },
     ) {
-        Err(AnalysisError::Unstable { load_factor, dof }) => {
+        Err(AnalysisError::Unstable {
+            load_factor, dof, ..
+        }) => {
             eprintln!("critical load factor reported: {load_factor:.8}; interpolated crossing {crossing:.8}");
             assert!(
                 (load_factor - 1.0).abs() <= 1e-3,

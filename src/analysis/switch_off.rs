@@ -24,6 +24,7 @@
 
 use super::simulate::{simulate_from, time_to_distance, EnergyBalance, SimulationSettings};
 use super::statics::design_path::on_state_equilibrium;
+use super::statics::Branch;
 use super::statics::StaticSettings;
 use super::transient::contacts::ContactStats;
 use super::transient::TransientSettings;
@@ -78,6 +79,9 @@ impl Default for SwitchOffSettings {
 /// One run: the tracked point's samples and what the run saw.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct SwitchOffRun {
+    /// How the ON state (the static equilibrium the run starts from) was
+    /// found: continued from another design, or solved from the reference.
+    pub on_state: Branch,
     pub time_to_distance_s: Option<f64>,
     /// When the integration failed after the tracked point had reached
     /// its distance: the last time reached [SI: s] (the samples end
@@ -254,6 +258,7 @@ fn run_one(
     let anchor = sys.anchor_of(&point);
     let mut sim_settings = settings.simulation(step);
     sim_settings.transient.damping = model.damping;
+    let on_state = on.branch.clone();
     let sim = simulate_from(sys, Some(on), &[anchor], &sim_settings)?;
     let [x, y] = &sim.step_points[0];
     let n = settings.direction[0].hypot(settings.direction[1]);
@@ -277,6 +282,7 @@ fn run_one(
         .collect();
     let [xs, ys] = sim.points.into_iter().next().expect("one tracked point");
     Ok(SwitchOffRun {
+        on_state,
         ended_at_s,
         time_to_distance_s: time_to,
         time_s: sim.time,
@@ -348,6 +354,14 @@ pub fn run_switch_off_from(
             .map(|k| flexible.time_s[k])
     });
     let mut warnings = Vec::new();
+    for (name, run) in [("flexible", Some(&flexible)), ("rigid", rigid.as_ref())] {
+        if let Some(Branch::ReferenceAfterContinuation { .. }) = run.map(|r| &r.on_state) {
+            warnings.push(format!(
+                "the {name} run's ON state: {}",
+                run.map(|r| r.on_state.to_string()).unwrap_or_default()
+            ));
+        }
+    }
     for (name, run) in [("flexible", Some(&flexible)), ("rigid", rigid.as_ref())] {
         if let Some(t) = run.and_then(|r| r.ended_at_s) {
             warnings.push(format!(

@@ -31,6 +31,7 @@ pub fn static_table(r: &StaticReport) -> String {
         "model {}: static equilibrium at load factor {}: {} load steps, {} Newton iterations, unbalanced force {:.2e} N, constraint violation {:.2e}",
         r.model, r.load_scale, r.load_steps, r.iterations, r.residual, r.constraint_violation
     );
+    let _ = writeln!(s, "found: {}", r.branch);
     // A model without beams has no nodes: no empty table.
     if !r.nodes.is_empty() {
         let _ = writeln!(s, "\nnodes");

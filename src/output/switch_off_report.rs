@@ -37,6 +37,7 @@ pub fn switch_off_table(r: &SwitchOffResult) -> String {
             "calibrated: nothing; every time below is a prediction of the model"
         );
     }
+    let _ = writeln!(s, "ON state: {}", r.flexible.on_state);
     for c in &r.calibrated {
         let _ = writeln!(
             s,

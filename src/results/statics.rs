@@ -5,7 +5,7 @@
 //! spring forces [SI: N or N m]. The tables and the figure are in
 //! [`crate::output::static_report`].
 
-use crate::analysis::statics::Equilibrium;
+use crate::analysis::statics::{Branch, Equilibrium};
 use crate::model::{JointType, Model};
 use crate::system::System;
 use nalgebra::Vector2;
@@ -81,6 +81,8 @@ pub struct StaticReport {
     pub residual: f64,
     /// Constraint violation at the solution [SI: m, rad].
     pub constraint_violation: f64,
+    /// How the equilibrium was found (the load path from the reference).
+    pub branch: Branch,
     /// Every beam node.
     pub nodes: Vec<NodeState>,
     /// Every rigid body and point mass.
@@ -186,6 +188,7 @@ pub fn static_report(model: &Model, system: &System, eq: &Equilibrium) -> Static
         iterations: eq.iterations,
         residual: eq.residual,
         constraint_violation: eq.constraint_violation,
+        branch: eq.branch.clone(),
         nodes,
         bodies,
         reactions,

@@ -5,6 +5,7 @@
 
 use crate::analysis::impulse::{Excitation, ImpulseResult};
 use crate::analysis::simulate::{EnergyBalance, Simulation, SimulationSettings};
+use crate::analysis::statics::Branch;
 use crate::analysis::switch_off::{Calibrated, SwitchOffResult, SwitchOffRun};
 use crate::analysis::transient::contacts::ContactStats;
 use crate::model::reference::Errors;
@@ -209,6 +210,9 @@ pub struct PointSamples {
 /// [`SwitchOffOutput`]) or the rigid one's.
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct RunOutput {
+    /// How the ON state was found (its branch: continued from another
+    /// design, or solved from the reference and along which load path).
+    pub on_state: Branch,
     /// When the tracked point has travelled the distance [s]; null when
     /// not reached.
     pub time_to_distance_s: Option<f64>,
@@ -235,6 +239,7 @@ pub struct RunOutput {
 impl RunOutput {
     fn new(run: &SwitchOffRun) -> Self {
         RunOutput {
+            on_state: run.on_state.clone(),
             time_to_distance_s: run.time_to_distance_s,
             node0: PointSamples {
                 time_s: run.time_s.clone(),

@@ -2,12 +2,38 @@
 //! momentum [SI: kg m/s] and angular momentum about the origin
 //! [SI: kg m²/s]. For a beam, p = ∫ρA ṙ dx and L = ∫ρA r × ṙ dx, integrated
 //! exactly (4-point Gauss: r and ṙ are cubic in x).
+//!
+//! The total potential energy of a static state,
+//! Π(q) = U_beams(q) + U_springs(q) − W_loads(q) − W_gravity(q) [SI: J],
+//! measured from the reference q₀: loads are dead forces (fixed direction),
+//! so their work is F·(r(q) − r(q₀)); gravity's generalized force is
+//! constant, so its work is Q_gᵀ(q − q₀).
 
 use super::System;
 use crate::mechanics::element::{gauss01, shape};
 use nalgebra::Vector2;
 
 impl System {
+    /// Total potential energy Π(q) − Π_loads(q₀) (see the module doc) with
+    /// the loads at time `t` times `load_scale`; springs, torsion springs
+    /// and contacts count with their elastic energy.
+    pub fn potential_energy(&self, q: &[f64], t: f64, load_scale: f64) -> f64 {
+        let strain = self.strain_energy(q);
+        let mut pi = strain.axial + strain.bending + strain.springs;
+        for l in &self.loads {
+            let f = l.force_at(t) * load_scale;
+            pi -= f.dot(&(l.anchor.position(q) - l.anchor.position(&self.q0)));
+        }
+        let mut g = vec![0.0; q.len()];
+        self.add_gravity(&mut g);
+        pi -= g
+            .iter()
+            .zip(q.iter().zip(&self.q0))
+            .map(|(gi, (a, b))| gi * (a - b))
+            .sum::<f64>();
+        pi
+    }
+
     /// ½ q̇ᵀ M q̇ with a precomputed mass matrix.
     pub fn kinetic_energy(&self, mass: &faer::Mat<f64>, v: &[f64]) -> f64 {
         0.5 * self.mass_quadratic_form(mass, v)

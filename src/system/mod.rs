@@ -16,11 +16,13 @@ mod energy;
 mod mass;
 mod release;
 mod rigid_motion;
+mod transfer;
 
 pub use assemble::{EnergyBreakdown, Linearization};
 pub use mass::MassMatrix;
 pub use release::ReleasedSupport;
 pub use rigid_motion::{RigidMotions, SparseColumn};
+pub use transfer::TransferError;
 
 use crate::mechanics::anchor::Anchor;
 use crate::mechanics::contact::ContactElement;

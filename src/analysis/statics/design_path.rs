@@ -18,12 +18,26 @@
 //! [`FADED`] of its start where the path stalls, means that the design has
 //! no equilibrium with it closed (the answer, not a failure of the method).
 //!
+//! **A design is solved as itself.** Two designs along the path can have
+//! different coordinate layouts (a moved attachment moves its mesh node,
+//! and the node count changes when it crosses a node): every step carries
+//! the last state to the next design through material positions
+//! ([`System::transfer_from`]), never by index. The end state is verified
+//! on the end design's own system (force balance and constraints,
+//! [`verify`]), and a state whose total potential energy
+//! ([`System::potential_energy`]) exceeds the end design's reference is
+//! refused as a jump to another branch.
+//!
 //! [`on_state_equilibrium`] is what the switch-off uses: the path is the
 //! straight line between two designs of one assembly
 //! ([`Model::path_to`]), from a known design (the built-in model, or the
-//! swept one) to the wanted one.
+//! swept one) to the wanted one. When the continuation cannot reach the
+//! design it solves the design from its own reference and says so in
+//! [`Equilibrium::branch`].
 
-use super::{continue_equilibrium, solve_equilibrium, Equilibrium, StaticSettings};
+use super::{
+    continue_equilibrium, solve_equilibrium, Branch, Equilibrium, LoadPath, StaticSettings,
+};
 use crate::error::AnalysisError;
 pub use crate::error::DesignPathError;
 use crate::mechanics::spring::ForceElement;
@@ -46,20 +60,28 @@ pub fn equilibrium_along(
     build: impl Fn(f64) -> System,
     settings: &StaticSettings,
 ) -> Result<(Equilibrium, usize), DesignPathError> {
-    let start = build(0.0);
-    let mut eq = solve_equilibrium(&start, settings).map_err(DesignPathError::Start)?;
-    let closed: Vec<usize> = (0..start.contacts.len())
-        .filter(|&i| start.contacts[i].elastic_force(&eq.q) > 0.0)
+    let mut prev = build(0.0);
+    let mut eq = solve_equilibrium(&prev, settings).map_err(DesignPathError::Start)?;
+    let closed: Vec<usize> = (0..prev.contacts.len())
+        .filter(|&i| prev.contacts[i].elastic_force(&eq.q) > 0.0)
         .collect();
     let initial: Vec<f64> = closed
         .iter()
-        .map(|&i| start.contacts[i].elastic_force(&eq.q))
+        .map(|&i| prev.contacts[i].elastic_force(&eq.q))
         .collect();
     let (mut tau, mut step, mut steps) = (0.0f64, FIRST_STEP, 0usize);
     while tau < 1.0 {
         let next = (tau + step).min(1.0);
         let sys = build(next);
-        let step_result = continue_equilibrium(&sys, &eq, eq.load_scale, settings)
+        let q = sys
+            .transfer_from(&prev, &eq.q)
+            .map_err(|source| DesignPathError::Transfer { at: next, source })?;
+        let start = Equilibrium {
+            q,
+            lambda: vec![0.0; sys.constraint_count()],
+            ..eq.clone()
+        };
+        let step_result = continue_equilibrium(&sys, &start, eq.load_scale, settings)
             .and_then(|found| balanced(&sys, found));
         match step_result {
             Ok(found) => {
@@ -73,6 +95,7 @@ pub fn equilibrium_along(
                     });
                 }
                 eq = found;
+                prev = sys;
                 tau = next;
                 steps += 1;
                 step = (2.0 * step).min(1.0);
@@ -82,14 +105,13 @@ pub fn equilibrium_along(
                 if step < MIN_STEP {
                     // Stalled where a contact had almost let go: the
                     // design lies beyond where it opens.
-                    let sys = build(tau);
                     let fading = closed
                         .iter()
                         .zip(&initial)
-                        .find(|&(&i, &f0)| sys.contacts[i].elastic_force(&eq.q) < FADED * f0);
+                        .find(|&(&i, &f0)| prev.contacts[i].elastic_force(&eq.q) < FADED * f0);
                     return Err(match fading {
                         Some((&i, _)) => DesignPathError::ContactOpens {
-                            contact: sys.contacts[i].label.clone(),
+                            contact: prev.contacts[i].label.clone(),
                             at: tau,
                         },
                         None => DesignPathError::Stalled {
@@ -102,6 +124,7 @@ pub fn equilibrium_along(
             }
         }
     }
+    verify(&prev, &eq)?;
     Ok((eq, steps))
 }
 
@@ -109,9 +132,10 @@ pub fn equilibrium_along(
 /// e.g. with its beams made rigid): continued along the straight path
 /// ([`Model::path_to`]) from `base` when `model` is a design of base's
 /// assembly, so that the contacts closed in base's equilibrium stay
-/// closed or the answer says where one opens; solved from the reference
-/// (load-factor continuation) when it is not, or when base's own
-/// equilibrium is not found.
+/// closed; solved from the reference (load-factor continuation) when it is
+/// not a design of base's assembly, when base's own equilibrium is not
+/// found, or when the continuation does not reach the design (then
+/// [`Equilibrium::branch`] says why). An error only when no way finds it.
 pub fn on_state_equilibrium(
     model: &Model,
     base: &Model,
@@ -122,34 +146,53 @@ pub fn on_state_equilibrium(
         return solve_equilibrium(&system(model), settings);
     };
     match equilibrium_along(|tau| system(&path.at(tau)), settings) {
-        Ok((eq, _)) => Ok(eq),
-        Err(DesignPathError::Start(_)) => solve_equilibrium(&system(model), settings),
-        Err(reason) => Err(AnalysisError::FromDesign {
-            from: base.name.clone(),
-            reason: Box::new(reason),
+        Ok((eq, steps)) => Ok(Equilibrium {
+            branch: Branch::Continued {
+                from: base.name.clone(),
+                steps,
+            },
+            ..eq
         }),
+        Err(DesignPathError::Start(_)) => solve_equilibrium(&system(model), settings),
+        Err(reason) => {
+            let sys = system(model);
+            match solve_equilibrium(&sys, settings) {
+                Ok(eq) => {
+                    let path = match eq.branch {
+                        Branch::Reference { path } => path,
+                        _ => LoadPath::GravityFirst,
+                    };
+                    Ok(Equilibrium {
+                        branch: Branch::ReferenceAfterContinuation {
+                            from: base.name.clone(),
+                            reason: reason.to_string(),
+                            path,
+                        },
+                        ..eq
+                    })
+                }
+                Err(fallback) => Err(AnalysisError::FromDesign {
+                    from: base.name.clone(),
+                    reason: Box::new(reason),
+                    fallback: Box::new(fallback),
+                }),
+            }
+        }
     }
 }
 
-/// Relative unbalanced force accepted by [`balanced`].
+/// Relative unbalanced force accepted by [`balanced`] and [`verify`].
 const BALANCE_TOLERANCE: f64 = 1e-6;
+/// Constraint violation accepted by [`verify`], relative to the
+/// assembly's size.
+const CONSTRAINT_TOLERANCE: f64 = 1e-9;
 
 /// `found` if it balances: ‖Q_int − Q_ext + C_qᵀλ‖∞ at most
 /// [`BALANCE_TOLERANCE`] of the larger of the applied forces and the
 /// multipliers: every step of the path is checked on its own balance, not
 /// on the continuation's word.
 fn balanced(sys: &System, found: Equilibrium) -> Result<Equilibrium, AnalysisError> {
-    let n = sys.ndof();
-    let (mut r, mut ext) = (vec![0.0; n], vec![0.0; n]);
-    sys.internal_force(&found.q, &mut r);
-    sys.external_force(&found.q, found.time, found.load_scale, &mut ext);
-    sys.add_constraint_forces(&found.q, &found.lambda, &mut r);
-    let max = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let unbalanced = r
-        .iter()
-        .zip(&ext)
-        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    let scale = max(&ext).max(max(&found.lambda));
+    let (unbalanced, scale) = unbalanced_force(sys, &found);
     if unbalanced <= BALANCE_TOLERANCE * scale {
         Ok(found)
     } else {
@@ -159,4 +202,65 @@ fn balanced(sys: &System, found: Equilibrium) -> Result<Equilibrium, AnalysisErr
             residual: unbalanced,
         })
     }
+}
+
+/// ‖Q_int − Q_ext + C_qᵀλ‖∞ at the equilibrium's state and multipliers,
+/// and the force scale it is judged against: the largest applied,
+/// internal or joint force, and at least the round-off of the stiffest
+/// beam's elastic force, 256 ε EA, over [`BALANCE_TOLERANCE`] (so that an
+/// unloaded assembly is judged against its round-off) [SI: N].
+fn unbalanced_force(sys: &System, eq: &Equilibrium) -> (f64, f64) {
+    let n = sys.ndof();
+    let (mut int, mut ext) = (vec![0.0; n], vec![0.0; n]);
+    sys.internal_force(&eq.q, &mut int);
+    sys.external_force(&eq.q, eq.time, eq.load_scale, &mut ext);
+    let mut r = int.clone();
+    sys.add_constraint_forces(&eq.q, &eq.lambda, &mut r);
+    let max = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let unbalanced = r
+        .iter()
+        .zip(&ext)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    let stiffest = sys.beams.iter().map(|b| b.section.ea).fold(0.0, f64::max);
+    let scale = max(&ext).max(max(&eq.lambda)).max(max(&int));
+    // Below the round-off floor the relative test would judge noise.
+    let floor = 256.0 * f64::EPSILON * stiffest / BALANCE_TOLERANCE;
+    (unbalanced, scale.max(floor))
+}
+
+/// Checks an equilibrium on the design's own system: its coordinates fit
+/// the system, it balances (see [`balanced`]), it meets the constraints to
+/// [`CONSTRAINT_TOLERANCE`] × the assembly's size, and its total potential
+/// energy is not above the reference's (else it jumped to another branch).
+pub fn verify(sys: &System, eq: &Equilibrium) -> Result<(), DesignPathError> {
+    if eq.q.len() != sys.ndof() || eq.lambda.len() != sys.constraint_count() {
+        return Err(DesignPathError::Transfer {
+            at: 1.0,
+            source: crate::error::TransferError::Length {
+                got: eq.q.len(),
+                expected: sys.ndof(),
+            },
+        });
+    }
+    let (unbalanced, scale) = unbalanced_force(sys, eq);
+    let mut c = vec![0.0; sys.constraint_count()];
+    sys.constraint_residual(&eq.q, &mut c);
+    let violation = c.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if unbalanced > BALANCE_TOLERANCE * scale
+        || violation > CONSTRAINT_TOLERANCE * sys.length_scale()
+    {
+        return Err(DesignPathError::Unbalanced {
+            unbalanced,
+            scale,
+            violation,
+        });
+    }
+    let found = sys.potential_energy(&eq.q, eq.time, eq.load_scale);
+    let reference = sys.potential_energy(&sys.q0, eq.time, eq.load_scale);
+    // Round-off of the energies: relative to the largest part of either.
+    let slack = 1e-9 * found.abs().max(reference.abs()) + f64::MIN_POSITIVE;
+    if found > reference + slack {
+        return Err(DesignPathError::EnergyAboveReference { found, reference });
+    }
+    Ok(())
 }

@@ -27,10 +27,17 @@
 //! residual r = Q_int − Q_ext + C_qᵀλ is the unbalanced force that no joint
 //! can carry. A backtracking line search on ‖r‖ (plus the constraint
 //! violation) damps the steps; load stepping (continuation) with adaptive
-//! increments carries large deflections: gravity is ramped first, then the
-//! applied loads up to their factor; an assembly that only its loads hold
-//! (a pre-stressed mechanism, e.g. the switch-off's ON state) is ramped
-//! loads first when gravity alone finds no equilibrium.
+//! increments carries large deflections.
+//!
+//! **Load paths.** The equilibrium does not depend on the order in which
+//! conservative loads are applied, but whether stepping reaches it does: a
+//! slack string hangs far under gravity before its tension comes, an
+//! assembly that only its loads hold (a pre-stressed mechanism, e.g. the
+//! switch-off's ON state) has no equilibrium under gravity alone. The solve
+//! ramps gravity first, then the applied loads up to their factor
+//! ([`LoadPath::GravityFirst`]); when that fails it tries gravity and the
+//! loads together, then the loads first, and reports the first error only
+//! when every path failed. [`Equilibrium::branch`] says which path found it.
 //!
 //! **Contacts** act as nonlinear springs (their elastic law). Their
 //! tangent nKδⁿ⁻¹ vanishes at δ = 0 and an open contact has none, so a
@@ -45,24 +52,31 @@
 //! pushes means the assembly cannot carry the load: the error names the free
 //! motion (the whole assembly unsupported, or the coordinate a mechanism
 //! moves most). After each converged load step the reduced tangent must be
-//! positive (semi)definite; when it is not, the equilibrium has lost
-//! stability (buckling, a limit point) and the critical load factor is
-//! located by regula falsi on the lowest eigenvalue ω² of
-//! (NᵀKN, NᵀMN) and reported instead of an unstable or wrong equilibrium.
+//! positive (semi)definite. An indefinite tangent after a large step may be
+//! Newton's jump to another branch, not a loss of stability: the step is
+//! cut until it is at most [`CONFIRM_STEP`] of the ramp. Only an indefinite
+//! tangent at a converged state that close to a stable one is a loss of
+//! stability (buckling, a limit point): the critical load factor is then
+//! located by regula falsi on the lowest eigenvalue ω² of (NᵀKN, NᵀMN)
+//! and reported, with the load path it was on, instead of an unstable or
+//! wrong equilibrium.
 //! The reduced-tangent machinery (factoring, corrections, zero modes,
 //! stability) lives in the sibling module `reduced_tangent`.
 
+mod branch;
 pub mod design_path;
 pub mod prestress;
 mod reduced_tangent;
 
 use crate::error::AnalysisError;
+pub use crate::error::LoadPath;
 use crate::linalg::null_space::{symmetrize, NullSpace, Projected};
 use crate::linalg::sparse::mul_vec;
 pub(crate) use crate::linalg::vector::{argmax_abs, dot, norm2, norm_inf};
 use crate::linalg::{Scatter, Triplets};
 use crate::mechanics::contact::Regularize;
 use crate::system::{Linearization, System};
+pub use branch::Branch;
 use faer::linalg::solvers::Solve;
 use faer::sparse::SparseColMat;
 use faer::{Mat, Side};
@@ -125,6 +139,9 @@ pub struct Equilibrium {
     pub residual: f64,
     /// Final constraint violation ‖C‖∞ [SI: m, rad].
     pub constraint_violation: f64,
+    /// How it was found (the load path from the reference, or a
+    /// continuation from another design).
+    pub branch: Branch,
 }
 
 impl Equilibrium {
@@ -146,34 +163,45 @@ pub fn solve_equilibrium(
     settings: &StaticSettings,
 ) -> Result<Equilibrium, AnalysisError> {
     let solver = Solver::new(system, settings);
-    let mut state = solver.reference_state();
-    let gravity_first = |state: &mut State| {
-        if solver.has_gravity {
-            solver.ramp(state, Ramp::Gravity, 1.0)?;
-        }
-        solver.ramp(state, Ramp::Loads, settings.load_scale)
+    let both = solver.has_gravity && settings.load_scale != 0.0;
+    let paths: &[LoadPath] = if both {
+        &[
+            LoadPath::GravityFirst,
+            LoadPath::Together,
+            LoadPath::LoadsFirst,
+        ]
+    } else {
+        &[LoadPath::GravityFirst]
     };
-    match gravity_first(&mut state) {
-        Ok(()) => Ok(solver.finish(state)),
-        // An assembly that only the applied loads hold in place (a
-        // pre-stressed mechanism: springs and loads balance, gravity alone
-        // would move it, or a compressed spring without its balancing
-        // loads would buckle it) is found with the loads first.
-        Err(
-            e @ (AnalysisError::Mechanism { .. }
-            | AnalysisError::NoSupport
-            | AnalysisError::NotConverged { .. }
-            | AnalysisError::UnstableUnderGravity { .. }),
-        ) if solver.has_gravity && settings.load_scale != 0.0 => {
-            let mut state = solver.reference_state();
-            solver
-                .ramp(&mut state, Ramp::Loads, settings.load_scale)
-                .and_then(|()| solver.ramp(&mut state, Ramp::Gravity, 1.0))
-                .map_err(|_| e)?;
-            Ok(solver.finish(state))
+    let mut first_error = None;
+    for &path in paths {
+        let mut state = solver.reference_state();
+        match solver.follow(&mut state, path) {
+            Ok(()) => return Ok(solver.finish(state, Branch::Reference { path })),
+            // A fault of the model, not of the path: no other path helps.
+            Err(e @ (AnalysisError::SingularMass { .. } | AnalysisError::EigenSolver { .. })) => {
+                return Err(e)
+            }
+            Err(e) => {
+                first_error.get_or_insert(e);
+            }
         }
-        Err(e) => Err(e),
     }
+    Err(first_error.unwrap_or(AnalysisError::NoFreedom))
+}
+
+/// Static equilibrium as [`solve_equilibrium`], along the one load path
+/// `path` (no other is tried): e.g. to check that the equilibrium does not
+/// depend on the order of the loads.
+pub fn solve_equilibrium_along(
+    system: &System,
+    settings: &StaticSettings,
+    path: LoadPath,
+) -> Result<Equilibrium, AnalysisError> {
+    let solver = Solver::new(system, settings);
+    let mut state = solver.reference_state();
+    solver.follow(&mut state, path)?;
+    Ok(solver.finish(state, Branch::Reference { path }))
 }
 
 /// Continue an equilibrium to another applied-load factor (same time and
@@ -200,8 +228,8 @@ pub fn continue_equilibrium(
         residual: from.residual,
         violation: from.constraint_violation,
     };
-    solver.ramp(&mut state, Ramp::Loads, load_scale)?;
-    Ok(solver.finish(state))
+    solver.ramp(&mut state, Ramp::Loads, load_scale, LoadPath::GravityFirst)?;
+    Ok(solver.finish(state, from.branch.clone()))
 }
 
 /// Where the continuation is.
@@ -236,11 +264,50 @@ pub(crate) enum Damping {
     LineSearch,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// What a ramp steps: gravity's fraction, the loads' factor, or both at
+/// once (gravity's fraction t with the loads at t × `loads`).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Ramp {
     Gravity,
     Loads,
+    Both { loads: f64 },
 }
+
+impl Ramp {
+    /// The ramped parameter of a state.
+    pub(crate) fn param(self, s: &State) -> f64 {
+        match self {
+            Ramp::Gravity | Ramp::Both { .. } => s.gravity,
+            Ramp::Loads => s.loads,
+        }
+    }
+
+    /// Sets the ramped parameter of a state.
+    pub(crate) fn set(self, s: &mut State, v: f64) {
+        match self {
+            Ramp::Gravity => s.gravity = v,
+            Ramp::Loads => s.loads = v,
+            Ramp::Both { loads } => {
+                s.gravity = v;
+                s.loads = v * loads;
+            }
+        }
+    }
+
+    /// The load factor at parameter value v (for messages).
+    pub(crate) fn load_factor(self, v: f64) -> f64 {
+        match self {
+            Ramp::Gravity => 0.0,
+            Ramp::Loads => v,
+            Ramp::Both { loads } => v * loads,
+        }
+    }
+}
+
+/// Largest step, as a fraction of a ramp, after which an indefinite
+/// tangent is taken as a loss of stability rather than a jump to another
+/// branch.
+pub const CONFIRM_STEP: f64 = 1.0 / 1024.0;
 
 /// Why one Newton solve at a fixed load failed.
 pub(crate) enum NewtonFailure {
@@ -329,7 +396,26 @@ impl<'a> Solver<'a> {
         }
     }
 
-    fn finish(&self, s: State) -> Equilibrium {
+    /// Gravity and the applied loads from the state (the reference) to
+    /// their full values along `path`.
+    fn follow(&self, state: &mut State, path: LoadPath) -> Result<(), AnalysisError> {
+        let loads = self.settings.load_scale;
+        match path {
+            LoadPath::GravityFirst => {
+                if self.has_gravity {
+                    self.ramp(state, Ramp::Gravity, 1.0, path)?;
+                }
+                self.ramp(state, Ramp::Loads, loads, path)
+            }
+            LoadPath::Together => self.ramp(state, Ramp::Both { loads }, 1.0, path),
+            LoadPath::LoadsFirst => {
+                self.ramp(state, Ramp::Loads, loads, path)?;
+                self.ramp(state, Ramp::Gravity, 1.0, path)
+            }
+        }
+    }
+
+    fn finish(&self, s: State, branch: Branch) -> Equilibrium {
         Equilibrium {
             q: s.q,
             lambda: s.lambda,
@@ -339,6 +425,7 @@ impl<'a> Solver<'a> {
             iterations: s.iterations,
             residual: s.residual,
             constraint_violation: s.violation,
+            branch,
         }
     }
 
@@ -431,17 +518,19 @@ impl<'a> Solver<'a> {
 
     /// Ramp gravity (to fraction `target`) or the applied loads (to factor
     /// `target`) with adaptive increments.
-    fn ramp(&self, state: &mut State, which: Ramp, target: f64) -> Result<(), AnalysisError> {
-        let start = match which {
-            Ramp::Gravity => state.gravity,
-            Ramp::Loads => state.loads,
-        };
+    ///
+    /// `path` is the load path the ramp is part of (for the messages).
+    pub(crate) fn ramp(
+        &self,
+        state: &mut State,
+        which: Ramp,
+        target: f64,
+        path: LoadPath,
+    ) -> Result<(), AnalysisError> {
+        let start = which.param(state);
         let span = target - start;
         let at = |t: f64| start + t * span;
-        let set = |s: &mut State, v: f64| match which {
-            Ramp::Gravity => s.gravity = v,
-            Ramp::Loads => s.loads = v,
-        };
+        let set = |s: &mut State, v: f64| which.set(s, v);
         let mut t = 0.0;
         let mut dt = self.settings.initial_increment.clamp(1e-12, 1.0);
         let mut tried = 0usize;
@@ -467,7 +556,18 @@ impl<'a> Solver<'a> {
                 Ok(iterations) => {
                     trial.steps += 1;
                     if self.settings.check_stability {
-                        self.check_stable(state, &trial, which)?;
+                        if let Some(low) = self.indefinite(&trial)? {
+                            // Confirmed only from a short step: a long one
+                            // may have jumped to another branch.
+                            if span != 0.0
+                                && t_try - t > CONFIRM_STEP
+                                && tried < self.settings.max_steps
+                            {
+                                dt = 0.25 * (t_try - t);
+                                continue;
+                            }
+                            return Err(self.locate_instability(state, &trial, low, which, path));
+                        }
                     }
                     *state = trial;
                     t = t_try;
@@ -488,10 +588,7 @@ impl<'a> Solver<'a> {
                         || tried >= self.settings.max_steps
                     {
                         return Err(AnalysisError::NotConverged {
-                            load_factor: match which {
-                                Ramp::Loads => at(t_try),
-                                Ramp::Gravity => 0.0,
-                            },
+                            load_factor: which.load_factor(at(t_try)),
                             iterations,
                             residual,
                         });

@@ -14,7 +14,8 @@
 //! last stable load and this one.
 
 use super::{
-    argmax_abs, dot, norm2, norm_inf, Damping, NewtonFailure, Ramp, Snapshot, Solver, State,
+    argmax_abs, dot, norm2, norm_inf, Damping, LoadPath, NewtonFailure, Ramp, Snapshot, Solver,
+    State,
 };
 use crate::error::AnalysisError;
 use crate::linalg::dense::solve_generalized;
@@ -163,31 +164,57 @@ impl Solver<'_> {
         }))
     }
 
-    /// Err(Unstable) if `next` is past a loss of stability, located between
-    /// the stable `prev` and `next` by regula falsi (Illinois) on ω²₁.
-    pub(crate) fn check_stable(
+    /// The lowest mode of the reduced tangent at a converged state when it
+    /// is negative beyond round-off (the tangent is indefinite), else `None`.
+    pub(crate) fn indefinite(&self, state: &State) -> Result<Option<LowestMode>, AnalysisError> {
+        Ok(self
+            .lowest_mode(state, false)?
+            .filter(|low| low.value < -low.zero))
+    }
+
+    /// The loss of stability between the stable `prev` and the converged
+    /// but indefinite `next` (lowest mode `low`), located by regula falsi
+    /// (Illinois) on ω²₁, as the error to report.
+    pub(crate) fn locate_instability(
         &self,
         prev: &State,
         next: &State,
+        low: LowestMode,
         which: Ramp,
-    ) -> Result<(), AnalysisError> {
-        let Some(low) = self.lowest_mode(next, false)? else {
-            return Ok(());
-        };
-        if low.value >= -low.zero {
-            return Ok(());
+        path: LoadPath,
+    ) -> AnalysisError {
+        match self.regula_falsi(prev, next, low, which) {
+            Ok((critical, dof)) => match which {
+                Ramp::Gravity => AnalysisError::UnstableUnderGravity {
+                    gravity_factor: critical,
+                    dof,
+                },
+                _ => AnalysisError::Unstable {
+                    load_factor: which.load_factor(critical),
+                    dof,
+                    path,
+                },
+            },
+            Err(e) => e,
         }
-        let param = |s: &State| match which {
-            Ramp::Gravity => s.gravity,
-            Ramp::Loads => s.loads,
-        };
+    }
+
+    /// The critical parameter of ramp `which` between `prev` and `next`,
+    /// and the coordinate its buckling mode moves most.
+    fn regula_falsi(
+        &self,
+        prev: &State,
+        next: &State,
+        low: LowestMode,
+        which: Ramp,
+    ) -> Result<(f64, String), AnalysisError> {
         let mut dof = self.system.dof_label(self.kinetic_argmax(&low.shape));
         let mut a = prev.clone();
-        let (mut sa, mut fa) = (param(prev), 0.0);
+        let (mut sa, mut fa) = (which.param(prev), 0.0);
         if let Some(m) = self.lowest_mode(prev, true)? {
             fa = m.value;
         }
-        let (mut sb, mut fb) = (param(next), low.value);
+        let (mut sb, mut fb) = (which.param(next), low.value);
         let scale = fa.abs().max(fb.abs());
         let mut critical = sb;
         let mut side = 0i8;
@@ -202,10 +229,7 @@ impl Solver<'_> {
                 break;
             }
             let mut c = a.clone();
-            match which {
-                Ramp::Gravity => c.gravity = sc,
-                Ramp::Loads => c.loads = sc,
-            }
+            which.set(&mut c, sc);
             if self
                 .newton(&mut c, Damping::Full, Regularize::OpenAndBarelyClosed)
                 .is_err()
@@ -234,16 +258,7 @@ impl Solver<'_> {
                 side = 1;
             }
         }
-        Err(match which {
-            Ramp::Loads => AnalysisError::Unstable {
-                load_factor: critical,
-                dof,
-            },
-            Ramp::Gravity => AnalysisError::UnstableUnderGravity {
-                gravity_factor: critical,
-                dof,
-            },
-        })
+        Ok((critical, dof))
     }
 }
 
