@@ -147,10 +147,12 @@ fn is_delimiter(line: &[u8]) -> bool {
 }
 
 /// Splits the bytes of a UFF file into blocks. ASCII blocks end at the
-/// first `-1` line; a 58b block holds, after its type line, the number of
-/// ASCII lines and then exactly the number of binary bytes its type line
-/// announces (whatever bytes they are, newlines included), followed by the
-/// closing `-1` (after at most one line end, which some writers add).
+/// first `-1` line; a binary block (58b, or any type `NNb`) holds, after
+/// its type line, the number of ASCII lines and then exactly the number of
+/// binary bytes its type line announces (whatever bytes they are, newlines
+/// included), followed by the closing `-1` (after at most one line end,
+/// which some writers add). Only a 58b keeps its binary part
+/// ([`Block::binary`]); another binary type is framed to be skipped.
 pub fn blocks_bytes<'a>(file: &Path, data: &'a [u8]) -> Result<Vec<Block<'a>>, MeasuredError> {
     let mut cur = Cursor {
         data,
