@@ -8,7 +8,6 @@ use std::path::Path;
 use ancf_modal::measured::uff::d55::{read_modes, write_mode, write_nodes};
 use ancf_modal::measured::uff::{self, d58, Function, FunctionType, Ordinate, SpecDataType};
 use ancf_modal::measured::uff::{NodeCoordinates, NormalMode};
-use ancf_modal::measured::MeasuredError;
 use realfft::num_complex::Complex64;
 
 fn data(name: &str) -> (std::path::PathBuf, String) {
@@ -223,17 +222,24 @@ fn written_15_and_55_read_back() {
 }
 
 #[test]
-fn unknown_dataset_type_names_its_line() {
+fn a_dataset_of_an_unknown_type_is_skipped_and_listed() {
+    // A made-up 9999 after the hand-written record (17 lines): skipped by
+    // its framing, named with its type line (18), the record unchanged.
     let text = format!("{HAND_WRITTEN}    -1\n  9999\n  1 2 3\n    -1\n");
-    let err = uff::read_functions(Path::new("x.uff"), &text).unwrap_err();
-    match &err {
-        MeasuredError::UnknownUffType { line, value, .. } => {
-            assert_eq!((*line, value.as_str()), (18, "9999"));
-        }
-        e => panic!("unexpected {e}"),
-    }
+    let (f, skipped) = uff::read_functions_noted(Path::new("x.uff"), text.as_bytes()).unwrap();
     assert_eq!(
-        err.to_string(),
-        "x.uff:18: unknown UFF dataset type `9999` (this reader knows 15, 55 and 58)"
+        f,
+        uff::read_functions(Path::new("x.uff"), HAND_WRITTEN).unwrap()
+    );
+    assert_eq!(
+        skipped,
+        [uff::Skipped {
+            kind: "9999".into(),
+            line: 18
+        }]
+    );
+    assert_eq!(
+        uff::skipped_note(Path::new("x.uff"), &skipped).as_deref(),
+        Some("x.uff: 1 UFF dataset this tool does not use was skipped: 9999 (line 18)")
     );
 }

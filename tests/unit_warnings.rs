@@ -173,3 +173,97 @@ fn a_sweep_records_the_warnings_per_point() {
         "one line for the one point: {stderr}"
     );
 }
+
+/// The micrometre assembly: a 200 µm base clamped at the ground, a
+/// 150 µm arm welded to its tip and a 200 µm mass (√(I/m) = 200 µm) welded
+/// to the arm's tip without `local`, every length in metres, with the
+/// arm's length given by `arm` (150e-6, or 150 when typed in micrometres)
+/// and the mass at 350 µm.
+fn micro(arm: f64) -> Value {
+    let beam = |id: &str, start: f64, length: f64| {
+        json!({
+            "id": id, "start": [start, 0.0], "angle_deg": 0.0, "length": length, "elements": 4,
+            "section": {"height": 5e-6, "width": 10e-6},
+            "material": {"young": 160e9, "density": 2330.0}
+        })
+    };
+    json!({
+        "name": "micro",
+        "beams": [beam("base", 0.0, 200e-6), beam("arm", 200e-6, arm)],
+        "rigid_bodies": [{"id": "mass", "mass": 1e-9, "inertia": 4e-17, "position": [350e-6, 0.0]}],
+        "joints": [
+            {"type": "weld", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "base", "s": 0.0}},
+            {"type": "weld", "a": {"beam": "base", "s": 200e-6}, "b": {"beam": "arm", "s": 0.0}},
+            {"type": "weld", "a": {"beam": "arm", "s": arm}, "b": {"body": "mass"}}
+        ]
+    })
+}
+
+#[test]
+fn a_length_typed_in_micrometres_names_the_part_and_the_lever_arm() {
+    let (json, lines) = modal_warnings(&micro(150e-6));
+    assert!(json.is_empty() && lines.is_empty(), "{json:?} {lines:?}");
+    let (json, lines) = modal_warnings(&micro(150.0));
+    assert_eq!(json.len(), 2, "the arm and the mass: {json:?}");
+    assert_eq!(lines.len(), 2, "{lines:?}");
+    // 150 m against the 200 µm base: 750,000 times; the mass's point is the
+    // arm's tip, (200e-6 + 150) − 350e-6 = 149.99985 m from its centre,
+    // 749,999 times its 200 µm.
+    assert!(
+        json[0].contains("beams[1].length: beam `arm` (length 150 m) is 750000 times the size of beam `base` (length 0.0002 m), joined to it by joints[1]")
+            && json[0].ends_with("metres?"),
+        "{}",
+        json[0]
+    );
+    assert!(
+        json[1].contains("joints[2].b: this point is 150 m from the centre of rigid body `mass`, 750000 times its radius of gyration √(I/m) = 0.0002 m")
+            && json[1].contains("`local` missing"),
+        "{}",
+        json[1]
+    );
+    for (w, l) in json.iter().zip(&lines) {
+        assert!(l.contains(w.as_str()), "the same text on stderr: {l}");
+    }
+}
+
+#[test]
+fn the_accuracy_warning_names_the_parts_whose_sizes_disagree() {
+    // The run: the table's accuracy warning blames the sizes, not
+    // the round-off of a fine mesh (8 elements in all).
+    let (code, stdout, stderr) = run(&micro(150.0), &["modal", "--modes", "3"]);
+    assert_eq!(code, Some(0), "{stderr}");
+    let w = stdout
+        .lines()
+        .find(|l| l.starts_with("warning: the eigen-solve certifies"))
+        .unwrap_or_else(|| panic!("an accuracy warning: {stdout}"));
+    assert!(
+        w.contains("parts whose sizes disagree by orders of magnitude limit them: beam `arm`, rigid body `mass`")
+            && !w.contains("round-off"),
+        "{w}"
+    );
+    // The same assembly in consistent units certifies its frequencies.
+    let (_, stdout, _) = run(&micro(150e-6), &["modal", "--modes", "3"]);
+    assert!(!stdout.contains("warning:"), "{stdout}");
+}
+
+#[test]
+fn the_accuracy_warning_of_a_very_fine_mesh_names_its_round_off() {
+    // The README's case: the 25 mm cantilever in 2,000 elements (bound
+    // ~5e-6): no sizes disagree, so the round-off is named.
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("models/cantilever.json"),
+    )
+    .unwrap();
+    let mut model: Value = serde_json::from_str(&text).unwrap();
+    model["beams"][0]["elements"] = json!(2000);
+    let (code, stdout, stderr) = run(&model, &["modal", "--modes", "3"]);
+    assert_eq!(code, Some(0), "{stderr}");
+    let w = stdout
+        .lines()
+        .find(|l| l.starts_with("warning: the eigen-solve certifies"))
+        .unwrap_or_else(|| panic!("an accuracy warning: {stdout}"));
+    assert!(
+        w.contains("the round-off of a very fine mesh limits them") && !w.contains("sizes"),
+        "{w}"
+    );
+}

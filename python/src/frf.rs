@@ -6,7 +6,9 @@
 use crate::errors::{compute, Failure};
 use crate::model::{choice, finite};
 use ancf::measured::analysis::{analyse, AnalysisSettings, Estimator, FrfAnalysis};
-use ancf::measured::{check_force, read_measurement, Channel, Channels, Measurement, TimeRecord};
+use ancf::measured::{
+    check_force, read_measurement_noted, Channel, Channels, Measurement, TimeRecord,
+};
 use ancf::output::frf_report::ResponseQuantity;
 use ancf::signal::Window;
 use numpy::{Complex64, PyArray1, PyReadonlyArrayDyn, PyUntypedArrayMethods};
@@ -172,6 +174,7 @@ pub fn frf(
     Ok(PyFrfResult {
         analysis,
         quantity: o.quantity,
+        notes: Vec::new(),
     })
 }
 
@@ -210,17 +213,23 @@ pub fn frf_files(
         force: channel("force", force)?,
         response: channel("response", response)?,
     };
-    let analysis = compute(py, move || {
-        let measurements = paths
-            .iter()
-            .map(|p| read_measurement(p, &channels))
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| Failure::input(&e))?;
-        analyse(measurements, o.settings).map_err(|e| Failure::input(&e))
+    let (analysis, notes) = compute(py, move || {
+        let mut notes = Vec::new();
+        let mut measurements = Vec::with_capacity(paths.len());
+        for p in &paths {
+            let (m, n) = read_measurement_noted(p, &channels).map_err(|e| Failure::input(&e))?;
+            measurements.push(m);
+            notes.extend(n);
+        }
+        let analysis = analyse(measurements, o.settings).map_err(|e| Failure::input(&e))?;
+        Ok((analysis, notes))
     })?;
+    // The UFF datasets skipped: Python warnings and the document's `warnings`.
+    crate::warn_all(py, &notes)?;
     Ok(PyFrfResult {
         analysis,
         quantity: o.quantity,
+        notes,
     })
 }
 
@@ -229,17 +238,21 @@ pub fn frf_files(
 pub struct PyFrfResult {
     analysis: FrfAnalysis,
     quantity: ResponseQuantity,
+    /// What reading the files left for the user (UFF datasets skipped).
+    notes: Vec<String>,
 }
 
 impl PyFrfResult {
     /// The document `frf --json` prints without `--model`: the typed
-    /// result ([`ancf::results::FrfOutput`]) with the provenance block.
+    /// result ([`ancf::results::FrfOutput`]) with the provenance block, the
+    /// notes of the reading as its `warnings`.
     fn document(&self) -> serde_json::Value {
-        crate::document(
+        ancf::results::document(
             &ancf::results::FrfOutput::new(&self.analysis, self.quantity, None),
             None,
-            None,
+            &self.notes,
         )
+        .expect("results serialize")
     }
 
     /// One key of the document as a Python object.

@@ -52,6 +52,20 @@ pub(crate) fn document_with(
     ancf::results::document(result, sha256, &warnings).expect("results serialize")
 }
 
+/// Raises each of `texts` as a Python `UserWarning` (the command line's
+/// `warning:` lines).
+pub(crate) fn warn_all(py: Python<'_>, texts: &[String]) -> PyResult<()> {
+    let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+    for t in texts {
+        // A C string ends at a NUL: one inside the text (an id may hold
+        // `\u0000`) is written out.
+        let message = std::ffi::CString::new(t.replace('\0', "\\0"))
+            .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+        PyErr::warn(py, &category, &message, 1)?;
+    }
+    Ok(())
+}
+
 pub(crate) fn json_to_python<'py>(
     py: Python<'py>,
     doc: &serde_json::Value,

@@ -66,11 +66,11 @@ impl ModalOutcome {
     }
 
     /// The command line's table.
-    fn table(&self, model_name: &str) -> String {
+    fn table(&self, model: &Model) -> String {
         match self {
-            ModalOutcome::Reference(r) => ancf::output::modal_report::modal_table(model_name, r),
+            ModalOutcome::Reference(r) => ancf::output::modal_report::modal_table(model, r),
             ModalOutcome::Prestressed(p) => {
-                ancf::output::static_report::prestress_table(model_name, p)
+                ancf::output::static_report::prestress_table(&model.name, p)
             }
         }
     }
@@ -324,6 +324,6 @@ impl PyModalResult {
     }
 
     fn __repr__(&self) -> String {
-        self.outcome.table(&self.model.name)
+        self.outcome.table(&self.model)
     }
 }

@@ -41,6 +41,22 @@ impl PyModel {
     pub fn label(&self) -> String {
         self.source.to_string()
     }
+
+    /// This model, after raising its unit warnings
+    /// ([`Model::unit_warnings`]) as Python `UserWarning`s, named by its
+    /// source as the command line's `warning:` lines name them (the result
+    /// documents' `warnings` hold them too).
+    fn warned(self, py: Python<'_>) -> PyResult<PyModel> {
+        let label = self.label();
+        let texts: Vec<String> = self
+            .model
+            .unit_warnings()
+            .iter()
+            .map(|w| format!("{label}: {w}"))
+            .collect();
+        crate::warn_all(py, &texts)?;
+        Ok(self)
+    }
 }
 
 /// An argument's text choice among `allowed`.
@@ -92,7 +108,7 @@ impl PyModel {
             if text.trim_start().starts_with('{') {
                 let text = text.into_owned();
                 let source = Source::File(PathBuf::from("<json text>"));
-                return compute(py, move || PyModel::parse(&text, source));
+                return compute(py, move || PyModel::parse(&text, source))?.warned(py);
             }
         }
         let path: PathBuf = path_or_text.extract()?;
@@ -105,7 +121,8 @@ impl PyModel {
                 })
             })?;
             PyModel::parse(&text, source)
-        })
+        })?
+        .warned(py)
     }
 
     /// A model shipped with the package, by the file stem of `models/`:
@@ -196,7 +213,8 @@ impl PyModel {
                 model: Arc::new(changed),
                 source,
             })
-        })
+        })?
+        .warned(py)
     }
 
     /// What each coordinate of q is, in order (`beam `blade` node 3 (s =

@@ -3,7 +3,7 @@
 
 use super::common::write_output;
 use ancf_modal::measured::analysis::{analyse, AnalysisSettings, Estimator, FrfAnalysis};
-use ancf_modal::measured::{read_measurement, Channel, Channels};
+use ancf_modal::measured::{read_measurement_noted, Channel, Channels};
 use ancf_modal::output::frf_report::{frf_csv, frf_figure, frf_table, frf_uff, ResponseQuantity};
 use ancf_modal::output::plot::{render, Figure, Format, PlotSize};
 use ancf_modal::results::fit::{FrfOutput, ModelOverlay};
@@ -127,10 +127,18 @@ impl MeasuredArgs {
             force: self.force.clone(),
             response: self.response.clone(),
         };
-        let measurements = files
+        let read = files
             .iter()
-            .map(|f| read_measurement(f, &channels))
+            .map(|f| read_measurement_noted(f, &channels))
             .collect::<Result<Vec<_>, _>>()?;
+        // The UFF datasets skipped: a warning line and `warnings` in JSON.
+        let measurements = read
+            .into_iter()
+            .map(|(m, notes)| {
+                notes.into_iter().for_each(super::common::warn);
+                m
+            })
+            .collect();
         Ok(analyse(
             measurements,
             AnalysisSettings {

@@ -73,7 +73,7 @@ pub fn run(args: ModalArgs) -> Result<()> {
         });
         print_json(&output, args.model.as_deref())?;
     } else {
-        out!("{}", modal_table(&model.name, &result));
+        out!("{}", modal_table(&model, &result));
         if ancf_modal::analysis::shear::poisson_assumed(&model) {
             outln!(
                 "shear %: Timoshenko against Euler–Bernoulli, estimated from each bending mode's shape, with ν = {} where the material gives no `poisson`",

@@ -86,11 +86,14 @@ pub enum MeasuredError {
         value: f64,
         expected: f64,
     },
-    #[error("{}:{line}: unknown UFF dataset type `{value}` (this reader knows 15, 55 and 58)", file.display())]
-    UnknownUffType {
+    #[error("{}:{line}: UFF dataset `{kind}` (not used, skipped by its framing): {found} bytes of binary data before {until}, but its header announces {expected}, so the file cannot be split into its datasets", file.display())]
+    UffSkippedBinaryLength {
         file: PathBuf,
         line: usize,
-        value: String,
+        kind: String,
+        found: usize,
+        until: &'static str,
+        expected: usize,
     },
     #[error("{}:{line}: UFF {dataset} field `{field}`: cannot read `{value}`", file.display())]
     UffField {

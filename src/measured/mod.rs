@@ -122,13 +122,24 @@ pub struct Channels {
 
 /// Reads one measurement file: UFF when its first non-blank line is `-1`,
 /// CSV otherwise. Time records are checked for a usable force (not all
-/// zero, a single impact).
+/// zero, a single impact). The notes of the reading are dropped
+/// ([`read_measurement_noted`] keeps them).
 pub fn read_measurement(path: &Path, channels: &Channels) -> Result<Measurement, MeasuredError> {
+    Ok(read_measurement_noted(path, channels)?.0)
+}
+
+/// [`read_measurement`] with the notes the user must see: the UFF datasets
+/// the file holds but the tool does not use, which were skipped
+/// ([`uff::skipped_note`]).
+pub fn read_measurement_noted(
+    path: &Path,
+    channels: &Channels,
+) -> Result<(Measurement, Vec<String>), MeasuredError> {
     let bytes = std::fs::read(path).map_err(|io| MeasuredError::Read {
         file: path.to_path_buf(),
         io,
     })?;
-    parse_measurement(path, &bytes, channels)
+    parse_measurement_noted(path, &bytes, channels)
 }
 
 /// [`read_measurement`] on the bytes of a file already read; `path` names
@@ -138,21 +149,36 @@ pub fn parse_measurement(
     bytes: &[u8],
     channels: &Channels,
 ) -> Result<Measurement, MeasuredError> {
+    Ok(parse_measurement_noted(path, bytes, channels)?.0)
+}
+
+/// [`read_measurement_noted`] on the bytes of a file already read.
+pub fn parse_measurement_noted(
+    path: &Path,
+    bytes: &[u8],
+    channels: &Channels,
+) -> Result<(Measurement, Vec<String>), MeasuredError> {
     let text = String::from_utf8_lossy(bytes);
     let first = text.lines().map(str::trim).find(|l| !l.is_empty());
-    let m = match first {
+    let (m, notes) = match first {
         None => {
             return Err(MeasuredError::Empty {
                 file: path.to_path_buf(),
             })
         }
-        Some("-1") => uff::measurement_from_uff(path, bytes, channels)?,
-        Some(_) => Measurement::Time(csv::parse_csv(path, &text, channels)?),
+        Some("-1") => {
+            let (m, note) = uff::measurement_from_uff(path, bytes, channels)?;
+            (m, note.into_iter().collect())
+        }
+        Some(_) => (
+            Measurement::Time(csv::parse_csv(path, &text, channels)?),
+            Vec::new(),
+        ),
     };
     if let Measurement::Time(r) = &m {
         check_force(r)?;
     }
-    Ok(m)
+    Ok((m, notes))
 }
 
 /// Force fraction of the peak below which an impact has ended.

@@ -1,15 +1,16 @@
 //! Modal results as a table, a JSON document and CSV.
 
 use crate::analysis::ModalResult;
+use crate::model::{Model, UnitWarning};
 use std::fmt::Write;
 
 /// Readable table: index, frequency [Hz], kind, energy split.
-pub fn modal_table(model_name: &str, r: &ModalResult) -> String {
+pub fn modal_table(model: &Model, r: &ModalResult) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "model {model_name}: {} coordinates, {} constraint equations, {} free",
-        r.dofs, r.constraints, r.reduced_dofs
+        "model {}: {} coordinates, {} constraint equations, {} free",
+        model.name, r.dofs, r.constraints, r.reduced_dofs
     );
     if !r.redundant_constraints.is_empty() {
         let _ = writeln!(
@@ -57,13 +58,50 @@ pub fn modal_table(model_name: &str, r: &ModalResult) -> String {
     if let Some(worst) = r.accuracy_warning() {
         let _ = writeln!(
             s,
-            "warning: the eigen-solve certifies the lowest frequencies only to {worst:.1e} (relative), \
-             more than the {:.0e} a useful mesh reaches; the round-off of a very fine mesh limits them \
-             (fewer elements give a tighter bound)",
-            crate::analysis::modal::ACCURACY_WARNING
+            "warning: {}",
+            accuracy_warning_text(worst, &model.size_warnings())
         );
     }
     s
+}
+
+/// The warning of a modal result whose lowest frequencies the eigen-solve
+/// certifies only to `worst` (relative), above
+/// [`crate::analysis::modal::ACCURACY_WARNING`], with its cause: the parts
+/// of `sizes` ([`Model::size_warnings`]) when the model has parts whose
+/// sizes disagree by orders of magnitude (their matrices then span many
+/// more orders than a consistent model's), else the round-off of a very
+/// fine mesh.
+pub fn accuracy_warning_text(worst: f64, sizes: &[UnitWarning]) -> String {
+    let head = format!(
+        "the eigen-solve certifies the lowest frequencies only to {worst:.1e} (relative), \
+         more than the {:.0e} a useful mesh reaches; ",
+        crate::analysis::modal::ACCURACY_WARNING
+    );
+    let parts: Vec<&str> = sizes
+        .iter()
+        .filter_map(|w| match w {
+            UnitWarning::Size { part, .. } | UnitWarning::LeverArm { part, .. } => {
+                Some(part.as_str())
+            }
+            _ => None,
+        })
+        .collect();
+    if parts.is_empty() {
+        format!(
+            "{head}the round-off of a very fine mesh limits them \
+             (fewer elements give a tighter bound)"
+        )
+    } else {
+        format!(
+            "{head}parts whose sizes disagree by orders of magnitude limit them: {} \
+             (over {} times the size or lever arm of a part joined to {}; is a length in other \
+             units than metres?)",
+            parts.join(", "),
+            crate::model::sanity::MAX_SIZE_RATIO,
+            if parts.len() == 1 { "it" } else { "them" }
+        )
+    }
 }
 
 /// CSV: one row per mode.

@@ -128,6 +128,34 @@ impl BinaryHeader {
     }
 }
 
+/// The framing of a binary dataset of another type than 58b (`kind`, read
+/// only to be skipped): the number of ASCII lines after its type line and
+/// of binary bytes after them, fields 4 and 5 of the type line as in 58b.
+pub fn framing(
+    file: &Path,
+    line: usize,
+    text: &str,
+    kind: &str,
+) -> Result<(usize, usize), MeasuredError> {
+    let tokens: Vec<&str> = text.split_whitespace().collect();
+    let field = |k: usize, name: &'static str| {
+        tokens
+            .get(k)
+            .and_then(|t| t.parse::<usize>().ok())
+            .ok_or(MeasuredError::UffField {
+                file: file.to_path_buf(),
+                line,
+                dataset: kind.trim_end_matches(['b', 'B']).parse().unwrap_or(0),
+                field: name,
+                value: text.trim().to_string(),
+            })
+    };
+    Ok((
+        field(3, "binary dataset's number of ASCII lines")?,
+        field(4, "binary dataset's number of bytes")?,
+    ))
+}
+
 /// For a binary block that is not closed where its header says: the number
 /// of bytes from the block's start `rest` to the next `    -1` line (one
 /// line end before it not counted) and a name for that end, or all of

@@ -16,9 +16,15 @@
 //! bytes (newlines among them), so files are split into blocks as bytes,
 //! the binary part taken by the byte count its type line announces.
 //!
-//! Datasets that describe the test but carry no data this tool uses (151
-//! header, 164 units, 18 and 2420 coordinate systems, 82 trace lines, 2411
-//! and 2412 mesh) are skipped; any other type is an error naming its line.
+//! Every other dataset is skipped by its framing alone, whatever its type:
+//! an ASCII block ends at its closing `-1` line, a binary one (a type
+//! written `NNb`, as 58b) after the byte count its type line announces.
+//! Real exports hold many the tool has no use for: Simcenter Testlab writes
+//! a 1858 (qualifiers) beside each 58, results hold 2414, and headers,
+//! units, coordinate systems, trace lines and meshes (151, 164, 18, 2420,
+//! 82, 2411, 2412) describe the test. A reader lists what it skipped
+//! ([`Skipped`], [`skipped_note`]) so that the user sees it; a dataset it
+//! uses but cannot parse is an error naming its line.
 
 pub mod d55;
 pub mod d58;
@@ -34,9 +40,6 @@ pub use d55::{NodeCoordinates, NormalMode};
 pub use d58::{Function, FunctionType, Ordinate, SpecDataType};
 pub use d58b::Binary;
 
-/// Dataset types that are skipped when reading.
-pub const SKIPPED: [&str; 7] = ["151", "164", "18", "2420", "82", "2411", "2412"];
-
 /// One block of a UFF file.
 #[derive(Debug, Clone)]
 pub struct Block<'a> {
@@ -50,6 +53,51 @@ pub struct Block<'a> {
     pub lines: Vec<Cow<'a, str>>,
     /// Dataset 58b: the binary data after the ASCII lines.
     pub binary: Option<Binary<'a>>,
+}
+
+/// A dataset a reader skipped: its type as written (`1858`, `2414b`) and
+/// the line (1-based) of its type line.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Skipped {
+    pub kind: String,
+    pub line: usize,
+}
+
+/// The note that lists the datasets of `file` a reader skipped, by type in
+/// the order met, with their count and first line: `a.uff: 3 UFF datasets
+/// this tool does not use were skipped: 151 (line 1), 1858 ×2 (first at
+/// line 40)`; `None` when none was.
+pub fn skipped_note(file: &Path, skipped: &[Skipped]) -> Option<String> {
+    let mut kinds: Vec<(&str, usize, usize)> = Vec::new();
+    for s in skipped {
+        match kinds.iter_mut().find(|(k, _, _)| *k == s.kind) {
+            Some(k) => k.1 += 1,
+            None => kinds.push((&s.kind, 1, s.line)),
+        }
+    }
+    let list: Vec<String> = kinds
+        .iter()
+        .map(|(kind, n, line)| match n {
+            1 => format!("{kind} (line {line})"),
+            n => format!("{kind} ×{n} (first at line {line})"),
+        })
+        .collect();
+    match skipped.len() {
+        0 => None,
+        n => Some(format!(
+            "{}: {n} UFF dataset{} this tool does not use {} skipped: {}",
+            file.display(),
+            if n == 1 { "" } else { "s" },
+            if n == 1 { "was" } else { "were" },
+            list.join(", ")
+        )),
+    }
+}
+
+/// Whether a dataset type is binary: digits and a `b` (`58b`, `2414B`).
+fn is_binary_kind(kind: &str) -> bool {
+    kind.strip_suffix(['b', 'B'])
+        .is_some_and(|n| !n.is_empty() && n.bytes().all(|c| c.is_ascii_digit()))
 }
 
 /// Splits UFF text into blocks (as [`blocks_bytes`]; binary 58b data must
@@ -86,7 +134,7 @@ impl<'a> Cursor<'a> {
 
     /// Skips `n` raw bytes (at most to the end), counting their newlines.
     fn skip(&mut self, n: usize) -> &'a [u8] {
-        let end = (self.pos + n).min(self.data.len());
+        let end = self.pos.saturating_add(n).min(self.data.len());
         let bytes = &self.data[self.pos..end];
         self.line += bytes.iter().filter(|&&c| c == b'\n').count();
         self.pos = end;
@@ -99,10 +147,12 @@ fn is_delimiter(line: &[u8]) -> bool {
 }
 
 /// Splits the bytes of a UFF file into blocks. ASCII blocks end at the
-/// first `-1` line; a 58b block holds, after its type line, the number of
-/// ASCII lines and then exactly the number of binary bytes its type line
-/// announces (whatever bytes they are, newlines included), followed by the
-/// closing `-1` (after at most one line end, which some writers add).
+/// first `-1` line; a binary block (58b, or any type `NNb`) holds, after
+/// its type line, the number of ASCII lines and then exactly the number of
+/// binary bytes its type line announces (whatever bytes they are, newlines
+/// included), followed by the closing `-1` (after at most one line end,
+/// which some writers add). Only a 58b keeps its binary part
+/// ([`Block::binary`]); another binary type is framed to be skipped.
 pub fn blocks_bytes<'a>(file: &Path, data: &'a [u8]) -> Result<Vec<Block<'a>>, MeasuredError> {
     let mut cur = Cursor {
         data,
@@ -135,10 +185,11 @@ pub fn blocks_bytes<'a>(file: &Path, data: &'a [u8]) -> Result<Vec<Block<'a>>, M
             .next()
             .ok_or_else(|| unterminated(open))?
             .to_string();
-        if kind == "58" || kind.eq_ignore_ascii_case("58b") {
+        let is_58b = kind.eq_ignore_ascii_case("58b");
+        if kind == "58" || is_58b {
             records += 1;
         }
-        if !kind.eq_ignore_ascii_case("58b") {
+        if !is_binary_kind(&kind) {
             let mut lines = Vec::new();
             loop {
                 let (_, l) = cur.next_line().ok_or_else(|| unterminated(type_no))?;
@@ -155,22 +206,31 @@ pub fn blocks_bytes<'a>(file: &Path, data: &'a [u8]) -> Result<Vec<Block<'a>>, M
             });
             continue;
         }
-        kind = "58b".into();
-        let header = d58b::BinaryHeader::parse(file, type_no, &type_text)?;
-        let mut lines = Vec::with_capacity(header.ascii_lines);
-        for k in 0..header.ascii_lines {
+        // A binary block: its ASCII lines, then exactly its announced
+        // bytes, then the closing `-1`. A 58b's header is read in full; of
+        // another binary type only the framing (a dataset skipped).
+        let (header, ascii_lines, byte_count) = if is_58b {
+            kind = "58b".into();
+            let h = d58b::BinaryHeader::parse(file, type_no, &type_text)?;
+            (Some(h), h.ascii_lines, h.bytes)
+        } else {
+            let (a, b) = d58b::framing(file, type_no, &type_text, &kind)?;
+            (None, a, b)
+        };
+        let mut lines = Vec::with_capacity(ascii_lines.min(64));
+        for k in 0..ascii_lines {
             let (_, l) = cur.next_line().ok_or_else(|| MeasuredError::UffTruncated {
                 file: file.to_path_buf(),
                 line: cur.line,
-                dataset: 58,
+                dataset: dataset_number(&kind),
                 found: k,
-                expected: header.ascii_lines,
+                expected: ascii_lines,
             })?;
             lines.push(String::from_utf8_lossy(l));
         }
         let start = cur.pos;
-        let bytes = cur.skip(header.bytes);
-        let closed = bytes.len() == header.bytes
+        let bytes = cur.skip(byte_count);
+        let closed = bytes.len() == byte_count
             && match cur.next_line() {
                 // One line end after the data, then the `-1`.
                 Some((_, [])) => cur.next_line().is_some_and(|(_, l)| is_delimiter(l)),
@@ -179,20 +239,30 @@ pub fn blocks_bytes<'a>(file: &Path, data: &'a [u8]) -> Result<Vec<Block<'a>>, M
             };
         if !closed {
             let (found, until) = d58b::binary_extent(&data[start..]);
-            return Err(MeasuredError::UffBinaryLength {
-                file: file.to_path_buf(),
-                line: type_no,
-                record: records,
-                found,
-                until,
-                expected: header.bytes,
+            return Err(match header {
+                Some(_) => MeasuredError::UffBinaryLength {
+                    file: file.to_path_buf(),
+                    line: type_no,
+                    record: records,
+                    found,
+                    until,
+                    expected: byte_count,
+                },
+                None => MeasuredError::UffSkippedBinaryLength {
+                    file: file.to_path_buf(),
+                    line: type_no,
+                    kind,
+                    found,
+                    until,
+                    expected: byte_count,
+                },
             });
         }
         out.push(Block {
             kind,
             first_line: type_no + 1,
             lines,
-            binary: Some(Binary {
+            binary: header.map(|header| Binary {
                 header,
                 bytes,
                 line: type_no,
@@ -201,6 +271,12 @@ pub fn blocks_bytes<'a>(file: &Path, data: &'a [u8]) -> Result<Vec<Block<'a>>, M
         });
     }
     Ok(out)
+}
+
+/// The number of a dataset type (`2414b` → 2414) for messages; 0 when it
+/// has none.
+fn dataset_number(kind: &str) -> u32 {
+    kind.trim_end_matches(['b', 'B']).parse().unwrap_or(0)
 }
 
 /// Characters `start..start + len` of a line (by character, so that a
@@ -296,25 +372,31 @@ pub fn read_functions(file: &Path, text: &str) -> Result<Vec<Function>, Measured
 }
 
 /// Every dataset-58 function (ASCII 58 and binary 58b) in the bytes of a
-/// UFF file.
+/// UFF file; the datasets skipped are not reported ([`read_functions_noted`]
+/// does).
 pub fn read_functions_bytes(file: &Path, data: &[u8]) -> Result<Vec<Function>, MeasuredError> {
+    Ok(read_functions_noted(file, data)?.0)
+}
+
+/// Every dataset-58 function (ASCII 58 and binary 58b) in the bytes of a
+/// UFF file, and every other dataset, skipped by its framing (module doc).
+pub fn read_functions_noted(
+    file: &Path,
+    data: &[u8],
+) -> Result<(Vec<Function>, Vec<Skipped>), MeasuredError> {
     let mut out = Vec::new();
+    let mut skipped = Vec::new();
     for b in blocks_bytes(file, data)? {
         match (b.kind.as_str(), &b.binary) {
             (_, Some(bin)) => out.push(d58b::parse(file, &b, bin)?),
             ("58", None) => out.push(d58::parse(file, &b)?),
-            ("15" | "55", None) => {}
-            (k, None) if SKIPPED.contains(&k) => {}
-            (k, None) => {
-                return Err(MeasuredError::UnknownUffType {
-                    file: file.to_path_buf(),
-                    line: b.first_line - 1,
-                    value: k.to_string(),
-                })
-            }
+            (kind, None) => skipped.push(Skipped {
+                kind: kind.to_string(),
+                line: b.first_line - 1,
+            }),
         }
     }
-    Ok(out)
+    Ok((out, skipped))
 }
 
 fn matches(f: &Function, index: usize, channel: &Channel) -> bool {
@@ -327,13 +409,24 @@ fn matches(f: &Function, index: usize, channel: &Channel) -> bool {
 /// The measurement a UFF file holds: a force and a response time record
 /// (function type 1; the force is the record whose ordinate is a force,
 /// type 13, unless `--force` picks one), or an FRF (type 4) with its
-/// coherence (type 6) if present.
+/// coherence (type 6) if present; with the note of the datasets skipped
+/// ([`skipped_note`]).
 pub fn measurement_from_uff(
     file: &Path,
     bytes: &[u8],
     channels: &Channels,
+) -> Result<(Measurement, Option<String>), MeasuredError> {
+    let (functions, skipped) = read_functions_noted(file, bytes)?;
+    let note = skipped_note(file, &skipped);
+    measurement_of(file, &functions, channels).map(|m| (m, note))
+}
+
+/// The measurement [`measurement_from_uff`] picks from `functions`.
+fn measurement_of(
+    file: &Path,
+    functions: &[Function],
+    channels: &Channels,
 ) -> Result<Measurement, MeasuredError> {
-    let functions = read_functions_bytes(file, bytes)?;
     if functions.is_empty() {
         return Err(MeasuredError::NoChannel {
             file: file.to_path_buf(),

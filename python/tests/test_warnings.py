@@ -1,0 +1,112 @@
+"""Warnings reach Python twice, as the command line gives them: raised with
+``warnings.warn`` (a ``UserWarning``) and kept in the result documents'
+``warnings`` (``to_dict()``), the same text as the command line's
+``warning:`` lines. The cases: a model whose part sizes disagree by orders
+of magnitude (a 150 µm arm typed as 150 among micrometre parts), and the
+UFF datasets ``frf_files`` skipped (Simcenter Testlab's 1858 qualifiers
+beside an FRF; pyuff's sample ``tests/data/pyuff/1858.uff``, MIT)."""
+
+import json
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import ancf_modal
+from conftest import ROOT
+
+
+def micro(arm):
+    """A 200 µm base clamped at the ground, an arm welded to its tip and a
+    200 µm mass (√(I/m) = 200 µm) welded to the arm's tip without `local`;
+    lengths in metres, the arm's given by `arm`."""
+
+    def beam(id, start, length):
+        return {
+            "id": id,
+            "start": [start, 0.0],
+            "angle_deg": 0.0,
+            "length": length,
+            "elements": 4,
+            "section": {"height": 5e-6, "width": 10e-6},
+            "material": {"young": 160e9, "density": 2330.0},
+        }
+
+    return {
+        "name": "micro",
+        "beams": [beam("base", 0.0, 200e-6), beam("arm", 200e-6, arm)],
+        "rigid_bodies": [
+            {"id": "mass", "mass": 1e-9, "inertia": 4e-17, "position": [350e-6, 0.0]}
+        ],
+        "joints": [
+            {"type": "weld", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "base", "s": 0.0}},
+            {"type": "weld", "a": {"beam": "base", "s": 200e-6}, "b": {"beam": "arm", "s": 0.0}},
+            {"type": "weld", "a": {"beam": "arm", "s": arm}, "b": {"body": "mass"}},
+        ],
+    }
+
+
+def test_consistent_sizes_raise_no_warning():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ancf_modal.Model.from_json(json.dumps(micro(150e-6)))
+
+
+def test_sizes_that_disagree_are_python_warnings_and_in_the_document(tmp_path, cli):
+    path = tmp_path / "micro.json"
+    path.write_text(json.dumps(micro(150.0)))
+    with pytest.warns(UserWarning) as record:
+        model = ancf_modal.Model.from_json(str(path))
+    texts = [str(w.message) for w in record]
+    assert len(texts) == 2, texts
+    assert texts[0].startswith(f"{path}: beams[1].length: beam `arm` (length 150 m)")
+    assert texts[1].startswith(f"{path}: joints[2].b: ") and "rigid body `mass`" in texts[1]
+    doc = model.modal(modes=3).to_dict()
+    assert doc["warnings"][:2] == texts
+    # The command line's document carries the same warnings.
+    assert cli.json("modal", str(path), "--modes", "3")["warnings"] == doc["warnings"]
+    # A model changed into the same disagreement warns again.
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fine = ancf_modal.Model.from_json(json.dumps(micro(150e-6)))
+    with pytest.warns(UserWarning, match="beam `arm`"):
+        fine.with_params({"beams[arm].length": 150.0})
+
+
+def write_hit(path):
+    """A hammer hit on a 180 Hz, 1 % oscillator: force (half-sine, 0.5 ms)
+    and velocity, sampled at 10240 Hz for 1 s."""
+    fs, fn, zeta = 10240.0, 180.0, 0.01
+    t = np.arange(int(fs)) / fs
+    force = np.where(t < 5e-4, 100.0 * np.sin(np.pi * t / 5e-4), 0.0)
+    w = 2 * math.pi * fn
+    velocity = np.exp(-zeta * w * t) * np.cos(w * math.sqrt(1 - zeta**2) * t) * 1e-3
+    with open(path, "w") as f:
+        f.write("time,force,velocity\n")
+        for row in zip(t, force, velocity):
+            f.write(",".join(repr(float(v)) for v in row) + "\n")
+
+
+def test_skipped_uff_datasets_are_a_python_warning(tmp_path, cli):
+    csv = tmp_path / "hit.csv"
+    write_hit(csv)
+    alone = tmp_path / "h.uff"
+    p = cli.run("frf", str(csv), "--uff", str(alone))
+    assert p.returncode == 0, p.stderr
+    mixed = tmp_path / "mixed.uff"
+    qualifiers = (ROOT / "tests" / "data" / "pyuff" / "1858.uff").read_bytes()
+    mixed.write_bytes(alone.read_bytes() + qualifiers)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        a = ancf_modal.frf_files([alone])
+    with pytest.warns(UserWarning) as record:
+        b = ancf_modal.frf_files([mixed])
+    texts = [str(w.message) for w in record]
+    assert len(texts) == 1 and texts[0].startswith(f"{mixed}: 2 UFF datasets"), texts
+    assert "1858 ×2 (first at line" in texts[0]
+    da, db = a.to_dict(), b.to_dict()
+    assert da.pop("warnings") == [] and db.pop("warnings") == texts
+    assert da.pop("files") == [str(alone)] and db.pop("files") == [str(mixed)]
+    assert da == db, "the FRF reads as alone"
+    assert cli.json("frf", str(mixed))["warnings"] == texts
