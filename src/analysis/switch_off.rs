@@ -24,8 +24,8 @@
 
 use super::simulate::{simulate_from, time_to_distance, EnergyBalance, SimulationSettings};
 use super::statics::design_path::on_state_equilibrium;
-use super::statics::Branch;
 use super::statics::StaticSettings;
+use super::statics::{Branch, BranchKind};
 use super::transient::contacts::ContactStats;
 use super::transient::TransientSettings;
 use crate::error::{Setting, SimulationError};
@@ -355,11 +355,8 @@ pub fn run_switch_off_from(
     });
     let mut warnings = Vec::new();
     for (name, run) in [("flexible", Some(&flexible)), ("rigid", rigid.as_ref())] {
-        if let Some(Branch::ReferenceAfterContinuation { .. }) = run.map(|r| &r.on_state) {
-            warnings.push(format!(
-                "the {name} run's ON state: {}",
-                run.map(|r| r.on_state.to_string()).unwrap_or_default()
-            ));
+        if let Some(r) = run.filter(|r| r.on_state.kind == BranchKind::ReferenceAfterContinuation) {
+            warnings.push(format!("the {name} run's ON state: {}", r.on_state));
         }
     }
     for (name, run) in [("flexible", Some(&flexible)), ("rigid", rigid.as_ref())] {

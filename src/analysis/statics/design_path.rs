@@ -147,10 +147,7 @@ pub fn on_state_equilibrium(
     };
     match equilibrium_along(|tau| system(&path.at(tau)), settings) {
         Ok((eq, steps)) => Ok(Equilibrium {
-            branch: Branch::Continued {
-                from: base.name.clone(),
-                steps,
-            },
+            branch: Branch::continued(&base.name, steps),
             ..eq
         }),
         Err(DesignPathError::Start(_)) => solve_equilibrium(&system(model), settings),
@@ -158,16 +155,9 @@ pub fn on_state_equilibrium(
             let sys = system(model);
             match solve_equilibrium(&sys, settings) {
                 Ok(eq) => {
-                    let path = match eq.branch {
-                        Branch::Reference { path } => path,
-                        _ => LoadPath::GravityFirst,
-                    };
+                    let path = eq.branch.path.unwrap_or(LoadPath::GravityFirst);
                     Ok(Equilibrium {
-                        branch: Branch::ReferenceAfterContinuation {
-                            from: base.name.clone(),
-                            reason: reason.to_string(),
-                            path,
-                        },
+                        branch: Branch::after_continuation(&base.name, reason.to_string(), path),
                         ..eq
                     })
                 }
@@ -257,8 +247,11 @@ pub fn verify(sys: &System, eq: &Equilibrium) -> Result<(), DesignPathError> {
     }
     let found = sys.potential_energy(&eq.q, eq.time, eq.load_scale);
     let reference = sys.potential_energy(&sys.q0, eq.time, eq.load_scale);
-    // Round-off of the energies: relative to the largest part of either.
-    let slack = 1e-9 * found.abs().max(reference.abs()) + f64::MIN_POSITIVE;
+    // Round-off of the energies: relative to the larger, and at least the
+    // energy of a strain of 256 ε in the stiffest beam, (256 ε)² EA L.
+    let stiffest = sys.beams.iter().map(|b| b.section.ea).fold(0.0, f64::max);
+    let floor = (256.0 * f64::EPSILON).powi(2) * stiffest * sys.length_scale();
+    let slack = (1e-9 * found.abs().max(reference.abs())).max(floor) + f64::MIN_POSITIVE;
     if found > reference + slack {
         return Err(DesignPathError::EnergyAboveReference { found, reference });
     }

@@ -76,7 +76,7 @@ pub(crate) use crate::linalg::vector::{argmax_abs, dot, norm2, norm_inf};
 use crate::linalg::{Scatter, Triplets};
 use crate::mechanics::contact::Regularize;
 use crate::system::{Linearization, System};
-pub use branch::Branch;
+pub use branch::{Branch, BranchKind};
 use faer::linalg::solvers::Solve;
 use faer::sparse::SparseColMat;
 use faer::{Mat, Side};
@@ -177,7 +177,7 @@ pub fn solve_equilibrium(
     for &path in paths {
         let mut state = solver.reference_state();
         match solver.follow(&mut state, path) {
-            Ok(()) => return Ok(solver.finish(state, Branch::Reference { path })),
+            Ok(()) => return Ok(solver.finish(state, Branch::reference(path))),
             // A fault of the model, not of the path: no other path helps.
             Err(e @ (AnalysisError::SingularMass { .. } | AnalysisError::EigenSolver { .. })) => {
                 return Err(e)
@@ -201,7 +201,7 @@ pub fn solve_equilibrium_along(
     let solver = Solver::new(system, settings);
     let mut state = solver.reference_state();
     solver.follow(&mut state, path)?;
-    Ok(solver.finish(state, Branch::Reference { path }))
+    Ok(solver.finish(state, Branch::reference(path)))
 }
 
 /// Continue an equilibrium to another applied-load factor (same time and
