@@ -196,9 +196,9 @@ fn balanced(sys: &System, found: Equilibrium) -> Result<Equilibrium, AnalysisErr
 
 /// ‖Q_int − Q_ext + C_qᵀλ‖∞ at the equilibrium's state and multipliers,
 /// and the force scale it is judged against: the largest applied,
-/// internal or joint force, and at least the round-off of the stiffest
-/// beam's elastic force, 256 ε EA, over [`BALANCE_TOLERANCE`] (so that an
-/// unloaded assembly is judged against its round-off) [SI: N].
+/// internal or joint force, and at least [`resolution_force`] over
+/// [`BALANCE_TOLERANCE`] (so that an unbalance the solver cannot resolve is
+/// not taken for a wrong state) [SI: N].
 fn unbalanced_force(sys: &System, eq: &Equilibrium) -> (f64, f64) {
     let n = sys.ndof();
     let (mut int, mut ext) = (vec![0.0; n], vec![0.0; n]);
@@ -211,12 +211,34 @@ fn unbalanced_force(sys: &System, eq: &Equilibrium) -> (f64, f64) {
         .iter()
         .zip(&ext)
         .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    let stiffest = sys.beams.iter().map(|b| b.section.ea).fold(0.0, f64::max);
     let scale = max(&ext).max(max(&eq.lambda)).max(max(&int));
-    // Below the round-off floor the relative test would judge noise.
-    let floor = 256.0 * f64::EPSILON * stiffest / BALANCE_TOLERANCE;
-    (unbalanced, scale.max(floor))
+    (
+        unbalanced,
+        scale.max(resolution_force(sys) / BALANCE_TOLERANCE),
+    )
 }
+
+/// The force below which an unbalance is not resolved [SI: N]: what a
+/// displacement of [`STEP_RESOLUTION`] × the assembly's size makes in the
+/// stiffest element, EA/Le (the statics' Newton iteration stops on a step
+/// that small), and at least the round-off of the stiffest beam's elastic
+/// force, 256 ε EA.
+fn resolution_force(sys: &System) -> f64 {
+    let length = sys.length_scale();
+    sys.beams
+        .iter()
+        .flat_map(|b| {
+            b.elements.iter().map(move |e| {
+                let ea = b.section.ea;
+                (ea / e.le * STEP_RESOLUTION * length).max(256.0 * f64::EPSILON * ea)
+            })
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The statics' smallest resolved step, relative to the assembly's size
+/// (its Newton iteration stops on a step below it).
+const STEP_RESOLUTION: f64 = 1e-10;
 
 /// Checks an equilibrium on the design's own system: its coordinates fit
 /// the system, it balances (see [`balanced`]), it meets the constraints to
