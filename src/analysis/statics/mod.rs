@@ -52,6 +52,7 @@
 //! The reduced-tangent machinery (factoring, corrections, zero modes,
 //! stability) lives in the sibling module `reduced_tangent`.
 
+pub mod balance;
 pub mod design_path;
 pub mod prestress;
 mod reduced_tangent;
