@@ -165,7 +165,8 @@ class ModalResult:
 
     @property
     def frequencies_hz(self) -> npt.NDArray[np.float64]:
-        """Natural frequencies [Hz]; 0 for rigid and mechanism modes."""
+        """Natural frequencies [Hz]; 0 for rigid and mechanism modes;
+        −√|ω²|/2π for a negative eigenvalue (never 0)."""
     @property
     def eigenvalues(self) -> npt.NDArray[np.float64]:
         """ω² [rad²/s²]."""
@@ -178,13 +179,28 @@ class ModalResult:
         """Modal damping ratio ζ [–]; NaN for zero modes."""
     @property
     def kinds(self) -> List[str]:
-        """``rigid``, ``mechanism``, ``bending``, ``axial`` or ``spring``."""
+        """``rigid``, ``mechanism``, ``bending``, ``axial``, ``spring``;
+        ``unstable`` (negative ω² at a verified equilibrium) or ``negative``
+        (negative ω² at a state that is not an equilibrium)."""
     @property
     def rigid_modes(self) -> int:
         """Number of zero-frequency modes (rigid and mechanism)."""
     @property
     def mechanism_modes(self) -> int:
         """How many zero-frequency modes are mechanisms."""
+    @property
+    def unstable_modes(self) -> int:
+        """Reported modes of kind ``unstable``."""
+    @property
+    def negative_modes(self) -> int:
+        """Reported modes of kind ``negative``."""
+    @property
+    def equilibrium(self) -> Dict[str, Any]:
+        """Whether the modes' state is an equilibrium: ``balanced``,
+        ``unbalanced_n`` [N], ``force_scale_n`` [N], ``tolerance``, ``at``
+        (the coordinate), ``constraint_violation``, ``free_fall``. A state
+        that is not one, or an unstable one, also gives a
+        ``RuntimeWarning`` when ``Model.modal`` returns."""
     @property
     def solver(self) -> str:
         """``dense`` or ``sparse shift-invert Lanczos``."""

@@ -19,7 +19,7 @@ use std::sync::Arc;
 /// equilibrium beside the reference.
 pub enum ModalOutcome {
     Reference(ModalResult),
-    Prestressed(PrestressedModal),
+    Prestressed(Box<PrestressedModal>),
 }
 
 impl ModalOutcome {
@@ -55,13 +55,27 @@ impl ModalOutcome {
                 &ancf::results::ModalOutput::new(model, r, damping),
                 source,
                 Some(sha256),
-                ancf::analysis::shear::beam_theory_warnings(r),
+                self.warnings(),
             ),
-            ModalOutcome::Prestressed(p) => crate::document(
+            ModalOutcome::Prestressed(p) => crate::document_with(
                 &ancf::results::PrestressedOutput::new(model, p, damping),
                 source,
                 Some(sha256),
+                self.warnings(),
             ),
+        }
+    }
+
+    /// The analysis's own warnings, as the command line gives them: not an
+    /// equilibrium, unstable, then (at the reference) the beam theory's.
+    fn warnings(&self) -> Vec<String> {
+        match self {
+            ModalOutcome::Reference(r) => {
+                let mut w = ancf::results::modal::reference_warnings(r);
+                w.extend(ancf::analysis::shear::beam_theory_warnings(r));
+                w
+            }
+            ModalOutcome::Prestressed(p) => ancf::results::modal::prestressed_warnings(p),
         }
     }
 
@@ -70,7 +84,7 @@ impl ModalOutcome {
         match self {
             ModalOutcome::Reference(r) => ancf::output::modal_report::modal_table(model, r),
             ModalOutcome::Prestressed(p) => {
-                ancf::output::static_report::prestress_table(&model.name, p)
+                ancf::output::modal_report::prestress_table(&model.name, p)
             }
         }
     }
@@ -121,12 +135,8 @@ pub fn run(
             let reference = modal_at_reference(&system, &settings).map_err(fail)?;
             let damping = mode_damping(&system, &eq.linearization(), &prestressed, model.damping)
                 .map_err(fail)?;
-            let p = PrestressedModal {
-                equilibrium: eq,
-                reference,
-                prestressed,
-            };
-            Ok((ModalOutcome::Prestressed(p), damping))
+            let p = PrestressedModal::new(&system, eq, reference, prestressed);
+            Ok((ModalOutcome::Prestressed(Box::new(p)), damping))
         } else {
             let mut r = modal_at_reference(&system, &settings).map_err(fail)?;
             ancf::analysis::shear::annotate(&model, &system, &mut r);
@@ -135,6 +145,23 @@ pub fn run(
             Ok((ModalOutcome::Reference(r), damping))
         }
     })?;
+    // The analysis's warnings (not an equilibrium, unstable) as Python
+    // warnings (`RuntimeWarning`), named by the model's source as the
+    // command line names them; `to_dict()["warnings"]` lists them too.
+    let own = match &outcome {
+        ModalOutcome::Reference(r) => ancf::results::modal::reference_warnings(r),
+        ModalOutcome::Prestressed(p) => ancf::results::modal::prestressed_warnings(p),
+    };
+    for w in own {
+        let text = std::ffi::CString::new(format!("{}: {w}", model.label()))
+            .map_err(|e| Failure::Analysis(e.to_string()))?;
+        PyErr::warn(
+            py,
+            &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
+            &text,
+            1,
+        )?;
+    }
     Ok(PyModalResult {
         model: Arc::clone(&model.model),
         source: model.label(),
@@ -178,7 +205,8 @@ impl PyModalResult {
 
 #[pymethods]
 impl PyModalResult {
-    /// Natural frequencies [Hz], ascending; 0 for rigid and mechanism modes.
+    /// Natural frequencies [Hz], ascending; 0 for rigid and mechanism modes;
+    /// −√|ω²|/2π for a negative eigenvalue.
     #[getter]
     fn frequencies_hz<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_vec(py, self.column(|_, m| m.frequency_hz))
@@ -227,6 +255,29 @@ impl PyModalResult {
     #[getter]
     fn mechanism_modes(&self) -> usize {
         self.outcome.result().mechanism_modes
+    }
+
+    /// Reported modes of kind `unstable` (negative ω² at a verified
+    /// equilibrium).
+    #[getter]
+    fn unstable_modes(&self) -> usize {
+        self.outcome.result().unstable_modes
+    }
+
+    /// Reported modes of kind `negative` (negative ω² at a state that is
+    /// not an equilibrium).
+    #[getter]
+    fn negative_modes(&self) -> usize {
+        self.outcome.result().negative_modes
+    }
+
+    /// Whether the modes' state is an equilibrium, as a dict (the
+    /// document's `equilibrium` at the reference).
+    #[getter]
+    fn equilibrium<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let v = serde_json::to_value(&self.outcome.result().equilibrium)
+            .map_err(|e| Failure::Analysis(e.to_string()))?;
+        crate::json_to_python(py, &v)
     }
 
     /// Which eigensolver ran (`dense` or `sparse shift-invert Lanczos`).

@@ -231,3 +231,42 @@ def test_plot_writes_an_svg(tmp_path):
     result.plot(path)
     text = path.read_text()
     assert "<svg" in text and "Mode 4" in text
+
+
+def test_a_reference_that_is_no_equilibrium_is_said_and_warned(cli):
+    # The switch-off model's reference carries the spring's preload: not an
+    # equilibrium (as the command line says); its negative eigenvalue is
+    # never reported at 0 Hz, and the warning arrives as a Python warning.
+    model = ancf_modal.Model.builtin("rcbo_switch_off")
+    with pytest.warns(RuntimeWarning, match="not an equilibrium"):
+        result = model.modal(modes=6)
+    doc = cli.json("modal", "models/rcbo_switch_off.json", "--modes", "6")
+    assert result.equilibrium == doc["equilibrium"]
+    assert result.equilibrium["balanced"] is False
+    assert result.negative_modes == doc["negative_modes"] >= 1
+    assert result.unstable_modes == 0
+    negative = result.eigenvalues < 0
+    assert np.all(result.frequencies_hz[negative] < 0)
+    assert np.allclose(
+        -result.frequencies_hz[negative],
+        np.sqrt(-result.eigenvalues[negative]) / (2 * math.pi),
+        rtol=1e-12,
+    )
+    assert [k for k, n in zip(result.kinds, negative) if n] == ["negative"] * int(negative.sum())
+    assert any("not an equilibrium" in w for w in result.to_dict()["warnings"])
+
+
+def test_prestressed_modes_are_paired_by_shape(cli):
+    model = ancf_modal.Model.builtin("rcbo_switch_off")
+    with pytest.warns(RuntimeWarning, match="unstressed modes' state"):
+        result = model.modal(prestress=True, modes=12)
+    doc = result.to_dict()
+    assert doc["reference_equilibrium"]["balanced"] is False
+    cli_doc = cli.json("modal", "models/rcbo_switch_off.json", "--prestress", "--modes", "12")
+    mine = [(m["unstressed_index"], m["mac"] is not None) for m in doc["modes"]]
+    assert mine == [(m["unstressed_index"], m["mac"] is not None) for m in cli_doc["modes"]]
+    for m in doc["modes"]:
+        if m["unstressed_index"] is None:
+            assert m["shift_percent"] is None and m["unstressed_hz"] is None
+        else:
+            assert m["mac"] >= 0.9

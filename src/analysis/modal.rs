@@ -35,7 +35,20 @@
 //!    strain cancels).
 //! 5. Each elastic mode is classified by where its strain energy ½φᵀKφ
 //!    sits: beam axial, beam bending, or springs.
+//! 6. The state is checked for equilibrium ([`super::statics::balance`]:
+//!    force balance with the given or least-squares multipliers, and the
+//!    constraints, to [`super::statics::balance::BALANCE_TOLERANCE`]). Only
+//!    at an equilibrium is the linearization a vibration (ω² > 0) or an
+//!    instability (ω² < 0). A mode whose refined ω² is negative beyond its
+//!    error bound (a bound below ½, so the sign is certain) is
+//!    [`ModeKind::Unstable`] at an equilibrium (it grows as e^{√|ω²| t})
+//!    and [`ModeKind::Negative`] at a state that is none (the unloaded
+//!    reference of a preloaded model: a direction of negative stiffness of
+//!    a linearization that describes no motion about that state). Its
+//!    frequency is reported as −√|ω²|/2π [Hz]: the magnitude of the
+//!    imaginary frequency with a minus sign, never 0.
 
+use super::statics::balance::{unbalanced_force, Balance, BALANCE_TOLERANCE};
 use super::zero_modes::zero_modes;
 use crate::error::AnalysisError;
 use crate::linalg::dense::{solve_generalized, MassFactor};
@@ -95,12 +108,24 @@ pub enum ModeKind {
     Axial,
     /// Energy mostly in springs (e.g. a body rocking on a torsion spring).
     Spring,
+    /// Negative ω² at a verified equilibrium: the equilibrium is unstable,
+    /// the mode grows as e^{√|ω²| t} (frequency reported as −√|ω²|/2π).
+    Unstable,
+    /// Negative ω² at a state that is not an equilibrium: a direction of
+    /// negative stiffness of the linearization, neither a vibration nor a
+    /// statement about stability (frequency reported as −√|ω²|/2π).
+    Negative,
 }
 
 impl ModeKind {
     /// A zero-frequency mode (rigid or mechanism).
     pub fn is_zero(self) -> bool {
         matches!(self, ModeKind::Rigid | ModeKind::Mechanism)
+    }
+
+    /// A mode with negative ω² (unstable, or negative at a non-equilibrium).
+    pub fn is_negative(self) -> bool {
+        matches!(self, ModeKind::Unstable | ModeKind::Negative)
     }
 }
 
@@ -112,6 +137,8 @@ impl std::fmt::Display for ModeKind {
             ModeKind::Bending => "bending",
             ModeKind::Axial => "axial",
             ModeKind::Spring => "spring",
+            ModeKind::Unstable => "unstable",
+            ModeKind::Negative => "negative",
         };
         f.write_str(s)
     }
@@ -133,7 +160,8 @@ pub struct EnergyFractions {
 pub struct Mode {
     /// Mode number, 1-based, in ascending frequency.
     pub index: usize,
-    /// Natural frequency [SI: Hz]; 0 for rigid modes.
+    /// Natural frequency [SI: Hz]; 0 for rigid modes; −√|ω²|/2π for a
+    /// negative eigenvalue (the imaginary frequency's magnitude, negated).
     pub frequency_hz: f64,
     /// Eigenvalue ω² [SI: rad²/s²] (negative = unstable direction).
     pub eigenvalue: f64,
@@ -171,6 +199,66 @@ pub struct ModalResult {
     /// Which eigensolver ran.
     pub solver: &'static str,
     pub modes: Vec<Mode>,
+    /// Whether the state is an equilibrium (module doc, item 6).
+    pub equilibrium: EquilibriumCheck,
+    /// Reported modes of kind [`ModeKind::Unstable`].
+    pub unstable_modes: usize,
+    /// Reported modes of kind [`ModeKind::Negative`].
+    pub negative_modes: usize,
+}
+
+/// Whether the state a modal analysis is linearized at is an equilibrium
+/// ([`crate::analysis::statics::balance`]).
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+pub struct EquilibriumCheck {
+    /// Force balance and constraints hold to `tolerance` [–].
+    pub balanced: bool,
+    /// Largest unbalanced generalized force, with the multipliers of the
+    /// state or least-squares ones; moments divided by the model's size [N].
+    pub unbalanced_n: f64,
+    /// Largest internal, applied or joint force it is compared with [N].
+    pub force_scale_n: f64,
+    /// Relative tolerance of the check [–].
+    pub tolerance: f64,
+    /// The coordinate the largest unbalanced force acts on.
+    pub at: String,
+    /// Largest constraint residual ‖C(q)‖∞ [m, –].
+    pub constraint_violation: f64,
+    /// Whether a uniform acceleration of the whole (unsupported) assembly
+    /// was allowed: a free assembly falling under gravity is in
+    /// equilibrium in its falling frame.
+    pub free_fall: bool,
+}
+
+impl EquilibriumCheck {
+    /// The check of `b` at [`BALANCE_TOLERANCE`].
+    pub fn new(system: &System, b: &Balance) -> Self {
+        EquilibriumCheck {
+            balanced: b.is_balanced(BALANCE_TOLERANCE),
+            unbalanced_n: b.unbalanced,
+            force_scale_n: b.scale,
+            tolerance: BALANCE_TOLERANCE,
+            at: system.dof_label(b.worst_dof),
+            constraint_violation: b.constraint_violation,
+            free_fall: b.free_fall,
+        }
+    }
+
+    /// One sentence for a state called `state` ("the reference") that is
+    /// not an equilibrium, `None` when it is one.
+    pub fn warning(&self, state: &str) -> Option<String> {
+        (!self.balanced).then(|| {
+            format!(
+                "{state} is not an equilibrium: unbalanced force {:.3e} N on {} ({:.1e} of the largest force {:.3e} N; constraints violated by {:.1e}); \
+                 its modes are the linearization at a state that does not stay put, not a vibration",
+                self.unbalanced_n,
+                self.at,
+                self.unbalanced_n / self.force_scale_n.max(f64::MIN_POSITIVE),
+                self.force_scale_n,
+                self.constraint_violation
+            )
+        })
+    }
 }
 
 impl ModalResult {
@@ -194,6 +282,33 @@ impl ModalResult {
             .take(3)
             .fold(0.0f64, f64::max);
         (worst > ACCURACY_WARNING).then_some(worst)
+    }
+
+    /// The warnings of this result at a state called `state` ("the
+    /// reference"): not an equilibrium, or an unstable equilibrium.
+    pub fn warnings(&self, state: &str) -> Vec<String> {
+        let mut w: Vec<String> = self.equilibrium.warning(state).into_iter().collect();
+        if self.unstable_modes > 0 {
+            let list: Vec<String> = self
+                .modes
+                .iter()
+                .filter(|m| m.kind == ModeKind::Unstable)
+                .map(|m| {
+                    format!(
+                        "mode {} (ω² = {:.4e} rad²/s², grows as e^(t/{:.3e} s))",
+                        m.index,
+                        m.eigenvalue,
+                        1.0 / m.eigenvalue.abs().sqrt()
+                    )
+                })
+                .collect();
+            w.push(format!(
+                "{state} is an unstable equilibrium: {} mode(s) with negative eigenvalue: {}",
+                self.unstable_modes,
+                list.join(", ")
+            ));
+        }
+        w
     }
 }
 
@@ -375,11 +490,22 @@ pub fn modal(
     }
     let mut elastic: Vec<usize> = (0..shapes.len()).collect();
     elastic.sort_by(|&a, &b| refined[a].total_cmp(&refined[b]));
+    let balance = unbalanced_force(system, at.q, at.lambda, at.time, at.load_scale);
+    let equilibrium = EquilibriumCheck::new(system, &balance);
     for i in elastic {
-        let (kind, energy) = classify(energies[i]);
+        let (mut kind, energy) = classify(energies[i]);
+        // Negative beyond the bound: a bound below ½ certifies the sign.
+        if refined[i] < 0.0 && bounds[i] < 0.5 {
+            kind = if equilibrium.balanced {
+                ModeKind::Unstable
+            } else {
+                ModeKind::Negative
+            };
+        }
         modes.push(Mode {
             index: modes.len() + 1,
-            frequency_hz: refined[i].max(0.0).sqrt() / (2.0 * std::f64::consts::PI),
+            frequency_hz: refined[i].signum() * refined[i].abs().sqrt()
+                / (2.0 * std::f64::consts::PI),
             eigenvalue: refined[i],
             kind,
             energy,
@@ -401,7 +527,16 @@ pub fn modal(
         } else {
             "dense"
         },
+        unstable_modes: modes
+            .iter()
+            .filter(|m| m.kind == ModeKind::Unstable)
+            .count(),
+        negative_modes: modes
+            .iter()
+            .filter(|m| m.kind == ModeKind::Negative)
+            .count(),
         modes,
+        equilibrium,
     })
 }
 

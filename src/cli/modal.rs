@@ -31,6 +31,9 @@ pub fn run(args: ModalArgs) -> Result<()> {
     }
     let (result, mut output) = ancf_modal::results::modal::modal(&model, &system, &settings)
         .with_context(|| source_label(args.model.as_deref()))?;
+    for w in ancf_modal::results::modal::reference_warnings(&result) {
+        super::common::warn(format!("{}: {w}", source_label(args.model.as_deref())));
+    }
     warn_beam_theory(&result, args.model.as_deref());
     let mac = match &args.mac {
         Some(other) => Some(mac_against(&system, &result, other, &settings)?),

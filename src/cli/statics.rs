@@ -79,6 +79,9 @@ pub fn run_prestress(
     let (result, output) =
         ancf_modal::results::modal::prestressed(model, system, &statics, settings)
             .with_context(|| source_label(args.model.as_deref()))?;
+    for w in ancf_modal::results::modal::prestressed_warnings(&result) {
+        super::common::warn(format!("{}: {w}", source_label(args.model.as_deref())));
+    }
     if let Some(path) = &args.output.csv {
         write_output(path, &modal_csv(&result.prestressed))?;
     }

@@ -1,8 +1,49 @@
 //! Modal results as a table, a JSON document and CSV.
+//!
+//! A negative eigenvalue ω² < 0 is printed as its imaginary frequency
+//! √|ω²|/2π followed by `i` (`190.623i`), never as 0 Hz; its kind says
+//! whether the state is an unstable equilibrium (`unstable`) or no
+//! equilibrium at all (`negative`). A state that is not an equilibrium is
+//! said above the table, with the unbalanced force and where it acts.
 
-use crate::analysis::ModalResult;
+use crate::analysis::modal::EquilibriumCheck;
+use crate::analysis::prestress::PrestressedModal;
+use crate::analysis::{ModalResult, Mode};
 use crate::model::{Model, UnitWarning};
 use std::fmt::Write;
+
+/// A mode's frequency cell: `0` for zero modes, `f` to 3 decimals, or the
+/// imaginary frequency `√|ω²|/2π` with an `i` for a negative eigenvalue.
+pub fn frequency_cell(m: &Mode) -> String {
+    if m.kind.is_zero() {
+        String::from("0")
+    } else if m.frequency_hz < 0.0 {
+        format!("{:.3}i", -m.frequency_hz)
+    } else {
+        format!("{:.3}", m.frequency_hz)
+    }
+}
+
+/// The lines that say whether the state is an equilibrium (nothing when it
+/// is one and nothing is unstable) and what the `i` frequencies mean.
+fn equilibrium_lines(s: &mut String, state: &str, e: &EquilibriumCheck, r: &ModalResult) {
+    if let Some(w) = e.warning(state) {
+        let _ = writeln!(s, "{w}");
+    }
+    if r.unstable_modes > 0 {
+        let _ = writeln!(
+            s,
+            "{state} is an unstable equilibrium: {} mode(s) with negative eigenvalue (kind `unstable`)",
+            r.unstable_modes
+        );
+    }
+    if r.unstable_modes + r.negative_modes > 0 {
+        let _ = writeln!(
+            s,
+            "i: imaginary frequency √|ω²|/2π of a negative eigenvalue ω² (a motion growing as e^(√|ω²| t), not a vibration)"
+        );
+    }
+}
 
 /// Readable table: index, frequency [Hz], kind, energy split.
 pub fn modal_table(model: &Model, r: &ModalResult) -> String {
@@ -26,6 +67,7 @@ pub fn modal_table(model: &Model, r: &ModalResult) -> String {
         r.rigid_modes - r.mechanism_modes,
         r.mechanism_modes
     );
+    equilibrium_lines(&mut s, "the reference configuration", &r.equilibrium, r);
     let _ = writeln!(
         s,
         "{:>5}  {:>14}  {:<8}  {:>7}  {:>7}  {:>7}  {:>11}  {:>7}",
@@ -43,9 +85,9 @@ pub fn modal_table(model: &Model, r: &ModalResult) -> String {
                 .map_or(String::from("-"), |e| format!("{:+.2}", 100.0 * e));
             let _ = writeln!(
                 s,
-                "{:>5}  {:>14.3}  {:<8}  {:>7.2}  {:>7.2}  {:>7.2}  {:>11}  {:>7}",
+                "{:>5}  {:>14}  {:<8}  {:>7.2}  {:>7.2}  {:>7.2}  {:>11}  {:>7}",
                 m.index,
-                m.frequency_hz,
+                frequency_cell(m),
                 m.kind,
                 100.0 * m.energy.bending,
                 100.0 * m.energy.axial,
@@ -119,6 +161,66 @@ pub fn modal_csv(r: &ModalResult) -> String {
             m.energy.axial,
             m.energy.springs,
             m.error_bound.map_or(String::new(), |b| format!("{b:.3e}"))
+        );
+    }
+    s
+}
+
+/// Frequencies at the equilibrium beside the unstressed mode of the same
+/// shape: its number, the mass-weighted MAC and the shift (module doc of
+/// [`crate::analysis::prestress`]); a mode without a partner says so.
+pub fn prestress_table(model_name: &str, r: &PrestressedModal) -> String {
+    let mut s = String::new();
+    let eq = &r.equilibrium;
+    let _ = writeln!(
+        s,
+        "model {model_name}: modes at the static equilibrium (load factor {}, {} load steps, {} Newton iterations, unbalanced force {:.2e} N)",
+        eq.load_scale, eq.steps, eq.iterations, eq.residual
+    );
+    let _ = writeln!(
+        s,
+        "{} zero-frequency modes at the equilibrium, {} at the reference",
+        r.prestressed.rigid_modes, r.reference.rigid_modes
+    );
+    let p = &r.prestressed;
+    equilibrium_lines(&mut s, "the static equilibrium", &p.equilibrium, p);
+    if let Some(w) = r
+        .reference
+        .equilibrium
+        .warning("the reference configuration (the unstressed modes' state)")
+    {
+        let _ = writeln!(s, "{w}");
+    }
+    let _ = writeln!(
+        s,
+        "unstressed: the reference mode of the same shape (mass-weighted MAC ≥ {}), not of the same rank",
+        crate::analysis::prestress::PAIR_MAC
+    );
+    let _ = writeln!(
+        s,
+        "{:>5}  {:>17}  {:<9}  {:>16}  {:>5}  {:>6}  {:>9}",
+        "mode", "pre-stressed [Hz]", "kind", "unstressed [Hz]", "(no.)", "MAC", "shift [%]"
+    );
+    for (i, m) in p.modes.iter().enumerate() {
+        let best = r.matches.get(i).copied().flatten();
+        let (f0, no) = match r.partner(i) {
+            Some(u) => (frequency_cell(u), format!("({})", u.index)),
+            None => (String::from("unpaired"), String::from("-")),
+        };
+        let mac = best.map_or_else(|| "-".to_string(), |b| format!("{:.3}", b.mac));
+        let shift = r
+            .shift_percent(i)
+            .map_or_else(|| "-".to_string(), |v| format!("{v:+.4}"));
+        let _ = writeln!(
+            s,
+            "{:>5}  {:>17}  {:<9}  {:>16}  {:>5}  {:>6}  {:>9}",
+            i + 1,
+            frequency_cell(m),
+            m.kind.to_string(),
+            f0,
+            no,
+            mac,
+            shift
         );
     }
     s

@@ -12,7 +12,6 @@
 //! (n the current axis normal), and for a weld also the moment −λ₂ on b
 //! (conjugate to b's angle). The joint exerts the opposite on `a`.
 
-use crate::analysis::prestress::PrestressedModal;
 use crate::analysis::statics::Equilibrium;
 use crate::output::figures::assembly_geometry;
 use crate::output::plot::{LineFigure, Panel, Scale, Series, SeriesStyle};
@@ -205,40 +204,6 @@ pub fn equilibrium_figure(system: &System, eq: &Equilibrium) -> LineFigure {
     fig
 }
 
-/// Frequencies at the equilibrium beside the unstressed ones.
-pub fn prestress_table(model_name: &str, r: &PrestressedModal) -> String {
-    let mut s = String::new();
-    let eq = &r.equilibrium;
-    let _ = writeln!(
-        s,
-        "model {model_name}: modes at the static equilibrium (load factor {}, {} load steps, {} Newton iterations, unbalanced force {:.2e} N)",
-        eq.load_scale, eq.steps, eq.iterations, eq.residual
-    );
-    let _ = writeln!(
-        s,
-        "{} zero-frequency modes at the equilibrium, {} at the reference",
-        r.prestressed.rigid_modes, r.reference.rigid_modes
-    );
-    let _ = writeln!(
-        s,
-        "{:>5}  {:>16}  {:>16}  {:>9}  {:<8}",
-        "mode", "unstressed [Hz]", "pre-stressed [Hz]", "shift [%]", "kind"
-    );
-    for (i, m) in r.prestressed.modes.iter().enumerate() {
-        let f0 = r.reference.modes.get(i).map(|m| m.frequency_hz);
-        let shift = r
-            .shift_percent(i)
-            .map_or_else(|| "-".to_string(), |v| format!("{v:+.4}"));
-        let f0 = f0.map_or_else(|| "-".to_string(), |v| format!("{v:.3}"));
-        let _ = writeln!(
-            s,
-            "{:>5}  {:>16}  {:>16.3}  {:>9}  {:<8}",
-            i + 1,
-            f0,
-            m.frequency_hz,
-            shift,
-            m.kind
-        );
-    }
-    s
-}
+/// Frequencies at the equilibrium beside the unstressed ones (it lives
+/// with the other modal tables).
+pub use super::modal_report::prestress_table;

@@ -3,9 +3,18 @@
 //! under its loads ([`PrestressedOutput`]), with each mode's damping
 //! (Rayleigh ζ = α/(2ω) + βω/2, or complex modes when the model has
 //! dampers) and, on request, the MAC against another mode set.
+//!
+//! Both documents say whether their state is an equilibrium
+//! ([`EquilibriumCheck`]): only there are positive eigenvalues a vibration
+//! and negative ones an instability (`unstable_modes`); at a state that is
+//! none (the unloaded reference of a preloaded model) negative ones count
+//! as `negative_modes`. A negative eigenvalue's `frequency_hz` is
+//! −√|ω²|/2π, never 0. Pre-stressed modes are compared with the unstressed
+//! mode of the same shape (mass-weighted MAC ≥ 0.9,
+//! [`crate::analysis::prestress::PAIR_MAC`]), not of the same rank.
 
 use crate::analysis::damped_modes::{mode_damping, ModeDamping};
-use crate::analysis::modal::EnergyFractions;
+use crate::analysis::modal::{EnergyFractions, EquilibriumCheck};
 use crate::analysis::prestress::{prestressed_modal, PrestressedModal};
 use crate::analysis::statics::StaticSettings;
 use crate::analysis::{modal_at_reference, ModalResult, ModalSettings, Mode, ModeKind};
@@ -22,10 +31,12 @@ pub struct ModeEntry {
     /// The mode (its keys sit beside the damping's).
     #[serde(flatten)]
     pub mode: Mode,
-    /// Damping ratio ζ [–]; null for zero-frequency modes.
+    /// Damping ratio ζ [–]; null for zero-frequency modes and negative
+    /// eigenvalues.
     pub damping_ratio: Option<f64>,
     /// Damped frequency Im λ/2π of a complex mode [Hz]; null without
-    /// dampers (Rayleigh damping only) or when overdamped.
+    /// dampers (Rayleigh damping only), when overdamped, or for a negative
+    /// eigenvalue.
     pub damped_frequency_hz: Option<f64>,
 }
 
@@ -58,6 +69,14 @@ pub struct ModalOutput {
     pub rigid_modes: usize,
     /// How many of the zero-frequency modes are mechanisms of the joints [–].
     pub mechanism_modes: usize,
+    /// Reported modes with a negative eigenvalue at a verified equilibrium
+    /// (kind `unstable`) [–].
+    pub unstable_modes: usize,
+    /// Reported modes with a negative eigenvalue at a state that is not an
+    /// equilibrium (kind `negative`) [–].
+    pub negative_modes: usize,
+    /// Whether the reference configuration is an equilibrium.
+    pub equilibrium: EquilibriumCheck,
     /// Frequency of the first bending mode [Hz]; null when none was computed.
     pub first_bending_hz: Option<f64>,
     /// Which eigensolver ran (`dense` or `sparse shift-invert Lanczos`).
@@ -88,6 +107,9 @@ impl ModalOutput {
             redundant_constraints: result.redundant_constraints.clone(),
             rigid_modes: result.rigid_modes,
             mechanism_modes: result.mechanism_modes,
+            unstable_modes: result.unstable_modes,
+            negative_modes: result.negative_modes,
+            equilibrium: result.equilibrium.clone(),
             first_bending_hz: result.first_bending().map(|m| m.frequency_hz),
             solver: result.solver.to_string(),
             accuracy_warning: result.accuracy_warning(),
@@ -105,7 +127,7 @@ fn entries(result: &ModalResult, damping: &[ModeDamping]) -> Vec<ModeEntry> {
         .iter()
         .enumerate()
         .map(|(i, m)| {
-            let d = damping.get(i).copied().unwrap_or_default();
+            let d = mode_damping_of(m, damping.get(i));
             ModeEntry {
                 mode: m.clone(),
                 damping_ratio: d.damping_ratio,
@@ -113,6 +135,32 @@ fn entries(result: &ModalResult, damping: &[ModeDamping]) -> Vec<ModeEntry> {
             }
         })
         .collect()
+}
+
+/// A mode's damping; none for a negative eigenvalue (no vibration to damp).
+fn mode_damping_of(m: &Mode, d: Option<&ModeDamping>) -> ModeDamping {
+    match d {
+        Some(d) if !m.kind.is_negative() => *d,
+        _ => ModeDamping::default(),
+    }
+}
+
+/// The warnings of a modal result at the reference (not an equilibrium,
+/// unstable), one sentence each, for the run's `warnings`.
+pub fn reference_warnings(result: &ModalResult) -> Vec<String> {
+    result.warnings("the reference configuration")
+}
+
+/// The warnings of a pre-stressed analysis: the equilibrium's (unstable,
+/// or not an equilibrium by the independent check) and the reference's.
+pub fn prestressed_warnings(r: &PrestressedModal) -> Vec<String> {
+    let mut w = r.prestressed.warnings("the static equilibrium");
+    w.extend(
+        r.reference
+            .equilibrium
+            .warning("the reference configuration (the unstressed modes' state)"),
+    );
+    w
 }
 
 /// The modal analysis of `model` at its reference configuration: the
@@ -142,11 +190,17 @@ pub struct PrestressedMode {
     pub kind: ModeKind,
     /// Strain-energy fractions [–].
     pub energy: EnergyFractions,
-    /// The same mode's frequency at the reference, unstressed [Hz]; null
-    /// when the reference has fewer modes.
+    /// The unstressed mode of the same shape: its number in the reference's
+    /// modes (1-based) [–]; null when no reference mode reaches a MAC of 0.9.
+    pub unstressed_index: Option<usize>,
+    /// Its frequency at the reference, unstressed [Hz]; null when unpaired.
     pub unstressed_hz: Option<f64>,
-    /// Relative shift from the unstressed frequency [%]; null where that
-    /// is zero.
+    /// Mass-weighted MAC with the most similar unstressed mode (with its
+    /// cluster of repeated values) [–]; at least 0.9 when paired, null when
+    /// the reference has no modes.
+    pub mac: Option<f64>,
+    /// Relative shift from the paired unstressed frequency [%]; null when
+    /// unpaired or where either frequency is not positive.
     pub shift_percent: Option<f64>,
     /// Damping ratio ζ [–]; null for zero-frequency modes.
     pub damping_ratio: Option<f64>,
@@ -166,6 +220,8 @@ pub struct EquilibriumSummary {
     pub residual_n: f64,
     /// Constraint violation at the solution [m, rad].
     pub constraint_violation: f64,
+    /// The independent check of the balance at the solution.
+    pub check: EquilibriumCheck,
 }
 
 /// `modal --prestress --json`: the modes at the static equilibrium beside
@@ -184,6 +240,15 @@ pub struct PrestressedOutput {
     pub rigid_modes: usize,
     /// How many of them are mechanisms [–].
     pub mechanism_modes: usize,
+    /// Reported modes with a negative eigenvalue at the equilibrium (kind
+    /// `unstable`) [–].
+    pub unstable_modes: usize,
+    /// Reported modes with a negative eigenvalue where the independent
+    /// check finds no equilibrium (kind `negative`) [–].
+    pub negative_modes: usize,
+    /// Whether the reference configuration (the unstressed modes' state)
+    /// is an equilibrium.
+    pub reference_equilibrium: EquilibriumCheck,
     /// First bending frequency at the equilibrium [Hz]; null if none.
     pub first_bending_hz: Option<f64>,
     /// First bending frequency unstressed [Hz]; null if none.
@@ -207,14 +272,17 @@ impl PrestressedOutput {
             .iter()
             .enumerate()
             .map(|(i, m)| {
-                let d = damping.get(i).copied().unwrap_or_default();
+                let d = mode_damping_of(m, damping.get(i));
+                let partner = r.partner(i);
                 PrestressedMode {
                     index: i + 1,
                     frequency_hz: m.frequency_hz,
                     eigenvalue: m.eigenvalue,
                     kind: m.kind,
                     energy: m.energy,
-                    unstressed_hz: r.reference.modes.get(i).map(|m| m.frequency_hz),
+                    unstressed_index: partner.map(|p| p.index),
+                    unstressed_hz: partner.map(|p| p.frequency_hz),
+                    mac: r.matches.get(i).copied().flatten().map(|m| m.mac),
                     shift_percent: r.shift_percent(i),
                     damping_ratio: d.damping_ratio,
                     damped_frequency_hz: d.damped_frequency_hz,
@@ -228,6 +296,9 @@ impl PrestressedOutput {
             dofs: r.prestressed.dofs,
             rigid_modes: r.prestressed.rigid_modes,
             mechanism_modes: r.prestressed.mechanism_modes,
+            unstable_modes: r.prestressed.unstable_modes,
+            negative_modes: r.prestressed.negative_modes,
+            reference_equilibrium: r.reference.equilibrium.clone(),
             first_bending_hz: first(&r.prestressed),
             unstressed_first_bending_hz: first(&r.reference),
             equilibrium: EquilibriumSummary {
@@ -235,6 +306,7 @@ impl PrestressedOutput {
                 iterations: r.equilibrium.iterations,
                 residual_n: r.equilibrium.residual,
                 constraint_violation: r.equilibrium.constraint_violation,
+                check: r.prestressed.equilibrium.clone(),
             },
             modes,
             complex_modes: damping.iter().any(|d| d.complex),

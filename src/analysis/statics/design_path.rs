@@ -35,6 +35,7 @@
 //! design it solves the design from its own reference and says so in
 //! [`Equilibrium::branch`].
 
+use super::balance::{unbalanced_force, BALANCE_TOLERANCE};
 use super::{
     continue_equilibrium, solve_equilibrium, Branch, Equilibrium, LoadPath, StaticSettings,
 };
@@ -171,79 +172,33 @@ pub fn on_state_equilibrium(
     }
 }
 
-/// Relative unbalanced force accepted by [`balanced`] and [`verify`].
-const BALANCE_TOLERANCE: f64 = 1e-6;
-/// Constraint violation accepted by [`verify`], relative to the
-/// assembly's size.
-const CONSTRAINT_TOLERANCE: f64 = 1e-9;
-
-/// `found` if it balances: ‖Q_int − Q_ext + C_qᵀλ‖∞ at most
-/// [`BALANCE_TOLERANCE`] of the larger of the applied forces and the
-/// multipliers: every step of the path is checked on its own balance, not
-/// on the continuation's word.
+/// `found` if it balances its system ([`unbalanced_force`] with
+/// its own multipliers, to [`BALANCE_TOLERANCE`]): every step of the path
+/// is checked on its own balance, not on the continuation's word.
 fn balanced(sys: &System, found: Equilibrium) -> Result<Equilibrium, AnalysisError> {
-    let (unbalanced, scale) = unbalanced_force(sys, &found);
-    if unbalanced <= BALANCE_TOLERANCE * scale {
+    let b = unbalanced_force(
+        sys,
+        &found.q,
+        Some(&found.lambda),
+        found.time,
+        found.load_scale,
+    );
+    if b.is_balanced(BALANCE_TOLERANCE) {
         Ok(found)
     } else {
         Err(AnalysisError::NotConverged {
             load_factor: found.load_scale,
             iterations: found.iterations,
-            residual: unbalanced,
+            residual: b.unbalanced,
         })
     }
 }
 
-/// ‖Q_int − Q_ext + C_qᵀλ‖∞ at the equilibrium's state and multipliers,
-/// and the force scale it is judged against: the largest applied,
-/// internal or joint force, and at least [`resolution_force`] over
-/// [`BALANCE_TOLERANCE`] (so that an unbalance the solver cannot resolve is
-/// not taken for a wrong state) [SI: N].
-fn unbalanced_force(sys: &System, eq: &Equilibrium) -> (f64, f64) {
-    let n = sys.ndof();
-    let (mut int, mut ext) = (vec![0.0; n], vec![0.0; n]);
-    sys.internal_force(&eq.q, &mut int);
-    sys.external_force(&eq.q, eq.time, eq.load_scale, &mut ext);
-    let mut r = int.clone();
-    sys.add_constraint_forces(&eq.q, &eq.lambda, &mut r);
-    let max = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let unbalanced = r
-        .iter()
-        .zip(&ext)
-        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    let scale = max(&ext).max(max(&eq.lambda)).max(max(&int));
-    (
-        unbalanced,
-        scale.max(resolution_force(sys) / BALANCE_TOLERANCE),
-    )
-}
-
-/// The force below which an unbalance is not resolved [SI: N]: what a
-/// displacement of [`STEP_RESOLUTION`] × the assembly's size makes in the
-/// stiffest element, EA/Le (the statics' Newton iteration stops on a step
-/// that small), and at least the round-off of the stiffest beam's elastic
-/// force, 256 ε EA.
-fn resolution_force(sys: &System) -> f64 {
-    let length = sys.length_scale();
-    sys.beams
-        .iter()
-        .flat_map(|b| {
-            b.elements.iter().map(move |e| {
-                let ea = b.section.ea;
-                (ea / e.le * STEP_RESOLUTION * length).max(256.0 * f64::EPSILON * ea)
-            })
-        })
-        .fold(0.0, f64::max)
-}
-
-/// The statics' smallest resolved step, relative to the assembly's size
-/// (its Newton iteration stops on a step below it).
-const STEP_RESOLUTION: f64 = 1e-10;
-
 /// Checks an equilibrium on the design's own system: its coordinates fit
-/// the system, it balances (see [`balanced`]), it meets the constraints to
-/// [`CONSTRAINT_TOLERANCE`] × the assembly's size, and its total potential
-/// energy is not above the reference's (else it jumped to another branch).
+/// the system, it balances and meets the constraints
+/// ([`unbalanced_force`] to [`BALANCE_TOLERANCE`]), and its total
+/// potential energy is not above the reference's (else it jumped to
+/// another branch).
 pub fn verify(sys: &System, eq: &Equilibrium) -> Result<(), DesignPathError> {
     if eq.q.len() != sys.ndof() || eq.lambda.len() != sys.constraint_count() {
         return Err(DesignPathError::Transfer {
@@ -254,17 +209,12 @@ pub fn verify(sys: &System, eq: &Equilibrium) -> Result<(), DesignPathError> {
             },
         });
     }
-    let (unbalanced, scale) = unbalanced_force(sys, eq);
-    let mut c = vec![0.0; sys.constraint_count()];
-    sys.constraint_residual(&eq.q, &mut c);
-    let violation = c.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    if unbalanced > BALANCE_TOLERANCE * scale
-        || violation > CONSTRAINT_TOLERANCE * sys.length_scale()
-    {
+    let b = unbalanced_force(sys, &eq.q, Some(&eq.lambda), eq.time, eq.load_scale);
+    if !b.is_balanced(BALANCE_TOLERANCE) {
         return Err(DesignPathError::Unbalanced {
-            unbalanced,
-            scale,
-            violation,
+            unbalanced: b.unbalanced,
+            scale: b.scale,
+            violation: b.constraint_violation,
         });
     }
     let found = sys.potential_energy(&eq.q, eq.time, eq.load_scale);

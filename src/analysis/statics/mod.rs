@@ -63,6 +63,7 @@
 //! The reduced-tangent machinery (factoring, corrections, zero modes,
 //! stability) lives in the sibling module `reduced_tangent`.
 
+pub mod balance;
 mod branch;
 pub mod design_path;
 pub mod prestress;
