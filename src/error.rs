@@ -212,6 +212,11 @@ pub enum AnalysisError {
     /// Statics: gravity alone, ramped up, makes the equilibrium unstable.
     #[error("the static equilibrium under gravity alone loses stability at {gravity_factor:.6} × g: the stiffness against a motion that moves {dof} most reaches zero there")]
     UnstableUnderGravity { gravity_factor: f64, dof: String },
+    /// Statics: the design's equilibrium found from its own reference has
+    /// open the contact whose opening stopped the continuation: it is not
+    /// the state that contact holds (e.g. a lever turned over past its stop).
+    #[error("the equilibrium found from the design's own reference has contact `{contact}` open ({force:.3e} N): not the state the contact holds")]
+    ContactOpenInFallback { contact: String, force: f64 },
     /// Statics: the equilibrium continued from another design of the
     /// assembly was not reached.
     /// `fallback`: why solving the design from its own reference failed

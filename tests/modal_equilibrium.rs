@@ -113,7 +113,7 @@ fn switch_off_reference_is_said_not_to_be_an_equilibrium() {
     assert!(neg.iter().all(|m| m.kind == ModeKind::Negative));
     assert_eq!(doc.negative_modes, neg.len());
     assert_eq!(doc.unstable_modes, 0, "no equilibrium, so nothing unstable");
-    let table = modal_table(&model.name, &r);
+    let table = modal_table(&model, &r);
     assert!(table.contains("is not an equilibrium"), "{table}");
     assert!(table.contains("not a vibration"), "{table}");
     assert_negative_never_zero(&r, &table);
@@ -319,7 +319,7 @@ fn column_buckles_above_euler_load_and_not_below() {
             if ratio > 1.0 {
                 prop_assert!(r.unstable_modes >= 1, "P/P_cr = {ratio}: {:?}", r.modes);
                 prop_assert!(lowest.eigenvalue < 0.0 && lowest.kind == ModeKind::Unstable);
-                let table = modal_table(&m.name, &r);
+                let table = modal_table(&m, &r);
                 assert_negative_never_zero(&r, &table);
                 prop_assert!(r
                     .warnings("the equilibrium")

@@ -154,7 +154,24 @@ pub fn on_state_equilibrium(
         Err(DesignPathError::Start(_)) => solve_equilibrium(&system(model), settings),
         Err(reason) => {
             let sys = system(model);
-            match solve_equilibrium(&sys, settings) {
+            let fallback = solve_equilibrium(&sys, settings).and_then(|eq| {
+                // The contact whose opening stopped the path must hold in
+                // the state found instead, or it is another state.
+                let opened = match &reason {
+                    DesignPathError::ContactOpens { contact, .. } => {
+                        sys.contacts.iter().find(|c| &c.label == contact)
+                    }
+                    _ => None,
+                };
+                match opened.map(|c| (c, c.elastic_force(&eq.q))) {
+                    Some((c, force)) if force <= 0.0 => Err(AnalysisError::ContactOpenInFallback {
+                        contact: c.label.clone(),
+                        force,
+                    }),
+                    _ => Ok(eq),
+                }
+            });
+            match fallback {
                 Ok(eq) => {
                     let path = eq.branch.path.unwrap_or(LoadPath::GravityFirst);
                     Ok(Equilibrium {
