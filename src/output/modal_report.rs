@@ -177,6 +177,7 @@ pub fn prestress_table(model_name: &str, r: &PrestressedModal) -> String {
         "model {model_name}: modes at the static equilibrium (load factor {}, {} load steps, {} Newton iterations, unbalanced force {:.2e} N)",
         eq.load_scale, eq.steps, eq.iterations, eq.residual
     );
+    let _ = writeln!(s, "found: {}", eq.branch);
     let _ = writeln!(
         s,
         "{} zero-frequency modes at the equilibrium, {} at the reference",
