@@ -258,6 +258,12 @@ impl System {
         p + self.origin
     }
 
+    /// The largest axial stiffness EA of the beams [SI: N] (0 without
+    /// beams): the scale of the elastic forces' round-off.
+    pub fn stiffest_ea(&self) -> f64 {
+        self.beams.iter().map(|b| b.section.ea).fold(0.0, f64::max)
+    }
+
     /// Total mass [SI: kg].
     pub fn total_mass(&self) -> f64 {
         self.beams.iter().map(BeamMesh::mass).sum::<f64>()

@@ -179,11 +179,7 @@ pub fn unbalanced_force(
     }
     let mut c = vec![0.0; m];
     system.constraint_residual(q, &mut c);
-    let max_ea = system
-        .beams
-        .iter()
-        .map(|b| b.section.ea)
-        .fold(0.0, f64::max);
+    let max_ea = system.stiffest_ea();
     Balance {
         unbalanced,
         scale,

@@ -238,8 +238,7 @@ pub fn verify(sys: &System, eq: &Equilibrium) -> Result<(), DesignPathError> {
     let reference = sys.potential_energy(&sys.q0, eq.time, eq.load_scale);
     // Round-off of the energies: relative to the larger, and at least the
     // energy of a strain of 256 ε in the stiffest beam, (256 ε)² EA L.
-    let stiffest = sys.beams.iter().map(|b| b.section.ea).fold(0.0, f64::max);
-    let floor = (256.0 * f64::EPSILON).powi(2) * stiffest * sys.length_scale();
+    let floor = (256.0 * f64::EPSILON).powi(2) * sys.stiffest_ea() * sys.length_scale();
     let slack = (1e-9 * found.abs().max(reference.abs())).max(floor) + f64::MIN_POSITIVE;
     if found > reference + slack {
         return Err(DesignPathError::EnergyAboveReference { found, reference });

@@ -367,11 +367,7 @@ impl<'a> Solver<'a> {
         for r in &system.rigid_bodies {
             scales[r.dof0 + 2] = 1.0;
         }
-        let stiff = system
-            .beams
-            .iter()
-            .map(|b| b.section.ea)
-            .fold(0.0, f64::max);
+        let stiff = system.stiffest_ea();
         Solver {
             system,
             settings: *settings,
