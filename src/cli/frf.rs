@@ -57,11 +57,13 @@ fn model_overlay(
 /// --measured`).
 #[derive(Debug, Args, Clone)]
 pub struct MeasuredArgs {
-    /// Force channel: CSV column name or 1-based index (default 2), UFF
-    /// record label or index (default the force record).
+    /// Force channel: CSV column name or 1-based index (default the one
+    /// column named `force…`, else 2), UFF record label or index (default
+    /// the force record).
     #[arg(long, value_name = "COL")]
     pub force: Option<Channel>,
-    /// Response channel: CSV column name or 1-based index (default 3).
+    /// Response channel: CSV column name or 1-based index (default the
+    /// first column after time that is not the force).
     #[arg(long, value_name = "COL")]
     pub response: Option<Channel>,
     /// What the response measures (the FRF's unit).

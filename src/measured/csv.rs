@@ -3,7 +3,10 @@
 //! Layout: one header row of column names, then one row per sample; the
 //! first column is time in seconds, strictly increasing on a uniform grid.
 //! The force and response columns are chosen by header name or 1-based
-//! index (default: columns 2 and 3). Cells are separated by commas,
+//! index. By default the force is the one column whose name starts with
+//! `force` (as in what `impulse --csv` writes: `time_s`, the sensor,
+//! `force_n`), else column 2; the response is the first column after time
+//! that is not the force. Cells are separated by commas,
 //! semicolons or tabs (whichever the header uses), or by blanks; lines
 //! starting with `#` and blank lines are skipped.
 //!
@@ -68,6 +71,22 @@ fn column(
     Ok(index - 1)
 }
 
+/// The default force column, 1-based: the one column after time whose name
+/// starts with `force` (any case), else 2.
+fn default_force(names: &[&str]) -> usize {
+    let named: Vec<usize> = names
+        .iter()
+        .enumerate()
+        .skip(1)
+        .filter(|(_, h)| h.to_lowercase().starts_with("force"))
+        .map(|(i, _)| i + 1)
+        .collect();
+    match named.as_slice() {
+        [one] => *one,
+        _ => 2,
+    }
+}
+
 /// Parses CSV text (see the module doc) into a time record.
 pub fn parse_csv(
     file: &Path,
@@ -84,8 +103,20 @@ pub fn parse_csv(
     })?;
     let sep = separator(header);
     let names = split(header, sep);
-    let fi = column(file, header_line, &names, channels.force.as_ref(), 2)?;
-    let ri = column(file, header_line, &names, channels.response.as_ref(), 3)?;
+    let fi = column(
+        file,
+        header_line,
+        &names,
+        channels.force.as_ref(),
+        default_force(&names),
+    )?;
+    let ri = column(
+        file,
+        header_line,
+        &names,
+        channels.response.as_ref(),
+        if fi == 1 { 3 } else { 2 },
+    )?;
     let (mut t, mut force, mut response, mut lines) = (vec![], vec![], vec![], vec![]);
     for (line, row) in rows {
         let cells = split(row, sep);

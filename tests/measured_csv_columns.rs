@@ -1,0 +1,59 @@
+//! `frf` reads the columns a CSV names (issue 33: `impulse --csv` writes
+//! `time_s, <sensor>, force_n`, and `frf` took column 2, the response, for
+//! the force). Records with known modes (tests/measured_support), written
+//! with the force in the last column under a `force…` name: the modes
+//! come out as with the force in column 2; without such a name, column 2
+//! is still the force.
+
+mod measured_support;
+
+use std::fmt::Write;
+use std::path::Path;
+
+use ancf_modal::measured::analysis::{analyse, AnalysisSettings};
+use ancf_modal::measured::{csv::parse_csv, Channels, Measurement};
+use measured_support::{hammer_records, two_modes};
+
+/// The records as CSV with the header `header` and columns (time, a, b).
+fn csv(header: &str, force_last: bool) -> String {
+    let r = &hammer_records(&two_modes(), 10_240.0, 5_120, 1, 0.0, 0.0, 5)[0];
+    let mut s = format!("{header}\n");
+    for k in 0..r.force.len() {
+        let (a, b) = if force_last {
+            (r.response[k], r.force[k])
+        } else {
+            (r.force[k], r.response[k])
+        };
+        let _ = writeln!(s, "{:.9e},{a:.12e},{b:.12e}", k as f64 / 10_240.0);
+    }
+    s
+}
+
+fn modes(text: &str) -> Vec<f64> {
+    let r = parse_csv(Path::new("hit.csv"), text, &Channels::default()).unwrap();
+    let a = analyse(vec![Measurement::Time(r)], AnalysisSettings::default()).unwrap();
+    a.fit.modes.iter().map(|m| m.frequency_hz).collect()
+}
+
+#[test]
+fn a_force_named_column_is_the_force_wherever_it_stands() {
+    let truth: Vec<f64> = two_modes().iter().map(|m| m.f).collect();
+    for text in [
+        csv("time_s,tip_displacement,force_n", true),
+        csv("time,Force,response", false),
+        csv("t,a,b", false),
+    ] {
+        let found = modes(&text);
+        assert_eq!(found.len(), truth.len(), "{found:?}");
+        for (f, t) in found.iter().zip(&truth) {
+            assert!((f - t).abs() < 1e-4 * t, "{f} Hz, truth {t} Hz");
+        }
+    }
+}
+
+#[test]
+fn the_response_label_is_the_other_column() {
+    let text = csv("time_s,tip_velocity,force_n", true);
+    let r = parse_csv(Path::new("hit.csv"), &text, &Channels::default()).unwrap();
+    assert_eq!(r.response_label, "tip_velocity");
+}
