@@ -1,9 +1,11 @@
 //! `frf` reads the columns a CSV names (issue 33: `impulse --csv` writes
 //! `time_s, <sensor>, force_n`, and `frf` took column 2, the response, for
 //! the force). Records with known modes (tests/measured_support), written
-//! with the force in the last column under a `force…` name: the modes
-//! come out as with the force in column 2; without such a name, column 2
-//! is still the force.
+//! with the force in the last column under a name holding `force` (quoted
+//! or not): the modes come out as with the force in column 2; without such
+//! a name, column 2 is still the force. Two `force` columns, the time
+//! column or one column for both are errors naming the file, the line and
+//! the columns (found by the outside-eyes trial of this change).
 
 mod measured_support;
 
@@ -42,6 +44,8 @@ fn a_force_named_column_is_the_force_wherever_it_stands() {
         csv("time_s,tip_displacement,force_n", true),
         csv("time,Force,response", false),
         csv("t,a,b", false),
+        csv("time,vel,hammer_force", true),
+        csv("\"time_s\",\"vel\",\"force_n\"", true),
     ] {
         let found = modes(&text);
         assert_eq!(found.len(), truth.len(), "{found:?}");
@@ -56,4 +60,37 @@ fn the_response_label_is_the_other_column() {
     let text = csv("time_s,tip_velocity,force_n", true);
     let r = parse_csv(Path::new("hit.csv"), &text, &Channels::default()).unwrap();
     assert_eq!(r.response_label, "tip_velocity");
+}
+
+fn error(text: &str, channels: Channels) -> String {
+    parse_csv(Path::new("hit.csv"), text, &channels)
+        .unwrap_err()
+        .to_string()
+}
+
+#[test]
+fn ambiguous_or_misused_columns_are_errors() {
+    use ancf_modal::measured::Channel;
+    let two = "time,vel,force_hammer,force_ref\n0,0,0,0\n";
+    assert_eq!(
+        error(two, Channels::default()),
+        "hit.csv:1: the columns `force_hammer`, `force_ref` all name a force: give the force column (its name or 1-based index)"
+    );
+    let text = csv("time_s,tip_velocity,force_n", true);
+    let same = Channels {
+        force: Some(Channel::Index(3)),
+        response: Some(Channel::Index(3)),
+    };
+    assert_eq!(
+        error(&text, same),
+        "hit.csv:1: column 3 (`force_n`) cannot be the response: it is the force column too"
+    );
+    let time = Channels {
+        force: Some(Channel::Index(1)),
+        response: None,
+    };
+    assert_eq!(
+        error(&text, time),
+        "hit.csv:1: column 1 (`time_s`) cannot be the force: the first column is time"
+    );
 }

@@ -189,7 +189,7 @@ fn channel(name: &str, c: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Channel>
 
 /// `frf` on measurement files, as the command line's `frf`: CSV (header
 /// row, time [s] in the first column; `force`/`response` a column name or
-/// 1-based index; by default the one column named `force…`, else column
+/// 1-based index; by default the one column whose name holds `force`, else column
 /// 2, is the force and the first other column after time the response) or
 /// UFF 58 time records or an FRF.
 /// Several files are hits, averaged.

@@ -58,7 +58,7 @@ fn model_overlay(
 #[derive(Debug, Args, Clone)]
 pub struct MeasuredArgs {
     /// Force channel: CSV column name or 1-based index (default the one
-    /// column named `force…`, else 2), UFF record label or index (default
+    /// column whose name holds `force`, else 2), UFF record label or index (default
     /// the force record).
     #[arg(long, value_name = "COL")]
     pub force: Option<Channel>,

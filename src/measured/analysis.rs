@@ -68,6 +68,9 @@ pub use super::band::FORCE_BAND_DB;
 #[derive(Debug, Clone)]
 pub struct FrfAnalysis {
     pub files: Vec<PathBuf>,
+    /// The (force, response) channel names of each time record, in file
+    /// order (none for an FRF read from a file).
+    pub channels: Vec<[String; 2]>,
     pub frequency_hz: Vec<f64>,
     pub h1: Vec<Complex64>,
     /// H2 and the coherence exist for time records (and the coherence for
@@ -219,6 +222,10 @@ pub fn analyse(
     rejected.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
     Ok(FrfAnalysis {
         files,
+        channels: records
+            .iter()
+            .map(|r| [r.force_label.clone(), r.response_label.clone()])
+            .collect(),
         frequency_hz,
         h1,
         h2,

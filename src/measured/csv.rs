@@ -3,10 +3,12 @@
 //! Layout: one header row of column names, then one row per sample; the
 //! first column is time in seconds, strictly increasing on a uniform grid.
 //! The force and response columns are chosen by header name or 1-based
-//! index. By default the force is the one column whose name starts with
-//! `force` (as in what `impulse --csv` writes: `time_s`, the sensor,
-//! `force_n`), else column 2; the response is the first column after time
-//! that is not the force. Cells are separated by commas,
+//! index. By default the force is the one column whose name holds `force`
+//! (any case; as in what `impulse --csv` writes: `time_s`, the sensor,
+//! `force_n`), else column 2 (several such columns are an error); the
+//! response is the first column after time that is not the force. Header
+//! names may be quoted. The time column, or one column for both, is
+//! refused as a channel. Cells are separated by commas,
 //! semicolons or tabs (whichever the header uses), or by blanks; lines
 //! starting with `#` and blank lines are skipped.
 //!
@@ -31,6 +33,15 @@ fn split(line: &str, sep: Option<char>) -> Vec<&str> {
         Some(c) => line.split(c).map(str::trim).collect(),
         None => line.split_whitespace().collect(),
     }
+}
+
+/// A header cell without the quotes a spreadsheet or R's `write.csv` puts
+/// around it.
+fn unquote(name: &str) -> &str {
+    let t = name.trim();
+    t.strip_prefix('"')
+        .and_then(|u| u.strip_suffix('"'))
+        .unwrap_or(t)
 }
 
 fn separator(header: &str) -> Option<char> {
@@ -72,19 +83,55 @@ fn column(
 }
 
 /// The default force column, 1-based: the one column after time whose name
-/// starts with `force` (any case), else 2.
-fn default_force(names: &[&str]) -> usize {
+/// holds `force` (any case), else 2; several such columns are an error.
+fn default_force(file: &Path, line: usize, names: &[&str]) -> Result<usize, MeasuredError> {
     let named: Vec<usize> = names
         .iter()
         .enumerate()
         .skip(1)
-        .filter(|(_, h)| h.to_lowercase().starts_with("force"))
+        .filter(|(_, h)| h.to_lowercase().contains("force"))
         .map(|(i, _)| i + 1)
         .collect();
     match named.as_slice() {
-        [one] => *one,
-        _ => 2,
+        [] => Ok(2),
+        [one] => Ok(*one),
+        _ => Err(MeasuredError::AmbiguousForce {
+            file: file.to_path_buf(),
+            line,
+            columns: named
+                .iter()
+                .map(|i| format!("`{}`", names[i - 1]))
+                .collect::<Vec<_>>()
+                .join(", "),
+        }),
     }
+}
+
+/// Refuses the time column as a channel, and one column as both.
+fn check_roles(
+    file: &Path,
+    line: usize,
+    names: &[&str],
+    (fi, ri): (usize, usize),
+) -> Result<(), MeasuredError> {
+    let misuse = |index: usize, role, why| MeasuredError::ColumnMisused {
+        file: file.to_path_buf(),
+        line,
+        index: index + 1,
+        name: names[index].to_string(),
+        role,
+        why,
+    };
+    if fi == 0 {
+        return Err(misuse(fi, "force", "the first column is time"));
+    }
+    if ri == 0 {
+        return Err(misuse(ri, "response", "the first column is time"));
+    }
+    if fi == ri {
+        return Err(misuse(ri, "response", "it is the force column too"));
+    }
+    Ok(())
 }
 
 /// Parses CSV text (see the module doc) into a time record.
@@ -102,14 +149,12 @@ pub fn parse_csv(
         file: file.to_path_buf(),
     })?;
     let sep = separator(header);
-    let names = split(header, sep);
-    let fi = column(
-        file,
-        header_line,
-        &names,
-        channels.force.as_ref(),
-        default_force(&names),
-    )?;
+    let names: Vec<&str> = split(header, sep).into_iter().map(unquote).collect();
+    let default = match channels.force {
+        Some(_) => 2,
+        None => default_force(file, header_line, &names)?,
+    };
+    let fi = column(file, header_line, &names, channels.force.as_ref(), default)?;
     let ri = column(
         file,
         header_line,
@@ -117,6 +162,7 @@ pub fn parse_csv(
         channels.response.as_ref(),
         if fi == 1 { 3 } else { 2 },
     )?;
+    check_roles(file, header_line, &names, (fi, ri))?;
     let (mut t, mut force, mut response, mut lines) = (vec![], vec![], vec![], vec![]);
     for (line, row) in rows {
         let cells = split(row, sep);

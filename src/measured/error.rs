@@ -20,6 +20,21 @@ pub enum MeasuredError {
         name: String,
         columns: String,
     },
+    #[error("{}:{line}: the columns {columns} all name a force: give the force column (its name or 1-based index)", file.display())]
+    AmbiguousForce {
+        file: PathBuf,
+        line: usize,
+        columns: String,
+    },
+    #[error("{}:{line}: column {index} (`{name}`) cannot be the {role}: {why}", file.display())]
+    ColumnMisused {
+        file: PathBuf,
+        line: usize,
+        index: usize,
+        name: String,
+        role: &'static str,
+        why: &'static str,
+    },
     #[error("{}:{line}: column {index} does not exist: the header has {count} columns", file.display())]
     ColumnOutOfRange {
         file: PathBuf,

@@ -21,6 +21,11 @@ pub fn frf_table(a: &FrfAnalysis, q: ResponseQuantity) -> String {
     let mut s = String::new();
     let files: Vec<String> = a.files.iter().map(|f| f.display().to_string()).collect();
     let _ = writeln!(s, "measurement: {}", files.join(", "));
+    let mut kinds = a.channels.clone();
+    kinds.dedup();
+    for [force, response] in &kinds {
+        let _ = writeln!(s, "channels: force `{force}`, response `{response}`");
+    }
     if let Some(e) = &a.estimate {
         let _ = writeln!(
             s,

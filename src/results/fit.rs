@@ -236,6 +236,9 @@ impl ModelOverlay {
 pub struct FrfOutput {
     /// The measurement files, in the order given.
     pub files: Vec<String>,
+    /// The force and response channel of each time record, by name
+    /// (CSV header or UFF label), in file order; empty for FRF records.
+    pub channels: Vec<[String; 2]>,
     /// Sampling rate of the time records [Hz]; null for FRF records.
     pub sample_rate_hz: Option<f64>,
     /// Hits averaged [–]; null for FRF records.
@@ -286,6 +289,7 @@ impl FrfOutput {
         let e = a.estimate.as_ref();
         FrfOutput {
             files: a.files.iter().map(|f| f.display().to_string()).collect(),
+            channels: a.channels.clone(),
             sample_rate_hz: e.map(|e| e.sample_rate_hz),
             averages: e.map(|e| e.averages),
             window: e.map(|e| e.window.to_string()),
