@@ -226,16 +226,21 @@ fn a_length_typed_in_micrometres_names_the_part_and_the_lever_arm() {
     }
 }
 
+/// The table's accuracy warning line of a `modal` report.
+fn accuracy_warning(stdout: &str) -> &str {
+    stdout
+        .lines()
+        .find(|l| l.starts_with("warning: the eigen-solve certifies"))
+        .unwrap_or_else(|| panic!("an accuracy warning: {stdout}"))
+}
+
 #[test]
 fn the_accuracy_warning_names_the_parts_whose_sizes_disagree() {
     // The run: the table's accuracy warning blames the sizes, not
     // the round-off of a fine mesh (8 elements in all).
     let (code, stdout, stderr) = run(&micro(150.0), &["modal", "--modes", "3"]);
     assert_eq!(code, Some(0), "{stderr}");
-    let w = stdout
-        .lines()
-        .find(|l| l.starts_with("warning: the eigen-solve certifies"))
-        .unwrap_or_else(|| panic!("an accuracy warning: {stdout}"));
+    let w = accuracy_warning(&stdout);
     assert!(
         w.contains("parts whose sizes disagree by orders of magnitude limit them: beam `arm`, rigid body `mass`")
             && !w.contains("round-off"),
@@ -258,10 +263,7 @@ fn the_accuracy_warning_of_a_very_fine_mesh_names_its_round_off() {
     model["beams"][0]["elements"] = json!(2000);
     let (code, stdout, stderr) = run(&model, &["modal", "--modes", "3"]);
     assert_eq!(code, Some(0), "{stderr}");
-    let w = stdout
-        .lines()
-        .find(|l| l.starts_with("warning: the eigen-solve certifies"))
-        .unwrap_or_else(|| panic!("an accuracy warning: {stdout}"));
+    let w = accuracy_warning(&stdout);
     assert!(
         w.contains("the round-off of a very fine mesh limits them") && !w.contains("sizes"),
         "{w}"
