@@ -322,7 +322,9 @@ class FrfResult:
         magnitude, residue."""
     @property
     def rejected(self) -> List[Dict[str, Any]]:
-        """Stable poles not reported as modes, with the reason."""
+        """Stable poles not reported as modes: dicts with frequency_hz [Hz],
+        damping_ratio [–], reason (``outside_band``, ``left_band``,
+        ``not_significant``, ``failed_refinement``) and why (in words)."""
     @property
     def stabilization(self) -> List[Dict[str, Any]]:
         """The stabilization diagram's poles."""

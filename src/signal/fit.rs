@@ -23,20 +23,45 @@
 //!
 //! **Stabilization.** Poles of orders 2, 4, …, n_max are compared with the
 //! previous order's: a pole is *stable* when one there lies within 0.5 % in
-//! frequency and 5 % in damping. A physical mode is a pole of the highest
-//! order with positive damping below 30 %, stable there, and found (within
-//! 0.5 % and 10 %) in at least a third of the orders; its residue R_r
-//! then comes from a linear least-squares fit of
-//! H(ω) = Σ_r [R_r/(iω − s_r) + R̄_r/(iω − s̄_r)] + U + L/(iω)² (LSFD, with
-//! residual terms for the modes outside the band). Poles whose modal peak
-//! |R_r|/|Re s_r| is under 1 % of the band's largest |H| are noise and
-//! left out.
+//! frequency and 5 % in damping. The seeds of the modes are the poles with
+//! positive damping below 30 % in the band, stable against the previous
+//! order (0.5 % in f, 20 % in ζ), grouped within ±0.25 % in frequency and
+//! found in at least a third of the orders; each seed is its group's median.
 //!
-//! **No silent loss.** Every group of stable poles that does not become a
-//! mode is kept in [`ModalFit::rejected`] with its reason: the refinement
-//! drove it unstable or to a negative frequency, or its modal peak is under
-//! the 1 % floor. (Modes outside the band are found by
-//! `measured::analysis::analyse`, which fits the rest of the spectrum too.)
+//! **Refinement.** The seeds are refined together by nonlinear least squares
+//! on the modal model
+//! H(ω) = Σ_r [R_r/(iω − s_r) + R̄_r/(iω − s̄_r)] + U + L/(iω)², its
+//! residues and residual terms (U, L: the modes outside the band) by linear
+//! least squares (LSFD) at every step.
+//!
+//! **A reported pole is a physical pole of the record.** After each
+//! refinement, one pole at a time is rejected and the rest refined again
+//! from their seeds:
+//! 1. a pole the refinement made unstable, overdamped (ζ ≥ 1) or moved off
+//!    the positive frequencies (`failed_refinement`, shown at its seed);
+//! 2. a pole the refinement moved out of the band [f_lo, f_hi]
+//!    (`left_band`, shown where it went);
+//! 3. the least significant pole while its significance is under
+//!    [`SIGNIFICANCE`] = 2 (`not_significant`).
+//!
+//! The *significance* of a pole is a test against the noise estimated from
+//! the data itself: the RMS of its modal contribution
+//! R/(iω − s) + R̄/(iω − s̄) over its half-power band (the bins within
+//! f_d ± max(ζf, 2Δf), f_d = Im s/2π) divided by the RMS of the fit
+//! residual H − Ĥ over the same bins. The residual holds what the modal
+//! model cannot explain there: measurement noise, leakage, a spurious
+//! pole's misfit. A mode whose peak stands k times above the noise has a
+//! significance of about 0.86 k (its contribution falls from the peak to
+//! 1/√2 of it across the half-power band), so a mode 3 × above the noise
+//! passes; a pole that fits noise alone explains only the few degrees of
+//! freedom it has (a complex pole and residue) of the 2m numbers in its m
+//! bins and stays near or under 1. No ratio to the largest peak enters: a
+//! weak mode of noise-free data is reported.
+//!
+//! **No silent loss.** Every seed that does not become a mode is kept in
+//! [`ModalFit::rejected`] with its reason. (Modes outside the band are
+//! found by `measured::analysis::analyse`, which fits the rest of the
+//! spectrum too.)
 //!
 //! **Exponential window.** Its decay σ_w (see [`super::window::Window::decay_rate`]) is added
 //! back to every pole, Re s_r += σ_w, before f and ζ are computed.
@@ -102,10 +127,14 @@ pub struct FittedMode {
 pub enum RejectReason {
     /// Stable in a fit of the spectrum outside the band.
     OutsideBand,
-    /// Its modal peak |R|/|Re s| is under 1 % of the band's largest |H|.
-    BelowNoiseFloor,
-    /// The nonlinear refinement made it unstable or moved it off the
-    /// positive frequencies.
+    /// The nonlinear refinement moved it out of the fit band.
+    LeftBand,
+    /// Its modal contribution over its half-power band is under
+    /// [`SIGNIFICANCE`] times the fit residual there: not told apart from
+    /// the noise.
+    NotSignificant,
+    /// The nonlinear refinement made it unstable or overdamped (ζ ≥ 1) or
+    /// moved it off the positive frequencies.
     FailedRefinement,
 }
 
@@ -114,8 +143,13 @@ impl RejectReason {
     pub fn describe(self) -> &'static str {
         match self {
             RejectReason::OutsideBand => "outside the fit band",
-            RejectReason::BelowNoiseFloor => "modal peak under 1 % of the band's largest |H|",
-            RejectReason::FailedRefinement => "failed the refinement",
+            RejectReason::LeftBand => "the refinement moved it out of the fit band",
+            RejectReason::NotSignificant => {
+                "its modal contribution in its half-power band is under 2 × the fit residual there"
+            }
+            RejectReason::FailedRefinement => {
+                "the refinement made it unstable or overdamped (ζ ≥ 1)"
+            }
         }
     }
 }
@@ -169,8 +203,13 @@ pub const STABLE_DAMPING: f64 = 0.05;
 pub const CLUSTER_DAMPING: f64 = 0.2;
 /// Largest damping ratio taken as physical.
 pub const MAX_DAMPING: f64 = 0.3;
-/// Smallest modal peak kept, relative to the band's largest |H|.
-pub const MIN_PEAK: f64 = 0.01;
+/// Smallest significance of a reported mode: the RMS of its modal
+/// contribution over its half-power band, in units of the RMS fit residual
+/// there (module doc).
+pub const SIGNIFICANCE: f64 = 2.0;
+/// Smallest half-width of the half-power band of the significance test, in
+/// bins: a lightly damped mode's band ±ζf may hold no bin.
+pub const MIN_HALF_POWER_BINS: f64 = 2.0;
 
 /// Poles (f Hz, ζ, s) of one LSCF order from the Toeplitz lag sums.
 fn poles_of_order(
@@ -336,38 +375,19 @@ pub fn fit(frequency_hz: &[f64], h: &[Complex64], settings: &FitSettings) -> Mod
         d.damping_ratio = z;
     }
     let needed = all.len().div_ceil(3).max(2).min(all.len());
-    let initial = clusters(&all, needed);
-    let mut refined = initial.clone();
-    refine(&band, &mut refined);
-    let reject = |p: Complex64, reason| {
-        let (frequency_hz, damping_ratio) = physical(p);
-        RejectedPole {
-            frequency_hz,
-            damping_ratio,
-            reason,
-        }
-    };
-    let mut chosen = Vec::with_capacity(refined.len());
-    for (p0, p) in initial.iter().zip(&refined) {
-        if p.re < 0.0 && p.im > 0.0 {
-            chosen.push(*p);
-        } else {
-            result
-                .rejected
-                .push(reject(*p0, RejectReason::FailedRefinement));
-        }
-    }
-    let (res, _, _) = residues(&band, &chosen);
-    let mut kept: Vec<Complex64> = Vec::with_capacity(chosen.len());
-    for (p, r) in chosen.iter().zip(&res) {
-        if r.norm() / (-p.re) >= MIN_PEAK * scale {
-            kept.push(*p);
-        } else {
-            result
-                .rejected
-                .push(reject(*p, RejectReason::BelowNoiseFloor));
-        }
-    }
+    let seeds = clusters(&all, needed);
+    let (kept, rejected) = select(&band, &seeds, settings);
+    result.rejected = rejected
+        .into_iter()
+        .map(|(p, reason)| {
+            let (frequency_hz, damping_ratio) = physical(p);
+            RejectedPole {
+                frequency_hz,
+                damping_ratio,
+                reason,
+            }
+        })
+        .collect();
     let (res, u, l) = residues(&band, &kept);
     result.upper_residual = u;
     result.lower_residual = l;
@@ -398,6 +418,122 @@ pub fn fit(frequency_hz: &[f64], h: &[Complex64], settings: &FitSettings) -> Mod
         m.magnitude = a;
     }
     result
+}
+
+/// The bins of `band` within `f0` ± `half` Hz.
+fn bins_near(band: &[(f64, Complex64)], f0: f64, half: f64) -> impl Iterator<Item = usize> + '_ {
+    band.iter()
+        .enumerate()
+        .filter(move |(_, (f, _))| (f - f0).abs() <= half)
+        .map(|(k, _)| k)
+}
+
+/// Why the refined pole `p` (from the stable seed `seed`) is not physical in
+/// the band, if it is not.
+fn unphysical(p: Complex64, settings: &FitSettings) -> Option<RejectReason> {
+    let w = p.norm();
+    let zeta = -p.re / w;
+    if !(p.im > 0.0 && zeta > 0.0 && zeta < 1.0 && w.is_finite()) {
+        return Some(RejectReason::FailedRefinement);
+    }
+    let f = w / (2.0 * std::f64::consts::PI);
+    (f < settings.f_lo || f > settings.f_hi).then_some(RejectReason::LeftBand)
+}
+
+/// Significance of each pole: the RMS of its modal contribution
+/// R/(iω − s) + R̄/(iω − s̄) over its half-power band (the bins within
+/// f_d ± max(ζf, [`MIN_HALF_POWER_BINS`] Δf)) over the RMS of the fit
+/// residual H − Ĥ there.
+fn significance(band: &[(f64, Complex64)], poles: &[Complex64]) -> Vec<f64> {
+    let (res, u, l) = residues(band, poles);
+    let resid: Vec<Complex64> = band
+        .iter()
+        .map(|(f, h)| h - model_at(*f, poles, &res, u, l))
+        .collect();
+    let df = match (band.first(), band.last()) {
+        (Some(a), Some(b)) if band.len() > 1 => (b.0 - a.0) / (band.len() - 1) as f64,
+        _ => 0.0,
+    };
+    poles
+        .iter()
+        .zip(&res)
+        .map(|(p, r)| {
+            let fd = p.im / (2.0 * std::f64::consts::PI);
+            let half = (-p.re / (2.0 * std::f64::consts::PI)).max(MIN_HALF_POWER_BINS * df);
+            let (mut c2, mut e2) = (0.0, 0.0);
+            for k in bins_near(band, fd, half) {
+                let iw = Complex64::new(0.0, 2.0 * std::f64::consts::PI * band[k].0);
+                c2 += (r / (iw - p) + r.conj() / (iw - p.conj())).norm_sqr();
+                e2 += resid[k].norm_sqr();
+            }
+            if e2 > 0.0 {
+                (c2 / e2).sqrt()
+            } else if c2 > 0.0 {
+                f64::INFINITY
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
+/// The modal model with residual terms at `f` Hz.
+fn model_at(f: f64, poles: &[Complex64], res: &[Complex64], u: f64, l: f64) -> Complex64 {
+    let iw = Complex64::new(0.0, 2.0 * std::f64::consts::PI * f);
+    let mut m = Complex64::new(u, 0.0);
+    if f != 0.0 {
+        m += l / (iw * iw);
+    }
+    for (p, r) in poles.iter().zip(res) {
+        m += r / (iw - p) + r.conj() / (iw - p.conj());
+    }
+    m
+}
+
+/// The modes among the stable seeds (module doc): refined together; a pole
+/// the refinement makes unphysical or moves out of the band is rejected,
+/// then the least significant pole while it is under [`SIGNIFICANCE`],
+/// one at a time, the rest refined again from their seeds after each
+/// rejection. Returns the refined modes and the rejected poles (refined,
+/// or the seed where the refinement made it unphysical) with their reason.
+#[allow(clippy::type_complexity)]
+fn select(
+    band: &[(f64, Complex64)],
+    seeds: &[Complex64],
+    settings: &FitSettings,
+) -> (Vec<Complex64>, Vec<(Complex64, RejectReason)>) {
+    let mut seeds = seeds.to_vec();
+    let mut rejected = Vec::new();
+    while !seeds.is_empty() {
+        let mut poles = seeds.clone();
+        refine(band, &mut poles);
+        let bad = poles
+            .iter()
+            .enumerate()
+            .find_map(|(i, p)| unphysical(*p, settings).map(|why| (i, why)));
+        if let Some((i, why)) = bad {
+            let shown = if why == RejectReason::FailedRefinement {
+                seeds[i]
+            } else {
+                poles[i]
+            };
+            rejected.push((shown, why));
+            seeds.remove(i);
+            continue;
+        }
+        let weakest = significance(band, &poles)
+            .into_iter()
+            .enumerate()
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        match weakest {
+            Some((i, s)) if s < SIGNIFICANCE => {
+                rejected.push((poles[i], RejectReason::NotSignificant));
+                seeds.remove(i);
+            }
+            _ => return (poles, rejected),
+        }
+    }
+    (Vec::new(), rejected)
 }
 
 /// Residues R_r and residual terms U, L by linear least squares (LSFD).
