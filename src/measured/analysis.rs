@@ -17,7 +17,7 @@ use super::band::automatic_band;
 pub use super::band::BandEnd;
 use super::frf::{estimate, FrfEstimate};
 use super::{MeasuredError, Measurement};
-use crate::signal::fit::{fit, FitSettings, ModalFit, RejectReason, RejectedPole};
+use crate::signal::fit::{fit, FitSettings, ModalFit, PoleBasis, RejectReason, RejectedPole};
 use crate::signal::Window;
 
 /// Which estimator the fit uses.
@@ -208,6 +208,11 @@ pub fn analyse(
         f_hi: band.1,
         max_order: settings.max_order,
         window_decay_rate: est.as_ref().map_or(0.0, |e| e.window_decay_rate),
+        basis: est
+            .as_ref()
+            .map_or(PoleBasis::Continuous, |e| PoleBasis::Sampled {
+                interval_s: 1.0 / e.sample_rate_hz,
+            }),
     };
     let fit = fit(&frequency_hz, h, &fit_settings);
     let found: Vec<f64> = fit.modes.iter().map(|m| m.frequency_hz).collect();

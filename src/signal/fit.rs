@@ -27,36 +27,26 @@
 //! positive damping below 30 % in the band, stable against the previous
 //! order (0.5 % in f, 20 % in ζ), grouped within ±0.25 % in frequency and
 //! found in at least a third of the orders; each seed is its group's median.
+//! A mode that holds about one bin (ζf under Δf: a lightly damped mode of a
+//! short record) can be missed among the poles that fit the noise; after
+//! the choice below, a stretch of the fit residual whose power stands
+//! above the noise around it, beyond what noise reaches with probability
+//! [`lsfd::SEED_FALSE_ALARM`] = 1e-6, seeds one more pole there (at most
+//! [`MAX_RESIDUAL_SEEDS`] times), which faces the same choice as the
+//! others. Such a pole is not on the diagram: its damping must be resolved
+//! by the record (`unresolved_damping` below) instead.
 //!
-//! **Refinement.** The seeds are refined together by nonlinear least squares
-//! on the modal model
-//! H(ω) = Σ_r [R_r/(iω − s_r) + R̄_r/(iω − s̄_r)] + U + L/(iω)², its
-//! residues and residual terms (U, L: the modes outside the band) by linear
-//! least squares (LSFD) at every step.
-//!
-//! **A reported pole is a physical pole of the record.** After each
-//! refinement, one pole at a time is rejected and the rest refined again
-//! from their seeds:
-//! 1. a pole the refinement made unstable, overdamped (ζ ≥ 1) or moved off
-//!    the positive frequencies (`failed_refinement`, shown at its seed);
-//! 2. a pole the refinement moved out of the band [f_lo, f_hi]
-//!    (`left_band`, shown where it went);
-//! 3. the least significant pole while its significance is under
-//!    [`SIGNIFICANCE`] = 2 (`not_significant`).
-//!
-//! The *significance* of a pole is a test against the noise estimated from
-//! the data itself: the RMS of its modal contribution
-//! R/(iω − s) + R̄/(iω − s̄) over its half-power band (the bins within
-//! f_d ± max(ζf, 2Δf), f_d = Im s/2π) divided by the RMS of the fit
-//! residual H − Ĥ over the same bins. The residual holds what the modal
-//! model cannot explain there: measurement noise, leakage, a spurious
-//! pole's misfit. A mode whose peak stands k times above the noise has a
-//! significance of about 0.86 k (its contribution falls from the peak to
-//! 1/√2 of it across the half-power band), so a mode 3 × above the noise
-//! passes; a pole that fits noise alone explains only the few degrees of
-//! freedom it has (a complex pole and residue) of the 2m numbers in its m
-//! bins and stays near or under 1. No ratio to the largest peak enters: a
-//! weak mode of noise-free data is reported.
+//! **Refinement and choice** ([`super::lsfd`]). The seeds are refined
+//! together by nonlinear least squares on the modal model
+//! H(ω) = Σ_r [R_r g(ω, s_r) + R̄_r g(ω, s̄_r)] + U + L/(iω)², with the
+//! pole term g of the FRF's origin ([`PoleBasis`]: a continuous axis, or
+//! the DFT of a sampled record). A reported pole is a physical pole of the
+//! record: one the refinement made unstable or overdamped is rejected
+//! (`failed_refinement`), one it moved out of the band [f_lo, f_hi] too
+//! (`left_band`), and one whose modal contribution in its half-power band
+//! is under [`SIGNIFICANCE`] = 2 times the fit residual there
+//! (`not_significant`): a test against the noise the data itself shows,
+//! not a ratio to the largest peak.
 //!
 //! **No silent loss.** Every seed that does not become a mode is kept in
 //! [`ModalFit::rejected`] with its reason. (Modes outside the band are
@@ -66,10 +56,11 @@
 //! **Exponential window.** Its decay σ_w (see [`super::window::Window::decay_rate`]) is added
 //! back to every pole, Re s_r += σ_w, before f and ζ are computed.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 use realfft::num_complex::Complex64;
 
-use super::lm;
+use super::lsfd::{self, Band};
+pub use super::lsfd::{PoleBasis, MIN_HALF_POWER_BINS, SIGNIFICANCE};
 
 /// Settings of [`fit`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -81,6 +72,8 @@ pub struct FitSettings {
     pub max_order: usize,
     /// Decay rate to remove from the poles, 1/s (exponential window).
     pub window_decay_rate: f64,
+    /// How a pole enters the modal model: the FRF's origin.
+    pub basis: PoleBasis,
 }
 
 /// A stability label of the diagram.
@@ -133,8 +126,11 @@ pub enum RejectReason {
     /// [`SIGNIFICANCE`] times the fit residual there: not told apart from
     /// the noise.
     NotSignificant,
-    /// The nonlinear refinement made it unstable or overdamped (ζ ≥ 1) or
-    /// moved it off the positive frequencies.
+    /// Its decay rate ζω is under [`lsfd::DECAY_RESOLUTION`] standard
+    /// errors of the fit: its damping is not told apart from zero.
+    UnresolvedDamping,
+    /// The nonlinear refinement made it unstable, damped it beyond
+    /// [`MAX_DAMPING`] or moved it off the positive frequencies.
     FailedRefinement,
 }
 
@@ -147,8 +143,11 @@ impl RejectReason {
             RejectReason::NotSignificant => {
                 "its modal contribution in its half-power band is under 2 × the fit residual there"
             }
+            RejectReason::UnresolvedDamping => {
+                "its damping is under 3 standard errors of the fit, not told apart from zero"
+            }
             RejectReason::FailedRefinement => {
-                "the refinement made it unstable or overdamped (ζ ≥ 1)"
+                "the refinement made it unstable or damped beyond 30 %"
             }
         }
     }
@@ -180,19 +179,23 @@ impl ModalFit {
     /// The fitted FRF at `f_hz` (modes and residual terms), as measured:
     /// with the window's decay on the poles.
     pub fn evaluate(&self, f_hz: f64) -> Complex64 {
-        let iw = Complex64::new(0.0, 2.0 * std::f64::consts::PI * f_hz);
-        let mut h = Complex64::new(self.upper_residual, 0.0);
-        if iw.im != 0.0 {
-            h += self.lower_residual / (iw * iw);
-        }
-        for m in &self.modes {
-            let p = m.pole - self.settings.window_decay_rate;
-            h += m.residue / (iw - p) + m.residue.conj() / (iw - p.conj());
-        }
-        h
+        let poles: Vec<Complex64> = self
+            .modes
+            .iter()
+            .map(|m| m.pole - self.settings.window_decay_rate)
+            .collect();
+        let fitted = lsfd::Residues {
+            residues: self.modes.iter().map(|m| m.residue).collect(),
+            upper: self.upper_residual,
+            lower: self.lower_residual,
+        };
+        lsfd::model_at(self.settings.basis, f_hz, &poles, &fitted)
     }
 }
 
+/// Most poles seeded from the fit residual's peaks ([`lsfd::residual_peak`])
+/// in one fit.
+pub const MAX_RESIDUAL_SEEDS: usize = 8;
 /// Frequency tolerance of the stability checks (relative).
 pub const STABLE_FREQUENCY: f64 = 0.005;
 /// Damping tolerance of the stability label (relative).
@@ -203,14 +206,6 @@ pub const STABLE_DAMPING: f64 = 0.05;
 pub const CLUSTER_DAMPING: f64 = 0.2;
 /// Largest damping ratio taken as physical.
 pub const MAX_DAMPING: f64 = 0.3;
-/// Smallest significance of a reported mode: the RMS of its modal
-/// contribution over its half-power band, in units of the RMS fit residual
-/// there (module doc).
-pub const SIGNIFICANCE: f64 = 2.0;
-/// Smallest half-width of the half-power band of the significance test, in
-/// bins: a lightly damped mode's band ±ζf may hold no bin.
-pub const MIN_HALF_POWER_BINS: f64 = 2.0;
-
 /// Poles (f Hz, ζ, s) of one LSCF order from the Toeplitz lag sums.
 fn poles_of_order(
     n: usize,
@@ -218,7 +213,7 @@ fn poles_of_order(
     s: &DMatrix<f64>,
     t: &DMatrix<f64>,
     dt: f64,
-    settings: &FitSettings,
+    (f_lo, f_hi): (f64, f64),
 ) -> Vec<(f64, f64, Complex64)> {
     let m = n + 1;
     let rr = r.view((0, 0), (m, m)).into_owned();
@@ -252,11 +247,7 @@ fn poles_of_order(
             let w = sp.norm();
             let f = w / (2.0 * std::f64::consts::PI);
             let zeta = -sp.re / w;
-            (sp.im > 0.0
-                && zeta > 0.0
-                && zeta < MAX_DAMPING
-                && f >= settings.f_lo
-                && f <= settings.f_hi)
+            (sp.im > 0.0 && zeta > 0.0 && zeta < MAX_DAMPING && f >= f_lo && f <= f_hi)
                 .then_some((f, zeta, sp))
         })
         .collect()
@@ -292,51 +283,10 @@ pub fn fit(frequency_hz: &[f64], h: &[Complex64], settings: &FitSettings) -> Mod
     if band.len() < 4 || n_max < 2 {
         return result;
     }
-    let scale = band.iter().map(|(_, h)| h.norm()).fold(0.0, f64::max);
-    if scale == 0.0 {
+    let (orders, all) = lscf_orders(&band, settings.f_lo, settings.f_hi, n_max);
+    if orders.is_empty() {
         return result;
     }
-    let dt = 0.5 / settings.f_hi;
-    // Lag sums Σ Ω^l, Σ H Ω^l, Σ |H|² Ω^l for l = 0..=n_max (Ω^(−l) is the
-    // conjugate for the real parts taken below).
-    let mut p0 = vec![Complex64::new(0.0, 0.0); n_max + 1];
-    let mut p1 = vec![Complex64::new(0.0, 0.0); 2 * n_max + 1];
-    let mut p2 = vec![Complex64::new(0.0, 0.0); n_max + 1];
-    for (f, hk) in &band {
-        let hk = hk / scale;
-        let omega = Complex64::from_polar(1.0, -2.0 * std::f64::consts::PI * f * dt);
-        let mut pw = Complex64::new(1.0, 0.0);
-        let mut pw_inv = Complex64::new(1.0, 0.0);
-        for l in 0..=n_max {
-            p0[l] += pw;
-            p2[l] += hk.norm_sqr() * pw;
-            p1[n_max + l] += hk * pw;
-            if l > 0 {
-                p1[n_max - l] += hk * pw_inv;
-            }
-            pw *= omega;
-            pw_inv *= omega.conj();
-        }
-    }
-    let m = n_max + 1;
-    // R_ij = Re Σ Ω^(j−i); S_ij = −Re Σ H Ω^(j−i); T_ij = Re Σ |H|² Ω^(j−i).
-    let lag = |v: &[Complex64], i: usize, j: usize| -> f64 {
-        if j >= i {
-            v[j - i].re
-        } else {
-            v[i - j].re
-        }
-    };
-    let r = DMatrix::from_fn(m, m, |i, j| lag(&p0, i, j));
-    let t = DMatrix::from_fn(m, m, |i, j| lag(&p2, i, j));
-    let s = DMatrix::from_fn(m, m, |i, j| {
-        -p1[(n_max as isize + j as isize - i as isize) as usize].re
-    });
-    let orders: Vec<usize> = (2..=n_max).step_by(2).collect();
-    let all: Vec<Vec<(f64, f64, Complex64)>> = orders
-        .iter()
-        .map(|&n| poles_of_order(n, &r, &s, &t, dt, settings))
-        .collect();
     for (k, poles) in all.iter().enumerate() {
         for &(f, z, _) in poles {
             let stability = if k == 0 {
@@ -376,7 +326,29 @@ pub fn fit(frequency_hz: &[f64], h: &[Complex64], settings: &FitSettings) -> Mod
     }
     let needed = all.len().div_ceil(3).max(2).min(all.len());
     let seeds = clusters(&all, needed);
-    let (kept, rejected) = select(&band, &seeds, settings);
+    let bins = Band {
+        bins: &band,
+        basis: settings.basis,
+    };
+    let (mut kept, mut rejected) = lsfd::select(bins, &seeds, settings);
+    let mut tried = Vec::new();
+    while tried.len() < MAX_RESIDUAL_SEEDS {
+        let Some((where_, seed)) = lsfd::residual_peak(bins, &kept, &tried) else {
+            break;
+        };
+        tried.push(where_);
+        let mut trial = kept.clone();
+        trial.push(seed);
+        let (more, left_out) = lsfd::select(bins, &trial, settings);
+        if more.len() > kept.len() {
+            kept = more;
+            rejected.extend(left_out);
+        } else {
+            let near =
+                |p: &Complex64| (p.im / (2.0 * std::f64::consts::PI) - where_.0).abs() <= where_.1;
+            rejected.extend(left_out.into_iter().filter(|(p, _)| near(p)));
+        }
+    }
     result.rejected = rejected
         .into_iter()
         .map(|(p, reason)| {
@@ -388,7 +360,11 @@ pub fn fit(frequency_hz: &[f64], h: &[Complex64], settings: &FitSettings) -> Mod
             }
         })
         .collect();
-    let (res, u, l) = residues(&band, &kept);
+    let lsfd::Residues {
+        residues: res,
+        upper: u,
+        lower: l,
+    } = lsfd::residues(bins, &kept);
     result.upper_residual = u;
     result.lower_residual = l;
     result.modes = kept
@@ -420,168 +396,61 @@ pub fn fit(frequency_hz: &[f64], h: &[Complex64], settings: &FitSettings) -> Mod
     result
 }
 
-/// The bins of `band` within `f0` ± `half` Hz.
-fn bins_near(band: &[(f64, Complex64)], f0: f64, half: f64) -> impl Iterator<Item = usize> + '_ {
-    band.iter()
-        .enumerate()
-        .filter(move |(_, (f, _))| (f - f0).abs() <= half)
-        .map(|(k, _)| k)
-}
-
-/// Why the refined pole `p` (from the stable seed `seed`) is not physical in
-/// the band, if it is not.
-fn unphysical(p: Complex64, settings: &FitSettings) -> Option<RejectReason> {
-    let w = p.norm();
-    let zeta = -p.re / w;
-    if !(p.im > 0.0 && zeta > 0.0 && zeta < 1.0 && w.is_finite()) {
-        return Some(RejectReason::FailedRefinement);
-    }
-    let f = w / (2.0 * std::f64::consts::PI);
-    (f < settings.f_lo || f > settings.f_hi).then_some(RejectReason::LeftBand)
-}
-
-/// Significance of each pole: the RMS of its modal contribution
-/// R/(iω − s) + R̄/(iω − s̄) over its half-power band (the bins within
-/// f_d ± max(ζf, [`MIN_HALF_POWER_BINS`] Δf)) over the RMS of the fit
-/// residual H − Ĥ there.
-fn significance(band: &[(f64, Complex64)], poles: &[Complex64]) -> Vec<f64> {
-    let (res, u, l) = residues(band, poles);
-    let resid: Vec<Complex64> = band
-        .iter()
-        .map(|(f, h)| h - model_at(*f, poles, &res, u, l))
-        .collect();
-    let df = match (band.first(), band.last()) {
-        (Some(a), Some(b)) if band.len() > 1 => (b.0 - a.0) / (band.len() - 1) as f64,
-        _ => 0.0,
-    };
-    poles
-        .iter()
-        .zip(&res)
-        .map(|(p, r)| {
-            let fd = p.im / (2.0 * std::f64::consts::PI);
-            let half = (-p.re / (2.0 * std::f64::consts::PI)).max(MIN_HALF_POWER_BINS * df);
-            let (mut c2, mut e2) = (0.0, 0.0);
-            for k in bins_near(band, fd, half) {
-                let iw = Complex64::new(0.0, 2.0 * std::f64::consts::PI * band[k].0);
-                c2 += (r / (iw - p) + r.conj() / (iw - p.conj())).norm_sqr();
-                e2 += resid[k].norm_sqr();
-            }
-            if e2 > 0.0 {
-                (c2 / e2).sqrt()
-            } else if c2 > 0.0 {
-                f64::INFINITY
-            } else {
-                0.0
-            }
-        })
-        .collect()
-}
-
-/// The modal model with residual terms at `f` Hz.
-fn model_at(f: f64, poles: &[Complex64], res: &[Complex64], u: f64, l: f64) -> Complex64 {
-    let iw = Complex64::new(0.0, 2.0 * std::f64::consts::PI * f);
-    let mut m = Complex64::new(u, 0.0);
-    if f != 0.0 {
-        m += l / (iw * iw);
-    }
-    for (p, r) in poles.iter().zip(res) {
-        m += r / (iw - p) + r.conj() / (iw - p.conj());
-    }
-    m
-}
-
-/// The modes among the stable seeds (module doc): refined together; a pole
-/// the refinement makes unphysical or moves out of the band is rejected,
-/// then the least significant pole while it is under [`SIGNIFICANCE`],
-/// one at a time, the rest refined again from their seeds after each
-/// rejection. Returns the refined modes and the rejected poles (refined,
-/// or the seed where the refinement made it unphysical) with their reason.
+/// The poles (f Hz, ζ, s) in [f_lo, f_hi] of the LSCF fits of orders 2, 4,
+/// …, `n_max` to the bins of `band` (module doc), with those orders.
 #[allow(clippy::type_complexity)]
-fn select(
+fn lscf_orders(
     band: &[(f64, Complex64)],
-    seeds: &[Complex64],
-    settings: &FitSettings,
-) -> (Vec<Complex64>, Vec<(Complex64, RejectReason)>) {
-    let mut seeds = seeds.to_vec();
-    let mut rejected = Vec::new();
-    while !seeds.is_empty() {
-        let mut poles = seeds.clone();
-        refine(band, &mut poles);
-        let bad = poles
-            .iter()
-            .enumerate()
-            .find_map(|(i, p)| unphysical(*p, settings).map(|why| (i, why)));
-        if let Some((i, why)) = bad {
-            let shown = if why == RejectReason::FailedRefinement {
-                seeds[i]
-            } else {
-                poles[i]
-            };
-            rejected.push((shown, why));
-            seeds.remove(i);
-            continue;
-        }
-        let weakest = significance(band, &poles)
-            .into_iter()
-            .enumerate()
-            .min_by(|a, b| a.1.total_cmp(&b.1));
-        match weakest {
-            Some((i, s)) if s < SIGNIFICANCE => {
-                rejected.push((poles[i], RejectReason::NotSignificant));
-                seeds.remove(i);
+    f_lo: f64,
+    f_hi: f64,
+    n_max: usize,
+) -> (Vec<usize>, Vec<Vec<(f64, f64, Complex64)>>) {
+    let scale = band.iter().map(|(_, h)| h.norm()).fold(0.0, f64::max);
+    if scale == 0.0 {
+        return (Vec::new(), Vec::new());
+    }
+    let dt = 0.5 / f_hi;
+    // Lag sums Σ Ω^l, Σ H Ω^l, Σ |H|² Ω^l for l = 0..=n_max (Ω^(−l) is the
+    // conjugate for the real parts taken below).
+    let mut p0 = vec![Complex64::new(0.0, 0.0); n_max + 1];
+    let mut p1 = vec![Complex64::new(0.0, 0.0); 2 * n_max + 1];
+    let mut p2 = vec![Complex64::new(0.0, 0.0); n_max + 1];
+    for (f, hk) in band {
+        let hk = hk / scale;
+        let omega = Complex64::from_polar(1.0, -2.0 * std::f64::consts::PI * f * dt);
+        let mut pw = Complex64::new(1.0, 0.0);
+        let mut pw_inv = Complex64::new(1.0, 0.0);
+        for l in 0..=n_max {
+            p0[l] += pw;
+            p2[l] += hk.norm_sqr() * pw;
+            p1[n_max + l] += hk * pw;
+            if l > 0 {
+                p1[n_max - l] += hk * pw_inv;
             }
-            _ => return (poles, rejected),
+            pw *= omega;
+            pw_inv *= omega.conj();
         }
     }
-    (Vec::new(), rejected)
-}
-
-/// Residues R_r and residual terms U, L by linear least squares (LSFD).
-fn residues(band: &[(f64, Complex64)], poles: &[Complex64]) -> (Vec<Complex64>, f64, f64) {
-    let cols = 2 * poles.len() + 2;
-    let rows = 2 * band.len();
-    let mut a = DMatrix::<f64>::zeros(rows, cols);
-    let mut b = DVector::<f64>::zeros(rows);
-    for (k, (f, h)) in band.iter().enumerate() {
-        let iw = Complex64::new(0.0, 2.0 * std::f64::consts::PI * f);
-        for (r, p) in poles.iter().enumerate() {
-            // R = x + iy: R/(iw−p) + R̄/(iw−p̄) = x·(g1+g2) + y·i(g1−g2).
-            let g1 = 1.0 / (iw - p);
-            let g2 = 1.0 / (iw - p.conj());
-            let cx = g1 + g2;
-            let cy = Complex64::new(0.0, 1.0) * (g1 - g2);
-            a[(2 * k, 2 * r)] = cx.re;
-            a[(2 * k + 1, 2 * r)] = cx.im;
-            a[(2 * k, 2 * r + 1)] = cy.re;
-            a[(2 * k + 1, 2 * r + 1)] = cy.im;
-        }
-        a[(2 * k, cols - 2)] = 1.0;
-        let low = if iw.im != 0.0 {
-            1.0 / (iw * iw)
+    let m = n_max + 1;
+    // R_ij = Re Σ Ω^(j−i); S_ij = −Re Σ H Ω^(j−i); T_ij = Re Σ |H|² Ω^(j−i).
+    let lag = |v: &[Complex64], i: usize, j: usize| -> f64 {
+        if j >= i {
+            v[j - i].re
         } else {
-            Complex64::new(0.0, 0.0)
-        };
-        a[(2 * k, cols - 1)] = low.re;
-        a[(2 * k + 1, cols - 1)] = low.im;
-        b[2 * k] = h.re;
-        b[2 * k + 1] = h.im;
-    }
-    // Column scaling for conditioning.
-    let norms: Vec<f64> = (0..cols)
-        .map(|j| a.column(j).norm().max(f64::MIN_POSITIVE))
+            v[i - j].re
+        }
+    };
+    let r = DMatrix::from_fn(m, m, |i, j| lag(&p0, i, j));
+    let t = DMatrix::from_fn(m, m, |i, j| lag(&p2, i, j));
+    let s = DMatrix::from_fn(m, m, |i, j| {
+        -p1[(n_max as isize + j as isize - i as isize) as usize].re
+    });
+    let orders: Vec<usize> = (2..=n_max).step_by(2).collect();
+    let all: Vec<Vec<(f64, f64, Complex64)>> = orders
+        .iter()
+        .map(|&n| poles_of_order(n, &r, &s, &t, dt, (f_lo, f_hi)))
         .collect();
-    for (j, nj) in norms.iter().enumerate() {
-        a.column_mut(j).scale_mut(1.0 / nj);
-    }
-    let x = a
-        .svd(true, true)
-        .solve(&b, 1e-12)
-        .unwrap_or_else(|_| DVector::zeros(cols));
-    let x: Vec<f64> = x.iter().zip(&norms).map(|(v, n)| v / n).collect();
-    let res = (0..poles.len())
-        .map(|r| Complex64::new(x[2 * r], x[2 * r + 1]))
-        .collect();
-    (res, x[cols - 2], x[cols - 1])
+    (orders, all)
 }
 
 /// Initial poles: groups of poles stable against the previous order (0.5 %
@@ -636,98 +505,4 @@ fn clusters(all: &[Vec<(f64, f64, Complex64)>], needed: usize) -> Vec<Complex64>
     }
     out.sort_by(|a, b| a.im.total_cmp(&b.im));
     out
-}
-
-/// The modal model's misfit to the band as a least-squares problem in the
-/// poles' real and imaginary parts x = (Re s₁, Im s₁, Re s₂, …), the
-/// residues and residual terms eliminated by linear least squares
-/// (variable projection).
-struct PoleRefinement<'a> {
-    band: &'a [(f64, Complex64)],
-}
-
-impl PoleRefinement<'_> {
-    fn poles(x: &[f64]) -> Vec<Complex64> {
-        x.chunks(2).map(|c| Complex64::new(c[0], c[1])).collect()
-    }
-}
-
-impl lm::Problem for PoleRefinement<'_> {
-    type Point = DVector<f64>;
-    type Error = std::convert::Infallible;
-
-    /// Model minus measurement, real and imaginary parts per bin.
-    fn evaluate(&mut self, x: &[f64]) -> Result<DVector<f64>, Self::Error> {
-        let p = Self::poles(x);
-        let (res, u, l) = residues(self.band, &p);
-        let mut r = DVector::zeros(2 * self.band.len());
-        for (k, (f, h)) in self.band.iter().enumerate() {
-            let iw = Complex64::new(0.0, 2.0 * std::f64::consts::PI * f);
-            let mut m = Complex64::new(u, 0.0) + l / (iw * iw);
-            for (pp, rr) in p.iter().zip(&res) {
-                m += rr / (iw - pp) + rr.conj() / (iw - pp.conj());
-            }
-            r[2 * k] = m.re - h.re;
-            r[2 * k + 1] = m.im - h.im;
-        }
-        Ok(r)
-    }
-
-    fn residuals(&self, point: &DVector<f64>) -> DVector<f64> {
-        point.clone()
-    }
-
-    /// Forward differences, step 1e-7 |s| for each pole's parts.
-    fn jacobian(
-        &mut self,
-        x: &[f64],
-        _: &DVector<f64>,
-        r: &DVector<f64>,
-    ) -> Result<DMatrix<f64>, Self::Error> {
-        let mut jac = DMatrix::<f64>::zeros(r.len(), x.len());
-        for j in 0..x.len() {
-            let mut xj = x.to_vec();
-            let step = 1e-7 * Complex64::new(x[j / 2 * 2], x[j / 2 * 2 + 1]).norm();
-            xj[j] += step;
-            let rj = self.evaluate(&xj)?;
-            jac.set_column(j, &((rj - r) / step));
-        }
-        Ok(jac)
-    }
-}
-
-/// Settings of the refinement's Levenberg–Marquardt loop: μ from 10⁻³,
-/// ×4 on a rejected trial, ÷3 (down to 10⁻¹²) on a taken step; at most 50
-/// taken steps, 10 rejected trials in a row, or a taken step that lowers
-/// the misfit by 10⁻¹² of itself.
-const REFINE: lm::Settings = lm::Settings {
-    initial_damping: lm::Scale::Absolute(1e-3),
-    grow: 4.0,
-    shrink: 3.0,
-    damping_floor: lm::Scale::Absolute(1e-12),
-    damping_ceiling: f64::INFINITY,
-    max_rejections: 10,
-    step_tolerance: 0.0,
-    min_relative_decrease: 1e-12,
-    max_evaluations: usize::MAX,
-    max_iterations: 50,
-};
-
-/// Nonlinear least-squares refinement of the poles (variable projection:
-/// residues eliminated linearly; the one Levenberg–Marquardt loop,
-/// [`lm::solve`], on the poles' real and imaginary parts with a
-/// forward-difference Jacobian). LSCF's linearised equation error is biased
-/// by noise; the output error minimised here is not (for noise of equal
-/// variance across the band).
-fn refine(band: &[(f64, Complex64)], poles: &mut [Complex64]) {
-    if poles.is_empty() {
-        return;
-    }
-    let mut problem = PoleRefinement { band };
-    let x0: Vec<f64> = poles.iter().flat_map(|p| [p.re, p.im]).collect();
-    let unbounded = vec![f64::INFINITY; x0.len()];
-    let lower: Vec<f64> = unbounded.iter().map(|v| -v).collect();
-    let Ok(start) = lm::Problem::evaluate(&mut problem, &x0);
-    let Ok(out) = lm::solve(&mut problem, x0, start, &lower, &unbounded, &REFINE);
-    poles.copy_from_slice(&PoleRefinement::poles(&out.x));
 }

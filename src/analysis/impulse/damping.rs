@@ -25,7 +25,7 @@
 //! reported. Without damping in the model the response does not decay
 //! within the record and the fitted ratio only measures the truncation.
 
-use crate::signal::fit::{fit, FitSettings};
+use crate::signal::fit::{fit, FitSettings, PoleBasis};
 use crate::signal::frf::{CrossSpectra, CrossSpectraSettings};
 use crate::signal::Window;
 
@@ -97,6 +97,9 @@ pub fn identify_damping(
             f_hi: band.hi_hz,
             max_order: MAX_ORDER,
             window_decay_rate: 0.0,
+            basis: PoleBasis::Sampled {
+                interval_s: 1.0 / sample_rate_hz,
+            },
         },
     );
     let mode = fitted.modes.iter().min_by(|a, b| {

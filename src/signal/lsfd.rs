@@ -1,0 +1,614 @@
+//! The modal model of a band and its least-squares fit: residues by linear
+//! least squares (LSFD), poles by nonlinear least squares, and the choice
+//! of the poles that are physical and significant (see [`super::fit`]).
+//!
+//! **Model.** H(ω) = Σ_r [R_r g(ω, s_r) + R̄_r g(ω, s̄_r)] + U + L/(iω)²,
+//! with R_r in FRF unit × 1/s, s_r in 1/s, U in FRF unit and L in FRF
+//! unit × 1/s² (U and L stand for the modes outside the band). The pole
+//! term g depends on where H comes from ([`PoleBasis`]):
+//! - an FRF on a continuous frequency axis: g = 1/(iω − s);
+//! - the DFT of a record sampled every Δt: g = Δt/(1 − e^((s − iω)Δt)),
+//!   the transform of the sampled decay R e^(s nΔt). At the DFT bins of
+//!   an N-sample record, e^(−iωNΔt) = 1, so a decay cut off at the end of
+//!   the record, R e^(s nΔt) for n < N only, transforms to
+//!   (1 − e^(sNΔt)) R g(ω, s): the same pole with another residue. The
+//!   continuous g instead sees the cut as leakage spread over the band, and
+//!   misses the aliases of the pole near the Nyquist frequency; on a 1 s
+//!   record of a 130 Hz mode with 0.1 % damping (still 44 % of its start at
+//!   the end) that moved a 926 Hz pole by 3e-4 and hid a 3.9 kHz mode.
+//!   For Δt → 0 the two agree.
+//!
+//! **Refinement.** The poles are refined together by Levenberg–Marquardt
+//! on the misfit of the model, the residues and residual terms eliminated
+//! by linear least squares at every step (variable projection). LSCF's
+//! linearised equation error is biased by noise; this output error is not
+//! (for noise of equal variance across the band).
+//!
+//! **Choice.** After each refinement one pole at a time is rejected, and
+//! the rest refined again from their seeds: first a pole the refinement
+//! made unstable, overdamped or moved off the positive frequencies
+//! (`failed_refinement`, shown at its seed), then one it moved out of the
+//! band (`left_band`, shown where it went), then the one whose damping the
+//! record resolves least, while its decay rate ζω is under
+//! [`DECAY_RESOLUTION`] = 3 standard errors of the fit
+//! (`unresolved_damping`), then the least significant while its
+//! significance is under [`SIGNIFICANCE`] (`not_significant`).
+//!
+//! **Significance** is a test against the noise estimated from the data:
+//! the RMS of a pole's modal contribution R g(ω, s) + R̄ g(ω, s̄) over its
+//! half-power band (the bins within f_d ± max(ζf, 2Δf)) divided by the RMS
+//! of the fit residual H − Ĥ over the same bins. The residual holds what
+//! the model cannot explain there: measurement noise, a spurious pole's
+//! misfit. A mode whose peak stands k times above the noise has a
+//! significance of about 0.86 k (its contribution falls to 1/√2 of the
+//! peak across the band), so a mode 3 × above the noise passes; a pole
+//! that fits noise explains only the few numbers it has (a pole and a
+//! residue) of the 2m in its m bins and stays near 1. No ratio to the
+//! largest peak enters: a weak mode of noise-free data is reported.
+
+use std::f64::consts::PI;
+
+use nalgebra::{DMatrix, DVector};
+use realfft::num_complex::Complex64;
+
+use super::fit::{FitSettings, RejectReason, MAX_DAMPING};
+use super::lm;
+
+/// How a pole enters the modal model (module doc).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PoleBasis {
+    /// g = 1/(iω − s): an FRF given on a frequency axis (a UFF file).
+    Continuous,
+    /// g = Δt/(1 − e^((s − iω)Δt)): the DFT of a record sampled every
+    /// `interval_s` seconds.
+    Sampled { interval_s: f64 },
+}
+
+impl PoleBasis {
+    /// The term g(ω, s) of a unit residue, at `f` Hz.
+    pub fn term(self, f: f64, s: Complex64) -> Complex64 {
+        let iw = Complex64::new(0.0, 2.0 * PI * f);
+        match self {
+            PoleBasis::Continuous => 1.0 / (iw - s),
+            PoleBasis::Sampled { interval_s: dt } => dt / (1.0 - ((s - iw) * dt).exp()),
+        }
+    }
+
+    /// ∂g/∂s at `f` Hz (g is holomorphic in s).
+    pub fn term_derivative(self, f: f64, s: Complex64) -> Complex64 {
+        let g = self.term(f, s);
+        match self {
+            PoleBasis::Continuous => g * g,
+            PoleBasis::Sampled { interval_s: dt } => {
+                let iw = Complex64::new(0.0, 2.0 * PI * f);
+                g * g * ((s - iw) * dt).exp()
+            }
+        }
+    }
+
+    /// A pole pair's contribution R g(ω, s) + R̄ g(ω, s̄) at `f` Hz.
+    pub fn pair(self, f: f64, s: Complex64, r: Complex64) -> Complex64 {
+        r * self.term(f, s) + r.conj() * self.term(f, s.conj())
+    }
+}
+
+/// Smallest significance of a reported mode: the RMS of its modal
+/// contribution over its half-power band, in units of the RMS fit residual
+/// there (module doc).
+pub const SIGNIFICANCE: f64 = 2.0;
+/// Smallest half-width of the half-power band of the significance test, in
+/// bins: a lightly damped mode's band ±ζf may hold no bin.
+pub const MIN_HALF_POWER_BINS: f64 = 2.0;
+
+/// The measured FRF over the fit band and the model's pole term.
+#[derive(Debug, Clone, Copy)]
+pub struct Band<'a> {
+    /// (f Hz, H) of the bins in the band.
+    pub bins: &'a [(f64, Complex64)],
+    pub basis: PoleBasis,
+}
+
+/// The fitted model: residues and residual terms U, L of given poles.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Residues {
+    pub residues: Vec<Complex64>,
+    pub upper: f64,
+    pub lower: f64,
+}
+
+/// The modal model with residual terms at `f` Hz.
+pub fn model_at(basis: PoleBasis, f: f64, poles: &[Complex64], fitted: &Residues) -> Complex64 {
+    let iw = 2.0 * PI * f;
+    let mut m = Complex64::new(fitted.upper, 0.0);
+    if f != 0.0 {
+        m -= fitted.lower / (iw * iw);
+    }
+    for (p, r) in poles.iter().zip(&fitted.residues) {
+        m += basis.pair(f, *p, *r);
+    }
+    m
+}
+
+/// The design matrix of the residues and residual terms of `poles`: rows
+/// (Re, Im) per bin, columns (Re R_r, Im R_r) per pole, then U and L.
+fn design(band: Band<'_>, poles: &[Complex64]) -> DMatrix<f64> {
+    let cols = 2 * poles.len() + 2;
+    let mut a = DMatrix::<f64>::zeros(2 * band.bins.len(), cols);
+    for (k, (f, _)) in band.bins.iter().enumerate() {
+        for (r, p) in poles.iter().enumerate() {
+            // R = x + iy: R g + R̄ g' = x·(g + g') + y·i(g − g').
+            let g1 = band.basis.term(*f, *p);
+            let g2 = band.basis.term(*f, p.conj());
+            let cx = g1 + g2;
+            let cy = Complex64::new(0.0, 1.0) * (g1 - g2);
+            a[(2 * k, 2 * r)] = cx.re;
+            a[(2 * k + 1, 2 * r)] = cx.im;
+            a[(2 * k, 2 * r + 1)] = cy.re;
+            a[(2 * k + 1, 2 * r + 1)] = cy.im;
+        }
+        a[(2 * k, cols - 2)] = 1.0;
+        let w = 2.0 * PI * f;
+        a[(2 * k, cols - 1)] = if *f != 0.0 { -1.0 / (w * w) } else { 0.0 };
+    }
+    a
+}
+
+/// Least-squares solution of `a` x = `b`, columns scaled to unit norm: by
+/// Householder QR (Qᵀb applied in place, Q never formed), or by SVD when
+/// R is near singular (two poles on top of each other).
+fn least_squares(mut a: DMatrix<f64>, b: &DVector<f64>) -> DVector<f64> {
+    let cols = a.ncols();
+    let norms: Vec<f64> = (0..cols)
+        .map(|j| a.column(j).norm().max(f64::MIN_POSITIVE))
+        .collect();
+    for (j, nj) in norms.iter().enumerate() {
+        a.column_mut(j).scale_mut(1.0 / nj);
+    }
+    let qr = a.clone().qr();
+    let r = qr.r();
+    let largest = r.diagonal().iter().fold(0.0_f64, |m, d| m.max(d.abs()));
+    let regular = r.diagonal().iter().all(|d| d.abs() > 1e-10 * largest);
+    let x = if regular {
+        let mut qtb = b.clone();
+        qr.q_tr_mul(&mut qtb);
+        r.solve_upper_triangular(&qtb.rows(0, cols).into_owned())
+    } else {
+        None
+    };
+    let x = x.unwrap_or_else(|| {
+        a.svd(true, true)
+            .solve(b, 1e-12)
+            .unwrap_or_else(|_| DVector::zeros(cols))
+    });
+    DVector::from_iterator(cols, x.iter().zip(&norms).map(|(v, n)| v / n))
+}
+
+/// The measured FRF of the band as (Re, Im) per bin.
+fn measured(band: Band<'_>) -> DVector<f64> {
+    DVector::from_iterator(
+        2 * band.bins.len(),
+        band.bins.iter().flat_map(|(_, h)| [h.re, h.im]),
+    )
+}
+
+/// Residues R_r and residual terms U, L of `poles` by linear least squares
+/// (LSFD).
+pub fn residues(band: Band<'_>, poles: &[Complex64]) -> Residues {
+    let x = least_squares(design(band, poles), &measured(band));
+    let cols = x.len();
+    Residues {
+        residues: (0..poles.len())
+            .map(|r| Complex64::new(x[2 * r], x[2 * r + 1]))
+            .collect(),
+        upper: x[cols - 2],
+        lower: x[cols - 1],
+    }
+}
+
+/// ∂(model)/∂(Re s_j, Im s_j) per bin (rows Re, Im), the residues held.
+fn pole_jacobian(band: Band<'_>, poles: &[Complex64], fitted: &Residues) -> DMatrix<f64> {
+    let mut jac = DMatrix::<f64>::zeros(2 * band.bins.len(), 2 * poles.len());
+    let i = Complex64::new(0.0, 1.0);
+    for (k, (f, _)) in band.bins.iter().enumerate() {
+        for (j, (p, r)) in poles.iter().zip(&fitted.residues).enumerate() {
+            let d1 = *r * band.basis.term_derivative(*f, *p);
+            let d2 = r.conj() * band.basis.term_derivative(*f, p.conj());
+            let dx = d1 + d2;
+            let dy = i * d1 - i * d2;
+            jac[(2 * k, 2 * j)] = dx.re;
+            jac[(2 * k + 1, 2 * j)] = dx.im;
+            jac[(2 * k, 2 * j + 1)] = dy.re;
+            jac[(2 * k + 1, 2 * j + 1)] = dy.im;
+        }
+    }
+    jac
+}
+
+/// Standard error of each pole's real part −σ = −ζω: the linearised
+/// least-squares covariance (JᵀJ)⁻¹ over all unknowns (poles, residues,
+/// U, L), with each pole's noise variance the mean |H − Ĥ|²/2 per real
+/// number over ±[`NOISE_WINDOW_BINS`] bins of it.
+pub fn decay_standard_errors(band: Band<'_>, poles: &[Complex64]) -> Vec<f64> {
+    let fitted = residues(band, poles);
+    let jp = pole_jacobian(band, poles, &fitted);
+    let a = design(band, poles);
+    let (rows, np, na) = (jp.nrows(), jp.ncols(), a.ncols());
+    let mut j = DMatrix::<f64>::zeros(rows, np + na);
+    j.view_mut((0, 0), (rows, np)).copy_from(&jp);
+    j.view_mut((0, np), (rows, na)).copy_from(&a);
+    let norms: Vec<f64> = (0..np + na)
+        .map(|c| j.column(c).norm().max(f64::MIN_POSITIVE))
+        .collect();
+    for (c, nc) in norms.iter().enumerate() {
+        j.column_mut(c).scale_mut(1.0 / nc);
+    }
+    let Some(cov) = (j.transpose() * &j).try_inverse() else {
+        return vec![f64::INFINITY; poles.len()];
+    };
+    let r2: Vec<f64> = band
+        .bins
+        .iter()
+        .map(|(f, h)| (h - model_at(band.basis, *f, poles, &fitted)).norm_sqr())
+        .collect();
+    let n = band.bins.len();
+    poles
+        .iter()
+        .enumerate()
+        .map(|(q, p)| {
+            let fd = p.im / (2.0 * PI);
+            let k = band
+                .bins
+                .iter()
+                .position(|(f, _)| *f >= fd)
+                .unwrap_or(n.saturating_sub(1));
+            let (lo, hi) = (
+                k.saturating_sub(NOISE_WINDOW_BINS),
+                (k + NOISE_WINDOW_BINS + 1).min(n),
+            );
+            let var = r2[lo..hi].iter().sum::<f64>() / (2 * (hi - lo).max(1)) as f64;
+            (var * cov[(2 * q, 2 * q)]).sqrt() / norms[2 * q]
+        })
+        .collect()
+}
+
+/// The bins of `band` within `f0` ± `half` Hz.
+fn bins_near(bins: &[(f64, Complex64)], f0: f64, half: f64) -> impl Iterator<Item = usize> + '_ {
+    bins.iter()
+        .enumerate()
+        .filter(move |(_, (f, _))| (f - f0).abs() <= half)
+        .map(|(k, _)| k)
+}
+
+/// Why the refined pole `p` (of the windowed FRF) is not physical in the
+/// band, if it is not.
+fn unphysical(p: Complex64, settings: &FitSettings) -> Option<RejectReason> {
+    // The pole of the structure: the window's decay added back.
+    let p = p + settings.window_decay_rate;
+    let w = p.norm();
+    let zeta = -p.re / w;
+    if !(p.im > 0.0 && zeta > 0.0 && zeta < MAX_DAMPING && w.is_finite()) {
+        return Some(RejectReason::FailedRefinement);
+    }
+    let f = w / (2.0 * PI);
+    (f < settings.f_lo || f > settings.f_hi).then_some(RejectReason::LeftBand)
+}
+
+/// Significance of each pole (module doc).
+pub fn significance(band: Band<'_>, poles: &[Complex64]) -> Vec<f64> {
+    let fitted = residues(band, poles);
+    let resid: Vec<Complex64> = band
+        .bins
+        .iter()
+        .map(|(f, h)| h - model_at(band.basis, *f, poles, &fitted))
+        .collect();
+    let df = match (band.bins.first(), band.bins.last()) {
+        (Some(a), Some(b)) if band.bins.len() > 1 => (b.0 - a.0) / (band.bins.len() - 1) as f64,
+        _ => 0.0,
+    };
+    poles
+        .iter()
+        .zip(&fitted.residues)
+        .map(|(p, r)| {
+            let fd = p.im / (2.0 * PI);
+            let half = (-p.re / (2.0 * PI)).max(MIN_HALF_POWER_BINS * df);
+            let (mut c2, mut e2) = (0.0, 0.0);
+            for k in bins_near(band.bins, fd, half) {
+                c2 += band.basis.pair(band.bins[k].0, *p, *r).norm_sqr();
+                e2 += resid[k].norm_sqr();
+            }
+            if e2 > 0.0 {
+                (c2 / e2).sqrt()
+            } else if c2 > 0.0 {
+                f64::INFINITY
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
+/// Smallest half-width, in bins, of the window whose median residual sets
+/// the noise level of [`residual_peak`].
+pub const NOISE_WINDOW_BINS: usize = 128;
+/// Chance that noise alone seeds a pole at one bin and one width in
+/// [`residual_peak`].
+pub const SEED_FALSE_ALARM: f64 = 1e-6;
+/// Smallest RMS residual, relative to the band's largest |H|, that
+/// [`residual_peak`] takes for a mode: below it the residual is the
+/// rounding of the data and the model, not a response.
+pub const SEED_PRECISION: f64 = 1e-8;
+/// Widths, in bins, over which [`residual_peak`] averages the residual's
+/// power: a mode's half-power band holds about 2ζf/Δf bins. Only modes of a
+/// few bins are sought: wider ones LSCF finds, and a wide stretch is as
+/// often noise correlated over bins (a force window's) as a mode.
+pub const SEED_WIDTHS: [usize; 3] = [1, 2, 4];
+
+/// The level x that the mean of `w` independent exponential variables of
+/// mean 1 exceeds with probability `p`: P(Γ(w, 1) > w x) = p, with
+/// P(Γ(w, 1) > y) = e^(−y) Σ_{j<w} y^j/j! (bisection).
+fn exponential_mean_level(w: usize, p: f64) -> f64 {
+    let tail = |y: f64| {
+        let (mut term, mut sum) = (1.0, 1.0);
+        for j in 1..w {
+            term *= y / j as f64;
+            sum += term;
+        }
+        (-y).exp() * sum
+    };
+    let (mut lo, mut hi) = (0.0, 1e3);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if tail(mid) > p {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    hi / w as f64
+}
+
+/// A band of bins the residual search has seeded from: centre and
+/// half-width, Hz.
+pub type Tried = (f64, f64);
+
+/// A stretch (centre Hz, half-width Hz) of the band where the fit residual
+/// r = H − Ĥ of `poles` stands above the noise: where a mode may be that
+/// the poles leave unexplained (None when it nowhere does).
+///
+/// LSCF's common denominator can miss a weak mode among the poles that fit
+/// the noise, above all one that holds about one bin (ζf under Δf: a
+/// lightly damped mode of a short record). For noise alone, |r_k|²/σ² is
+/// exponential with mean 1, so the mean of |r|² over w bins is Γ(w)/w
+/// distributed. The noise power σ² around a bin is the median of |r|² over
+/// ±max(32, 4w) bins / ln 2 (an exponential law's mean from its median,
+/// robust to the mode itself). For each width w of [`SEED_WIDTHS`], a
+/// window of w bins whose mean |r|²/σ² exceeds the level that noise passes
+/// with probability [`SEED_FALSE_ALARM`] is a candidate; the one furthest
+/// above its level, clear of the `tried` stretches, is returned, centred
+/// on its strongest bin, with a pole seeded there (2ζf = wΔf). A stretch within three half-power widths of a
+/// fitted pole is left out (the misfit of that pole: noise on the
+/// force scales with |H|), and so is one whose RMS residual is under
+/// [`SEED_PRECISION`] of the band's largest |H| (rounding, not response).
+pub fn residual_peak(
+    band: Band<'_>,
+    poles: &[Complex64],
+    tried: &[Tried],
+) -> Option<(Tried, Complex64)> {
+    let n = band.bins.len();
+    if n < 8 {
+        return None;
+    }
+    let fitted = residues(band, poles);
+    let r2: Vec<f64> = band
+        .bins
+        .iter()
+        .map(|(f, h)| (h - model_at(band.basis, *f, poles, &fitted)).norm_sqr())
+        .collect();
+    let df = (band.bins[n - 1].0 - band.bins[0].0) / (n - 1) as f64;
+    let mut prefix = vec![0.0; n + 1];
+    for k in 0..n {
+        prefix[k + 1] = prefix[k] + r2[k];
+    }
+    // σ² around each bin, for each half-width of the noise window.
+    let noise_within = |reach: usize| -> Vec<f64> {
+        (0..n)
+            .map(|c| {
+                let mut local = r2[c.saturating_sub(reach)..(c + reach + 1).min(n)].to_vec();
+                local.sort_by(f64::total_cmp);
+                local[local.len() / 2] / std::f64::consts::LN_2
+            })
+            .collect()
+    };
+    let mut noise_by_reach: Vec<(usize, Vec<f64>)> = Vec::new();
+    let scale = band.bins.iter().fold(0.0_f64, |a, (_, h)| a.max(h.norm()));
+    let floor = (SEED_PRECISION * scale).powi(2);
+    // A stretch within three half-power widths of a fitted pole is that
+    // pole's misfit (force noise scales with |H|), not another mode.
+    let mut taken: Vec<Tried> = poles
+        .iter()
+        .map(|p| {
+            let half = (-p.re / (2.0 * PI)).max(MIN_HALF_POWER_BINS * df);
+            (p.im / (2.0 * PI), 3.0 * half)
+        })
+        .collect();
+    taken.extend_from_slice(tried);
+    let mut best: Option<(f64, usize, usize)> = None;
+    for w in SEED_WIDTHS.into_iter().filter(|&w| 4 * w <= n) {
+        let level = exponential_mean_level(w, SEED_FALSE_ALARM);
+        let reach = (4 * w).max(NOISE_WINDOW_BINS);
+        if noise_by_reach.last().is_none_or(|(r, _)| *r != reach) {
+            noise_by_reach.push((reach, noise_within(reach)));
+        }
+        let Some((_, sigma2)) = noise_by_reach.last() else {
+            continue;
+        };
+        for start in 0..=n - w {
+            let mean = (prefix[start + w] - prefix[start]) / w as f64;
+            let noise = sigma2[start + w / 2];
+            if noise <= 0.0 {
+                continue;
+            }
+            let excess = mean / noise / level;
+            let (f0, f1) = (band.bins[start].0, band.bins[start + w - 1].0);
+            let seen = taken
+                .iter()
+                .any(|(g, half)| f0 <= g + half && f1 >= g - half);
+            if excess > 1.0 && mean > floor && !seen && best.is_none_or(|(b, _, _)| excess > b) {
+                best = Some((excess, start, w));
+            }
+        }
+    }
+    let (_, start, w) = best?;
+    let k = (start..start + w).max_by(|&a, &b| r2[a].total_cmp(&r2[b]))?;
+    let f = band.bins[k].0;
+    let zeta = (w as f64 * df / (2.0 * f)).clamp(1e-4, 0.3);
+    let omega = 2.0 * PI * f;
+    let seed = Complex64::new(-zeta * omega, omega * (1.0 - zeta * zeta).sqrt());
+    Some(((f, (w as f64 / 2.0).max(2.0) * df), seed))
+}
+
+/// Fewest standard errors by which a reported pole's decay rate σ = ζω
+/// must stand above zero ([`decay_standard_errors`]): a pole whose damping
+/// the record does not resolve, such as one fitted to a single noisy bin
+/// (a sinusoid of a whole number of periods in the record holds one bin
+/// whatever its decay), is not a mode the record shows.
+pub const DECAY_RESOLUTION: f64 = 3.0;
+
+/// A pole the choice left out, where it is shown, and why.
+pub type Rejection = (Complex64, RejectReason);
+
+/// The modes among the stable seeds (module doc): refined together; a pole
+/// the refinement makes unphysical or moves out of the band is rejected,
+/// then the least significant pole while it is under [`SIGNIFICANCE`], one
+/// at a time, the rest refined again from their seeds after each
+/// rejection. Returns the refined modes and the rejected poles.
+pub fn select(
+    band: Band<'_>,
+    seeds: &[Complex64],
+    settings: &FitSettings,
+) -> (Vec<Complex64>, Vec<Rejection>) {
+    let mut seeds = seeds.to_vec();
+    let mut rejected = Vec::new();
+    while !seeds.is_empty() {
+        let mut poles = seeds.clone();
+        refine(band, &mut poles);
+        let bad = poles
+            .iter()
+            .enumerate()
+            .find_map(|(i, p)| unphysical(*p, settings).map(|why| (i, why)));
+        if let Some((i, why)) = bad {
+            let shown = if why == RejectReason::FailedRefinement {
+                seeds[i]
+            } else {
+                poles[i]
+            };
+            rejected.push((shown, why));
+            seeds.remove(i);
+            continue;
+        }
+        let unresolved = decay_standard_errors(band, &poles)
+            .into_iter()
+            .zip(&poles)
+            .map(|(se, p)| (-p.re - settings.window_decay_rate) / se)
+            .enumerate()
+            .filter(|(_, t)| !(*t >= DECAY_RESOLUTION))
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((i, _)) = unresolved {
+            rejected.push((poles[i], RejectReason::UnresolvedDamping));
+            seeds.remove(i);
+            continue;
+        }
+        let weakest = significance(band, &poles)
+            .into_iter()
+            .enumerate()
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        match weakest {
+            Some((i, s)) if s < SIGNIFICANCE => {
+                rejected.push((poles[i], RejectReason::NotSignificant));
+                seeds.remove(i);
+            }
+            _ => return (poles, rejected),
+        }
+    }
+    (Vec::new(), rejected)
+}
+
+/// The modal model's misfit to the band as a least-squares problem in the
+/// poles' real and imaginary parts x = (Re s₁, Im s₁, Re s₂, …), the
+/// residues and residual terms eliminated by linear least squares
+/// (variable projection).
+struct PoleRefinement<'a> {
+    band: Band<'a>,
+}
+
+fn poles_of(x: &[f64]) -> Vec<Complex64> {
+    x.chunks(2).map(|c| Complex64::new(c[0], c[1])).collect()
+}
+
+impl lm::Problem for PoleRefinement<'_> {
+    type Point = DVector<f64>;
+    type Error = std::convert::Infallible;
+
+    /// Model minus measurement, real and imaginary parts per bin.
+    fn evaluate(&mut self, x: &[f64]) -> Result<DVector<f64>, Self::Error> {
+        let p = poles_of(x);
+        let fitted = residues(self.band, &p);
+        let mut r = DVector::zeros(2 * self.band.bins.len());
+        for (k, (f, h)) in self.band.bins.iter().enumerate() {
+            let m = model_at(self.band.basis, *f, &p, &fitted);
+            r[2 * k] = m.re - h.re;
+            r[2 * k + 1] = m.im - h.im;
+        }
+        Ok(r)
+    }
+
+    fn residuals(&self, point: &DVector<f64>) -> DVector<f64> {
+        point.clone()
+    }
+
+    /// Analytic, the residues held (Kaufman's variable projection: the
+    /// same minimum, since the misfit is stationary in the residues).
+    fn jacobian(
+        &mut self,
+        x: &[f64],
+        _: &DVector<f64>,
+        _: &DVector<f64>,
+    ) -> Result<DMatrix<f64>, Self::Error> {
+        let p = poles_of(x);
+        let fitted = residues(self.band, &p);
+        Ok(pole_jacobian(self.band, &p, &fitted))
+    }
+}
+
+/// Settings of the refinement's Levenberg–Marquardt loop: μ from 10⁻³,
+/// ×4 on a rejected trial, ÷3 (down to 10⁻¹²) on a taken step; at most 50
+/// taken steps, 10 rejected trials in a row, or a taken step that lowers
+/// the misfit by 10⁻¹² of itself.
+const REFINE: lm::Settings = lm::Settings {
+    initial_damping: lm::Scale::Absolute(1e-3),
+    grow: 4.0,
+    shrink: 3.0,
+    damping_floor: lm::Scale::Absolute(1e-12),
+    damping_ceiling: f64::INFINITY,
+    max_rejections: 10,
+    step_tolerance: 0.0,
+    min_relative_decrease: 1e-12,
+    max_evaluations: usize::MAX,
+    max_iterations: 50,
+};
+
+/// Nonlinear least-squares refinement of the poles (module doc; the one
+/// Levenberg–Marquardt loop, [`lm::solve`], with the analytic Jacobian of
+/// the pole terms).
+pub fn refine(band: Band<'_>, poles: &mut [Complex64]) {
+    if poles.is_empty() {
+        return;
+    }
+    let mut problem = PoleRefinement { band };
+    let x0: Vec<f64> = poles.iter().flat_map(|p| [p.re, p.im]).collect();
+    let unbounded = vec![f64::INFINITY; x0.len()];
+    let lower: Vec<f64> = unbounded.iter().map(|v| -v).collect();
+    let Ok(start) = lm::Problem::evaluate(&mut problem, &x0);
+    let Ok(out) = lm::solve(&mut problem, x0, start, &lower, &unbounded, &REFINE);
+    poles.copy_from_slice(&poles_of(&out.x));
+}
