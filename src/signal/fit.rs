@@ -27,14 +27,6 @@
 //! positive damping below 30 % in the band, stable against the previous
 //! order (0.5 % in f, 20 % in ζ), grouped within ±0.25 % in frequency and
 //! found in at least a third of the orders; each seed is its group's median.
-//! A mode that holds about one bin (ζf under Δf: a lightly damped mode of a
-//! short record) can be missed among the poles that fit the noise; after
-//! the choice below, a stretch of the fit residual whose power stands
-//! above the noise around it, beyond what noise reaches with probability
-//! [`lsfd::SEED_FALSE_ALARM`] = 1e-6, seeds one more pole there (at most
-//! [`MAX_RESIDUAL_SEEDS`] times), which faces the same choice as the
-//! others. Such a pole is not on the diagram: its damping must be resolved
-//! by the record (`unresolved_damping` below) instead.
 //!
 //! **Refinement and choice** ([`super::lsfd`]). The seeds are refined
 //! together by nonlinear least squares on the modal model
@@ -193,9 +185,6 @@ impl ModalFit {
     }
 }
 
-/// Most poles seeded from the fit residual's peaks ([`lsfd::residual_peak`])
-/// in one fit.
-pub const MAX_RESIDUAL_SEEDS: usize = 8;
 /// Frequency tolerance of the stability checks (relative).
 pub const STABLE_FREQUENCY: f64 = 0.005;
 /// Damping tolerance of the stability label (relative).
@@ -330,25 +319,7 @@ pub fn fit(frequency_hz: &[f64], h: &[Complex64], settings: &FitSettings) -> Mod
         bins: &band,
         basis: settings.basis,
     };
-    let (mut kept, mut rejected) = lsfd::select(bins, &seeds, settings);
-    let mut tried = Vec::new();
-    while tried.len() < MAX_RESIDUAL_SEEDS {
-        let Some((where_, seed)) = lsfd::residual_peak(bins, &kept, &tried) else {
-            break;
-        };
-        tried.push(where_);
-        let mut trial = kept.clone();
-        trial.push(seed);
-        let (more, left_out) = lsfd::select(bins, &trial, settings);
-        if more.len() > kept.len() {
-            kept = more;
-            rejected.extend(left_out);
-        } else {
-            let near =
-                |p: &Complex64| (p.im / (2.0 * std::f64::consts::PI) - where_.0).abs() <= where_.1;
-            rejected.extend(left_out.into_iter().filter(|(p, _)| near(p)));
-        }
-    }
+    let (kept, rejected) = lsfd::select(bins, &seeds, settings);
     result.rejected = rejected
         .into_iter()
         .map(|(p, reason)| {
