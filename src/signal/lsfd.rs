@@ -331,8 +331,10 @@ pub fn significance(band: Band<'_>, poles: &[Complex64]) -> Vec<f64> {
 /// noise variance in [`decay_standard_errors`].
 pub const NOISE_WINDOW_BINS: usize = 32;
 
-/// Fewest standard errors by which a reported pole's decay rate σ = ζω
-/// must stand above zero ([`decay_standard_errors`]): a pole whose damping
+/// Fewest standard errors by which a reported pole's decay rate in the
+/// record, σ = ζω plus the window's decay, must stand above zero
+/// ([`decay_standard_errors`]): the record shows a decaying response, and
+/// an undamped structure under an exponential window is still a mode; a pole whose damping
 /// the record does not resolve, such as one fitted to a single noisy bin
 /// (a sinusoid of a whole number of periods in the record holds one bin
 /// whatever its decay), is not a mode the record shows.
@@ -373,7 +375,7 @@ pub fn select(
         let unresolved = decay_standard_errors(band, &poles)
             .into_iter()
             .zip(&poles)
-            .map(|(se, p)| (-p.re - settings.window_decay_rate) / se)
+            .map(|(se, p)| -p.re / se)
             .enumerate()
             .filter(|(_, t)| !(*t >= DECAY_RESOLUTION))
             .min_by(|a, b| a.1.total_cmp(&b.1));
