@@ -31,8 +31,10 @@
 //! band (`left_band`, shown where it went), then the one whose damping the
 //! record resolves least, while its decay rate ζω is under
 //! [`DECAY_RESOLUTION`] = 3 standard errors of the fit
-//! (`unresolved_damping`), then the least significant while its
-//! significance is under [`SIGNIFICANCE`] (`not_significant`).
+//! (`unresolved_damping`), then one of two poles in one half-power band
+//! that the fit does not need beyond noise (`redundant`), then the least
+//! significant while its significance is under [`SIGNIFICANCE`]
+//! (`not_significant`).
 //!
 //! **Significance** is a test against the noise estimated from the data:
 //! the RMS of a pole's modal contribution R g(ω, s) + R̄ g(ω, s̄) over its
@@ -106,17 +108,91 @@ pub struct Band<'a> {
     /// (f Hz, H) of the bins in the band.
     pub bins: &'a [(f64, Complex64)],
     pub basis: PoleBasis,
+    /// Per bin, the weight W of the decays the records' end cut off
+    /// ([`crate::signal::frf::CrossSpectra::truncation_weight`]), when H
+    /// comes from records: each pole then also has a term
+    /// W (D g(ω, s) + D̄ g(ω, s̄)).
+    pub truncation: Option<&'a [Complex64]>,
+    /// Length of the records, s: a pole whose decay e^(Re s·T) is under
+    /// [`TRUNCATION_FLOOR`] at their end has no cut-off term.
+    pub record_s: f64,
+    /// Per bin, the weight of its equation, when H is the H1 of records:
+    /// √(Σ|F_i|²) relative to its mean. H1's error (N_X − H N_F)/F has a
+    /// variance ∝ 1/|F|²: where the force is weak (or a noisy force dips)
+    /// H is poor, and weighted by |F| every bin's error has one law
+    /// (least squares is then the maximum-likelihood fit).
+    pub rows: Option<&'a [f64]>,
+}
+
+/// The smallest decay e^(Re s·T) left at the end of the records for which
+/// a pole gets its cut-off term. Below it the term is too small to fit,
+/// and its free coefficient, weighted by a W that noise on the force makes
+/// vary across the peak, would trade off against the pole's frequency.
+pub const TRUNCATION_FLOOR: f64 = 1e-6;
+
+impl Band<'_> {
+    /// The weight of bin `k`'s equation (1 without records).
+    pub(crate) fn row(&self, k: usize) -> f64 {
+        self.rows.and_then(|w| w.get(k).copied()).unwrap_or(1.0)
+    }
+
+    /// The weighted misfit of bin `k`: row(k)·(H − Ĥ).
+    pub(crate) fn residual(&self, k: usize, poles: &[Complex64], fitted: &Residues) -> Complex64 {
+        self.row(k) * (self.bins[k].1 - self.model(k, poles, fitted))
+    }
+
+    /// The truncation weight at bin `k` (zero without records).
+    fn weight(&self, k: usize) -> Complex64 {
+        self.truncation
+            .and_then(|w| w.get(k).copied())
+            .unwrap_or(Complex64::new(0.0, 0.0))
+    }
+
+    /// Real columns per pole in the linear fit: R, and D with records.
+    fn per_pole(&self) -> usize {
+        if self.truncation.is_some() {
+            4
+        } else {
+            2
+        }
+    }
+
+    /// The fitted model at bin `k`, the cut-off decays included.
+    pub(crate) fn model(&self, k: usize, poles: &[Complex64], fitted: &Residues) -> Complex64 {
+        let f = self.bins[k].0;
+        let mut m = model_at(self.basis, f, poles, fitted);
+        let w = self.weight(k);
+        for (p, d) in poles.iter().zip(&fitted.truncation) {
+            m += w * self.basis.pair(f, *p, *d);
+        }
+        m
+    }
+
+    /// Pole `j`'s part of the model at bin `k`: its modal term and its
+    /// cut-off decay.
+    fn contribution(&self, k: usize, j: usize, p: Complex64, fitted: &Residues) -> Complex64 {
+        let f = self.bins[k].0;
+        let mut c = self.basis.pair(f, p, fitted.residues[j]);
+        if let Some(d) = fitted.truncation.get(j) {
+            c += self.weight(k) * self.basis.pair(f, p, *d);
+        }
+        c
+    }
 }
 
 /// The fitted model: residues and residual terms U, L of given poles.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Residues {
     pub residues: Vec<Complex64>,
+    /// The coefficients D of the cut-off decays, per pole (empty without
+    /// records).
+    pub truncation: Vec<Complex64>,
     pub upper: f64,
     pub lower: f64,
 }
 
-/// The modal model with residual terms at `f` Hz.
+/// The modal model with residual terms at `f` Hz: the FRF of the structure
+/// (an endless record), without the cut-off decays.
 pub fn model_at(basis: PoleBasis, f: f64, poles: &[Complex64], fitted: &Residues) -> Complex64 {
     let iw = 2.0 * PI * f;
     let mut m = Complex64::new(fitted.upper, 0.0);
@@ -130,64 +206,90 @@ pub fn model_at(basis: PoleBasis, f: f64, poles: &[Complex64], fitted: &Residues
 }
 
 /// The design matrix of the residues and residual terms of `poles`: rows
-/// (Re, Im) per bin, columns (Re R_r, Im R_r) per pole, then U and L.
+/// (Re, Im) per bin, columns (Re R_r, Im R_r) per pole, then (Re D_r,
+/// Im D_r) per pole with records, then U and L.
 fn design(band: Band<'_>, poles: &[Complex64]) -> DMatrix<f64> {
-    let cols = 2 * poles.len() + 2;
+    let np = poles.len();
+    let cols = band.per_pole() * np + 2;
     let mut a = DMatrix::<f64>::zeros(2 * band.bins.len(), cols);
+    let i = Complex64::new(0.0, 1.0);
     for (k, (f, _)) in band.bins.iter().enumerate() {
+        let w = band.weight(k);
         for (r, p) in poles.iter().enumerate() {
             // R = x + iy: R g + R̄ g' = x·(g + g') + y·i(g − g').
             let g1 = band.basis.term(*f, *p);
             let g2 = band.basis.term(*f, p.conj());
-            let cx = g1 + g2;
-            let cy = Complex64::new(0.0, 1.0) * (g1 - g2);
+            let (cx, cy) = (g1 + g2, i * (g1 - g2));
             a[(2 * k, 2 * r)] = cx.re;
             a[(2 * k + 1, 2 * r)] = cx.im;
             a[(2 * k, 2 * r + 1)] = cy.re;
             a[(2 * k + 1, 2 * r + 1)] = cy.im;
+            if band.truncation.is_some() && (p.re * band.record_s).exp() > TRUNCATION_FLOOR {
+                let (dx, dy) = (w * cx, w * cy);
+                a[(2 * k, 2 * np + 2 * r)] = dx.re;
+                a[(2 * k + 1, 2 * np + 2 * r)] = dx.im;
+                a[(2 * k, 2 * np + 2 * r + 1)] = dy.re;
+                a[(2 * k + 1, 2 * np + 2 * r + 1)] = dy.im;
+            }
         }
         a[(2 * k, cols - 2)] = 1.0;
-        let w = 2.0 * PI * f;
-        a[(2 * k, cols - 1)] = if *f != 0.0 { -1.0 / (w * w) } else { 0.0 };
+        let om = 2.0 * PI * f;
+        a[(2 * k, cols - 1)] = if *f != 0.0 { -1.0 / (om * om) } else { 0.0 };
+        let row = band.row(k);
+        if row != 1.0 {
+            a.row_mut(2 * k).scale_mut(row);
+            a.row_mut(2 * k + 1).scale_mut(row);
+        }
     }
     a
 }
 
-/// Least-squares solution of `a` x = `b`, columns scaled to unit norm: by
-/// Householder QR (Qᵀb applied in place, Q never formed), or by SVD when
-/// R is near singular (two poles on top of each other).
-fn least_squares(mut a: DMatrix<f64>, b: &DVector<f64>) -> DVector<f64> {
+/// Least-squares solution of `a` x = `b`, columns scaled to unit norm
+/// and zero columns left out (their unknowns 0): by Householder QR (Qᵀb
+/// applied in place, Q never formed), or by SVD when R is near singular
+/// (two poles on top of each other).
+fn least_squares(a: DMatrix<f64>, b: &DVector<f64>) -> DVector<f64> {
     let cols = a.ncols();
-    let norms: Vec<f64> = (0..cols)
-        .map(|j| a.column(j).norm().max(f64::MIN_POSITIVE))
+    let used: Vec<(usize, f64)> = (0..cols)
+        .map(|j| (j, a.column(j).norm()))
+        .filter(|(_, n)| *n > 0.0)
         .collect();
-    for (j, nj) in norms.iter().enumerate() {
-        a.column_mut(j).scale_mut(1.0 / nj);
+    let mut m = DMatrix::<f64>::zeros(a.nrows(), used.len());
+    for (c, (j, n)) in used.iter().enumerate() {
+        m.set_column(c, &(a.column(*j) / *n));
     }
-    let qr = a.clone().qr();
+    let k = used.len();
+    let qr = m.clone().qr();
     let r = qr.r();
-    let largest = r.diagonal().iter().fold(0.0_f64, |m, d| m.max(d.abs()));
+    let largest = r.diagonal().iter().fold(0.0_f64, |mx, d| mx.max(d.abs()));
     let regular = r.diagonal().iter().all(|d| d.abs() > 1e-10 * largest);
-    let x = if regular {
+    let y = if regular {
         let mut qtb = b.clone();
         qr.q_tr_mul(&mut qtb);
-        r.solve_upper_triangular(&qtb.rows(0, cols).into_owned())
+        r.solve_upper_triangular(&qtb.rows(0, k).into_owned())
     } else {
         None
     };
-    let x = x.unwrap_or_else(|| {
-        a.svd(true, true)
+    let y = y.unwrap_or_else(|| {
+        m.svd(true, true)
             .solve(b, 1e-12)
-            .unwrap_or_else(|_| DVector::zeros(cols))
+            .unwrap_or_else(|_| DVector::zeros(k))
     });
-    DVector::from_iterator(cols, x.iter().zip(&norms).map(|(v, n)| v / n))
+    let mut x = DVector::zeros(cols);
+    for (c, (j, n)) in used.iter().enumerate() {
+        x[*j] = y[c] / n;
+    }
+    x
 }
 
-/// The measured FRF of the band as (Re, Im) per bin.
+/// The measured FRF of the band as (Re, Im) per bin, weighted.
 fn measured(band: Band<'_>) -> DVector<f64> {
     DVector::from_iterator(
         2 * band.bins.len(),
-        band.bins.iter().flat_map(|(_, h)| [h.re, h.im]),
+        band.bins
+            .iter()
+            .enumerate()
+            .flat_map(|(k, (_, h))| [band.row(k) * h.re, band.row(k) * h.im]),
     )
 }
 
@@ -195,26 +297,44 @@ fn measured(band: Band<'_>) -> DVector<f64> {
 /// (LSFD).
 pub fn residues(band: Band<'_>, poles: &[Complex64]) -> Residues {
     let x = least_squares(design(band, poles), &measured(band));
-    let cols = x.len();
+    let (cols, np) = (x.len(), poles.len());
+    let pair = |c: usize| Complex64::new(x[c], x[c + 1]);
     Residues {
-        residues: (0..poles.len())
-            .map(|r| Complex64::new(x[2 * r], x[2 * r + 1]))
-            .collect(),
+        residues: (0..np).map(|r| pair(2 * r)).collect(),
+        truncation: if band.truncation.is_some() {
+            (0..np).map(|r| pair(2 * np + 2 * r)).collect()
+        } else {
+            Vec::new()
+        },
         upper: x[cols - 2],
         lower: x[cols - 1],
     }
 }
 
-/// ∂(model)/∂(Re s_j, Im s_j) per bin (rows Re, Im), the residues held.
+/// ∂(model)/∂(Re s_j, Im s_j) per bin (rows Re, Im, weighted), the
+/// residues held.
 fn pole_jacobian(band: Band<'_>, poles: &[Complex64], fitted: &Residues) -> DMatrix<f64> {
     let mut jac = DMatrix::<f64>::zeros(2 * band.bins.len(), 2 * poles.len());
     let i = Complex64::new(0.0, 1.0);
     for (k, (f, _)) in band.bins.iter().enumerate() {
+        let w = band.weight(k);
         for (j, (p, r)) in poles.iter().zip(&fitted.residues).enumerate() {
-            let d1 = *r * band.basis.term_derivative(*f, *p);
-            let d2 = r.conj() * band.basis.term_derivative(*f, p.conj());
+            // The pole's coefficient in the data: R, plus W·D with records.
+            let c = *r
+                + fitted
+                    .truncation
+                    .get(j)
+                    .map_or(Complex64::new(0.0, 0.0), |d| w * d);
+            let cc = r.conj()
+                + fitted
+                    .truncation
+                    .get(j)
+                    .map_or(Complex64::new(0.0, 0.0), |d| w * d.conj());
+            let d1 = c * band.basis.term_derivative(*f, *p);
+            let d2 = cc * band.basis.term_derivative(*f, p.conj());
             let dx = d1 + d2;
-            let dy = i * d1 - i * d2;
+            let row = band.row(k);
+            let (dx, dy) = (row * dx, row * (i * d1 - i * d2));
             jac[(2 * k, 2 * j)] = dx.re;
             jac[(2 * k + 1, 2 * j)] = dx.im;
             jac[(2 * k, 2 * j + 1)] = dy.re;
@@ -227,15 +347,26 @@ fn pole_jacobian(band: Band<'_>, poles: &[Complex64], fitted: &Residues) -> DMat
 /// Standard error of each pole's real part −σ = −ζω: the linearised
 /// least-squares covariance (JᵀJ)⁻¹ over all unknowns (poles, residues,
 /// U, L), with each pole's noise variance the mean |H − Ĥ|²/2 per real
-/// number over ±[`NOISE_WINDOW_BINS`] bins of it.
+/// number over ±[`NOISE_WINDOW_BINS`] bins of it, times the residual's
+/// correlation length ℓ in bins ([`super::residual_search`]: noise spread
+/// over ℓ bins by a window tells ℓ times less), at most the pole's
+/// half-power bandwidth 2ζf/Δf in bins (noise smoother than the peak is a
+/// background to it).
 pub fn decay_standard_errors(band: Band<'_>, poles: &[Complex64]) -> Vec<f64> {
     let fitted = residues(band, poles);
     let jp = pole_jacobian(band, poles, &fitted);
     let a = design(band, poles);
-    let (rows, np, na) = (jp.nrows(), jp.ncols(), a.ncols());
+    // The linear unknowns in play: a pole without a cut-off term has zero
+    // columns for it.
+    let live: Vec<usize> = (0..a.ncols())
+        .filter(|&c| a.column(c).norm() > 0.0)
+        .collect();
+    let (rows, np, na) = (jp.nrows(), jp.ncols(), live.len());
     let mut j = DMatrix::<f64>::zeros(rows, np + na);
     j.view_mut((0, 0), (rows, np)).copy_from(&jp);
-    j.view_mut((0, np), (rows, na)).copy_from(&a);
+    for (c, &col) in live.iter().enumerate() {
+        j.set_column(np + c, &a.column(col));
+    }
     let norms: Vec<f64> = (0..np + na)
         .map(|c| j.column(c).norm().max(f64::MIN_POSITIVE))
         .collect();
@@ -245,12 +376,18 @@ pub fn decay_standard_errors(band: Band<'_>, poles: &[Complex64]) -> Vec<f64> {
     let Some(cov) = (j.transpose() * &j).try_inverse() else {
         return vec![f64::INFINITY; poles.len()];
     };
-    let r2: Vec<f64> = band
-        .bins
-        .iter()
-        .map(|(f, h)| (h - model_at(band.basis, *f, poles, &fitted)).norm_sqr())
+    let r: Vec<Complex64> = (0..band.bins.len())
+        .map(|k| band.residual(k, poles, &fitted))
         .collect();
+    let r2: Vec<f64> = r.iter().map(|v| v.norm_sqr()).collect();
+    // Noise correlated over ℓ bins carries 1/ℓ of the information of
+    // independent noise: the variance of the estimate grows by ℓ.
+    let ell = super::residual_search::correlation_length(&r);
     let n = band.bins.len();
+    let df = match (band.bins.first(), band.bins.last()) {
+        (Some(a), Some(b)) if n > 1 => (b.0 - a.0) / (n - 1) as f64,
+        _ => 1.0,
+    };
     poles
         .iter()
         .enumerate()
@@ -265,7 +402,12 @@ pub fn decay_standard_errors(band: Band<'_>, poles: &[Complex64]) -> Vec<f64> {
                 k.saturating_sub(NOISE_WINDOW_BINS),
                 (k + NOISE_WINDOW_BINS + 1).min(n),
             );
-            let var = r2[lo..hi].iter().sum::<f64>() / (2 * (hi - lo).max(1)) as f64;
+            // Noise correlated over more bins than the pole's half-power
+            // band is smooth across it: a background, not a change of
+            // shape. The inflation stops at the band's width in bins.
+            let width = (-p.re / PI / df).max(1.0);
+            let var =
+                ell.min(width) * r2[lo..hi].iter().sum::<f64>() / (2 * (hi - lo).max(1)) as f64;
             (var * cov[(2 * q, 2 * q)]).sqrt() / norms[2 * q]
         })
         .collect()
@@ -293,31 +435,41 @@ fn unphysical(p: Complex64, settings: &FitSettings) -> Option<RejectReason> {
     (f < settings.f_lo || f > settings.f_hi).then_some(RejectReason::LeftBand)
 }
 
-/// Significance of each pole (module doc).
+/// Significance of each pole (module doc), divided by
+/// √(max(1, min(ℓ, w)/4)) for a pole w bins wide when the residual is
+/// correlated over ℓ bins ([`super::residual_search::correlation_length`]):
+/// such noise bends H over the pole's band as a pole would.
 pub fn significance(band: Band<'_>, poles: &[Complex64]) -> Vec<f64> {
     let fitted = residues(band, poles);
     let resid: Vec<Complex64> = band
         .bins
         .iter()
-        .map(|(f, h)| h - model_at(band.basis, *f, poles, &fitted))
+        .enumerate()
+        .map(|(k, _)| band.residual(k, poles, &fitted))
         .collect();
     let df = match (band.bins.first(), band.bins.last()) {
         (Some(a), Some(b)) if band.bins.len() > 1 => (b.0 - a.0) / (band.bins.len() - 1) as f64,
         _ => 0.0,
     };
+    let ell = super::residual_search::correlation_length(&resid);
     poles
         .iter()
-        .zip(&fitted.residues)
-        .map(|(p, r)| {
+        .enumerate()
+        .map(|(j, p)| {
             let fd = p.im / (2.0 * PI);
             let half = (-p.re / (2.0 * PI)).max(MIN_HALF_POWER_BINS * df);
             let (mut c2, mut e2) = (0.0, 0.0);
             for k in bins_near(band.bins, fd, half) {
-                c2 += band.basis.pair(band.bins[k].0, *p, *r).norm_sqr();
+                c2 += (band.row(k) * band.contribution(k, j, *p, &fitted)).norm_sqr();
                 e2 += resid[k].norm_sqr();
             }
+            // Noise correlated over ℓ bins bends H over the pole's band
+            // as a pole would: a pole as wide as that bend must stand
+            // √(min(ℓ, width)/4) times higher (width in bins).
+            let width = 2.0 * half / df.max(f64::MIN_POSITIVE);
+            let bend = (ell.min(width) / 4.0).max(1.0).sqrt();
             if e2 > 0.0 {
-                (c2 / e2).sqrt()
+                (c2 / e2).sqrt() / bend
             } else if c2 > 0.0 {
                 f64::INFINITY
             } else {
@@ -339,6 +491,75 @@ pub const NOISE_WINDOW_BINS: usize = 32;
 /// (a sinusoid of a whole number of periods in the record holds one bin
 /// whatever its decay), is not a mode the record shows.
 pub const DECAY_RESOLUTION: f64 = 3.0;
+
+/// The level of χ² with four degrees of freedom (a pole and its residue)
+/// that noise passes with probability about 1e-6: e^(−x/2)(1 + x/2) at
+/// x = 33 is 1.2e-6.
+pub const REDUNDANT_CHI2: f64 = 33.0;
+
+/// A pole of a close pair that the fit does not need: of two poles within
+/// one half-power band max(ζf, 2Δf) of each other, the one whose removal
+/// (the rest refined again) raises the weighted misfit least, when that
+/// rise is under [`REDUNDANT_CHI2`] times the noise variance per real
+/// number (the mean |r|²/2 over ±[`NOISE_WINDOW_BINS`] bins of the pair,
+/// times the residual's correlation length, at most the pair's half-power
+/// band in bins): noise that bends one peak is fitted by two poles that
+/// share it, and the second is not a mode. Two poles closer than one bin Δf
+/// are never both kept: the record cannot tell them apart.
+fn redundant(band: Band<'_>, poles: &[Complex64]) -> Option<usize> {
+    let n = band.bins.len();
+    if poles.len() < 2 || n < 2 {
+        return None;
+    }
+    let df = (band.bins[n - 1].0 - band.bins[0].0) / (n - 1) as f64;
+    let half = |p: &Complex64| (-p.re / (2.0 * PI)).max(MIN_HALF_POWER_BINS * df);
+    let fd = |p: &Complex64| p.im / (2.0 * PI);
+    let misfit = |ps: &[Complex64]| -> (f64, Vec<Complex64>) {
+        let fitted = residues(band, ps);
+        let r: Vec<Complex64> = (0..n).map(|k| band.residual(k, ps, &fitted)).collect();
+        (r.iter().map(|v| v.norm_sqr()).sum(), r)
+    };
+    let (all, r) = misfit(poles);
+    let ell = super::residual_search::correlation_length(&r);
+    let mut best: Option<(f64, usize)> = None;
+    for i in 0..poles.len() {
+        for j in i + 1..poles.len() {
+            let width = half(&poles[i]).max(half(&poles[j]));
+            if (fd(&poles[i]) - fd(&poles[j])).abs() > width {
+                continue;
+            }
+            let centre = 0.5 * (fd(&poles[i]) + fd(&poles[j]));
+            let k = band
+                .bins
+                .iter()
+                .position(|(f, _)| *f >= centre)
+                .unwrap_or(n - 1);
+            let (lo, hi) = (
+                k.saturating_sub(NOISE_WINDOW_BINS),
+                (k + NOISE_WINDOW_BINS + 1).min(n),
+            );
+            let var = r[lo..hi].iter().map(|v| v.norm_sqr()).sum::<f64>() / (2 * (hi - lo)) as f64
+                * ell.min((2.0 * width / df).max(1.0));
+            // Closer than one bin, two poles are not told apart by the
+            // record whatever the misfit says.
+            let level = if (fd(&poles[i]) - fd(&poles[j])).abs() < df {
+                f64::INFINITY
+            } else {
+                REDUNDANT_CHI2
+            };
+            for drop in [i, j] {
+                let mut rest: Vec<Complex64> = poles.to_vec();
+                rest.remove(drop);
+                refine(band, &mut rest);
+                let rise = (misfit(&rest).0 - all) / var.max(f64::MIN_POSITIVE);
+                if rise < level && best.is_none_or(|(b, _)| rise < b) {
+                    best = Some((rise, drop));
+                }
+            }
+        }
+    }
+    best.map(|(_, i)| i)
+}
 
 /// A pole the choice left out, where it is shown, and why.
 pub type Rejection = (Complex64, RejectReason);
@@ -384,6 +605,11 @@ pub fn select(
             seeds.remove(i);
             continue;
         }
+        if let Some(i) = redundant(band, &poles) {
+            rejected.push((poles[i], RejectReason::Redundant));
+            seeds.remove(i);
+            continue;
+        }
         let weakest = significance(band, &poles)
             .into_iter()
             .enumerate()
@@ -420,10 +646,10 @@ impl lm::Problem for PoleRefinement<'_> {
         let p = poles_of(x);
         let fitted = residues(self.band, &p);
         let mut r = DVector::zeros(2 * self.band.bins.len());
-        for (k, (f, h)) in self.band.bins.iter().enumerate() {
-            let m = model_at(self.band.basis, *f, &p, &fitted);
-            r[2 * k] = m.re - h.re;
-            r[2 * k + 1] = m.im - h.im;
+        for (k, (_, h)) in self.band.bins.iter().enumerate() {
+            let m = self.band.row(k) * (self.band.model(k, &p, &fitted) - h);
+            r[2 * k] = m.re;
+            r[2 * k + 1] = m.im;
         }
         Ok(r)
     }
@@ -432,17 +658,25 @@ impl lm::Problem for PoleRefinement<'_> {
         point.clone()
     }
 
-    /// Analytic, the residues held (Kaufman's variable projection: the
-    /// same minimum, since the misfit is stationary in the residues).
+    /// Forward differences of the projected misfit, step 1e-7 |s| for each
+    /// pole's parts (the residues solved again at each: the full
+    /// variable-projection Jacobian; Kaufman's, with the residues held,
+    /// stalls a weak pole beside a large misfit).
     fn jacobian(
         &mut self,
         x: &[f64],
         _: &DVector<f64>,
-        _: &DVector<f64>,
+        r: &DVector<f64>,
     ) -> Result<DMatrix<f64>, Self::Error> {
-        let p = poles_of(x);
-        let fitted = residues(self.band, &p);
-        Ok(pole_jacobian(self.band, &p, &fitted))
+        let mut jac = DMatrix::<f64>::zeros(r.len(), x.len());
+        for j in 0..x.len() {
+            let mut xj = x.to_vec();
+            let step = 1e-7 * Complex64::new(x[j / 2 * 2], x[j / 2 * 2 + 1]).norm();
+            xj[j] += step;
+            let rj = self.evaluate(&xj)?;
+            jac.set_column(j, &((rj - r) / step));
+        }
+        Ok(jac)
     }
 }
 

@@ -14,6 +14,8 @@
 //!   stabilization diagram;
 //! * [`lsfd`] — the modal model of a band: residues by least squares, poles
 //!   refined, the physical and significant ones chosen;
+//! * [`residual_search`] — modes the LSCF seeds missed, found where the fit
+//!   residual stands above the noise;
 //! * [`lm`] — the one bounded Levenberg–Marquardt loop (the calibration of
 //!   model parameters and the pole refinement both use it);
 //! * [`mac`] — the modal assurance criterion between two mode sets.
@@ -28,6 +30,7 @@ pub mod lm;
 pub mod lsfd;
 pub mod mac;
 pub mod resample;
+pub mod residual_search;
 pub mod spectrum;
 pub mod window;
 
