@@ -458,11 +458,25 @@ pub fn significance(band: Band<'_>, poles: &[Complex64]) -> Vec<f64> {
         .map(|(j, p)| {
             let fd = p.im / (2.0 * PI);
             let half = (-p.re / (2.0 * PI)).max(MIN_HALF_POWER_BINS * df);
-            let (mut c2, mut e2) = (0.0, 0.0);
+            let (mut c2, mut e2, mut m) = (0.0, 0.0, 0usize);
             for k in bins_near(band.bins, fd, half) {
                 c2 += (band.row(k) * band.contribution(k, j, *p, &fitted)).norm_sqr();
                 e2 += resid[k].norm_sqr();
+                m += 1;
             }
+            // The noise around the pole as well: the median residual power
+            // over ±NOISE_WINDOW_BINS (/ln 2), where a pole fitted to a
+            // bend of correlated noise left the rest of that bend.
+            let centre = band.bins.iter().position(|(f, _)| *f >= fd).unwrap_or(0);
+            let (lo, hi) = (
+                centre.saturating_sub(4 * NOISE_WINDOW_BINS),
+                (centre + 4 * NOISE_WINDOW_BINS + 1).min(resid.len()),
+            );
+            let mut around: Vec<f64> = resid[lo..hi].iter().map(|v| v.norm_sqr()).collect();
+            around.sort_by(f64::total_cmp);
+            let floor =
+                around.get(around.len() / 2).copied().unwrap_or(0.0) / std::f64::consts::LN_2;
+            e2 = e2.max(floor * m as f64);
             // Noise correlated over ℓ bins bends H over the pole's band
             // as a pole would: a pole as wide as that bend must stand
             // √(min(ℓ, width)/4) times higher (width in bins).
