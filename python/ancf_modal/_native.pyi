@@ -218,7 +218,6 @@ class ModalResult:
         """Draws the first six elastic mode shapes to ``path`` (.svg, .png)."""
 
 @final
-@final
 class ImpulseResult:
     """The result of ``Model.impulse``; ``repr`` is the command line's report."""
 

@@ -212,7 +212,7 @@ pub fn analyse(
         window_decay_rate: est.as_ref().map_or(0.0, |e| e.window_decay_rate),
         basis: est
             .as_ref()
-            .map_or(PoleBasis::Continuous, |e| PoleBasis::Sampled {
+            .map_or(PoleBasis::Continuous, |e| PoleBasis::Filtered {
                 interval_s: 1.0 / e.sample_rate_hz,
             }),
     };

@@ -57,6 +57,7 @@
 //! back to every pole, Re s_r += σ_w, before f and ζ are computed.
 
 use nalgebra::DMatrix;
+use rayon::prelude::*;
 use realfft::num_complex::Complex64;
 
 use super::lsfd::{self, Band};
@@ -179,6 +180,8 @@ pub struct ModalFit {
     /// Residual terms U (FRF unit) and L (FRF unit × 1/s²).
     pub upper_residual: f64,
     pub lower_residual: f64,
+    /// The other residual terms' coefficients ([`lsfd::RESIDUAL_POWERS`]).
+    pub residual_powers: [f64; 3],
     pub settings: FitSettings,
 }
 
@@ -196,6 +199,7 @@ impl ModalFit {
             truncation: Vec::new(),
             upper: self.upper_residual,
             lower: self.lower_residual,
+            powers: self.residual_powers,
         };
         lsfd::model_at(self.settings.basis, f_hz, &poles, &fitted)
     }
@@ -341,6 +345,7 @@ fn fit_with(
         diagram: Vec::new(),
         upper_residual: 0.0,
         lower_residual: 0.0,
+        residual_powers: [0.0; 3],
         settings: *settings,
     };
     let n_max = (settings.max_order.max(2) / 2 * 2).min(2 * (band.len() / 2).saturating_sub(1));
@@ -390,33 +395,32 @@ fn fit_with(
     }
     let needed = all.len().div_ceil(3).max(2).min(all.len());
     let seeds = clusters(&all, needed);
-    let bins = Band {
-        bins: &band,
-        basis: settings.basis,
-        truncation: weights.as_deref(),
-        record_s,
-        rows: rows.as_deref(),
-    };
-    let (mut kept, mut rejected) = lsfd::select(bins, &seeds, settings);
-    let mut tried = Vec::new();
-    while tried.len() < MAX_RESIDUAL_SEEDS {
-        let Some((stretch, seed)) = residual_search::residual_peak(bins, &kept, &tried) else {
-            break;
-        };
-        tried.push(stretch);
-        let mut trial = kept.clone();
-        trial.push(seed);
-        let (more, left_out) = lsfd::select(bins, &trial, settings);
-        if more.len() > kept.len() {
-            kept = more;
-            rejected.extend(left_out);
-        } else {
-            let near = |p: &Complex64| {
-                (p.im / (2.0 * std::f64::consts::PI) - stretch.0).abs() <= stretch.1
+    // Records may have been low-pass filtered before sampling or not
+    // (lsfd's module doc): the basis whose fit leaves the smaller misfit
+    // is the one the records follow.
+    let chosen = settings
+        .basis
+        .candidates()
+        .into_par_iter()
+        .map(|basis| {
+            let bins = Band {
+                bins: &band,
+                basis,
+                truncation: weights.as_deref(),
+                record_s,
+                rows: rows.as_deref(),
             };
-            rejected.extend(left_out.into_iter().filter(|(p, _)| near(p)));
-        }
-    }
+            let (kept, rejected) = choose_poles(bins, &seeds, settings);
+            let misfit = lsfd::misfit(bins, &kept);
+            (misfit, bins, kept, rejected)
+        })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    let Some((_, bins, mut kept, rejected)) = chosen else {
+        return result;
+    };
+    result.settings.basis = bins.basis;
     kept.sort_by(|a, b| a.im.total_cmp(&b.im));
     result.rejected = rejected
         .into_iter()
@@ -433,9 +437,11 @@ fn fit_with(
         residues: res,
         upper: u,
         lower: l,
+        powers,
         ..
     } = lsfd::residues(bins, &kept);
     result.upper_residual = u;
+    result.residual_powers = powers;
     result.lower_residual = l;
     result.modes = kept
         .iter()
@@ -464,6 +470,37 @@ fn fit_with(
         m.magnitude = a;
     }
     result
+}
+
+/// The poles kept from `seeds` ([`lsfd::select`]), then from the peaks
+/// the fit's residual still shows ([`residual_search`]), with the poles
+/// rejected on the way.
+fn choose_poles(
+    bins: Band<'_>,
+    seeds: &[Complex64],
+    settings: &FitSettings,
+) -> (Vec<Complex64>, Vec<lsfd::Rejection>) {
+    let (mut kept, mut rejected) = lsfd::select(bins, seeds, settings);
+    let mut tried = Vec::new();
+    while tried.len() < MAX_RESIDUAL_SEEDS {
+        let Some((stretch, seed)) = residual_search::residual_peak(bins, &kept, &tried) else {
+            break;
+        };
+        tried.push(stretch);
+        let mut trial = kept.clone();
+        trial.push(seed);
+        let (more, left_out) = lsfd::select(bins, &trial, settings);
+        if more.len() > kept.len() {
+            kept = more;
+            rejected.extend(left_out);
+        } else {
+            let near = |p: &Complex64| {
+                (p.im / (2.0 * std::f64::consts::PI) - stretch.0).abs() <= stretch.1
+            };
+            rejected.extend(left_out.into_iter().filter(|(p, _)| near(p)));
+        }
+    }
+    (kept, rejected)
 }
 
 /// The poles (f Hz, ζ, s) in [f_lo, f_hi] of the LSCF fits of orders 2, 4,
