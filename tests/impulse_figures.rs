@@ -191,12 +191,15 @@ fn response_zoom_panel_shows_the_first_ten_periods() {
         4,
         "whole record (2 panels) over the zoom (2 panels)"
     );
-    // The whole record's panels span it, the zoom panels 0 to ten periods
-    // of the first bending eigenfrequency.
+    // The whole record's panels span it (from its pre-trigger, ahead of
+    // the blow at t = 0, to its last sample), the zoom panels its start to
+    // ten periods of the first bending eigenfrequency after the blow.
     let f1 = result.modal.first_bending().unwrap().frequency_hz;
-    for (i, end) in [(0, 0.02), (1, 0.02), (2, 10.0 / f1), (3, 10.0 / f1)] {
+    let (t0, t1) = (result.time[0], *result.time.last().unwrap());
+    assert!(t0 < 0.0 && t1 <= 0.02, "a pre-trigger: record {t0}..{t1} s");
+    for (i, end) in [(0, t1), (1, t1), (2, 10.0 / f1), (3, 10.0 / f1)] {
         let (lo, hi) = layout[i].x_range;
-        assert!(lo.abs() < 1e-12, "panel {i} starts at {lo} s");
+        assert!((lo - t0).abs() < 1e-12, "panel {i} starts at {lo} s");
         assert!(
             (hi - end).abs() <= 1e-3 * end,
             "panel {i} ends at {hi} s, expected {end} s"
@@ -205,7 +208,11 @@ fn response_zoom_panel_shows_the_first_ten_periods() {
     let svg = parse_svg(&render(&fig, Format::Svg, SIZE).unwrap(), "response");
     assert_texts(
         &svg,
-        &["First 2.19 ms: the pulse and the first oscillations"],
+        &[format!(
+            "First {:.2} ms: the pulse and the first oscillations",
+            1e3 * (10.0 / f1 - t0)
+        )
+        .as_str()],
         "zoom",
     );
     // Independent of the layout: the sensor curve drawn in the zoomed

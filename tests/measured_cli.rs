@@ -89,12 +89,15 @@ fn frf_on_csv_hits_finds_both_modes_and_writes_every_output() {
     let doc2: serde_json::Value = serde_json::from_slice(&again.stdout).unwrap();
     let p2 = doc2["peaks"].as_array().unwrap();
     assert_eq!(p2.len(), 2);
-    for (a, b) in peaks.iter().zip(p2) {
-        let (fa, fb) = (
-            a["frequency_hz"].as_f64().unwrap(),
-            b["frequency_hz"].as_f64().unwrap(),
-        );
-        assert!((fa - fb).abs() < 1e-6 * fa);
+    // The file holds the FRF without its sampling interval, so it is fitted
+    // with continuous-time poles, the records with the sampled basis: two
+    // estimators on the same noisy estimate, each held to the truth with the
+    // tolerance the record fit meets above.
+    for (p, m) in p2.iter().zip(modes()) {
+        let f = p["frequency_hz"].as_f64().unwrap();
+        let z = p["damping_ratio"].as_f64().unwrap();
+        assert!((f - m.f).abs() < 3e-4 * m.f, "file f = {f}");
+        assert!((z - m.zeta).abs() < 0.05 * m.zeta, "file ζ = {z}");
     }
     // The table.
     let table = bin().arg("frf").args(&files).output().unwrap();

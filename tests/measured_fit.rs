@@ -6,7 +6,7 @@
 mod measured_support;
 
 use ancf_modal::measured::frf::estimate;
-use ancf_modal::signal::fit::{fit, FitSettings};
+use ancf_modal::signal::fit::{fit, FitSettings, PoleBasis};
 use ancf_modal::signal::Window;
 use measured_support::{hammer_records, peak, pulse, respond, TestMode};
 
@@ -25,6 +25,9 @@ fn check(modes: &[TestMode], band: (f64, f64), window: Window, n: usize, noise: 
             f_hi: band.1,
             max_order: 40,
             window_decay_rate: e.window_decay_rate,
+            basis: PoleBasis::Sampled {
+                interval_s: 1.0 / e.sample_rate_hz,
+            },
         },
     );
     let found: Vec<(f64, f64)> = result

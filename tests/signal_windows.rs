@@ -7,7 +7,7 @@
 
 use std::f64::consts::PI;
 
-use ancf_modal::signal::fit::{fit, FitSettings};
+use ancf_modal::signal::fit::{fit, FitSettings, PoleBasis};
 use ancf_modal::signal::Window;
 use realfft::num_complex::Complex64;
 
@@ -152,6 +152,7 @@ fn the_fit_moves_the_pole_back() {
         f_hi: 1_000.0,
         max_order: 20,
         window_decay_rate: sigma_w,
+        basis: PoleBasis::Continuous,
     };
     let result = fit(&frequency_hz, &h, &settings);
     assert_eq!(result.modes.len(), 1, "{:?}", result.modes);

@@ -341,9 +341,11 @@ fn a_damped_spring_decays_at_its_damping_ratio() {
 /// filtered step values there (what the filter removes, the sensor's
 /// content above 20 kHz, mostly modes 6 and 7 at 29–31 kHz, is about 1 % of
 /// its peak; tests/measured_alias.rs checks that it leaves no folded peak).
+/// The record starts a pre-trigger of P samples ahead of t = 0, the
+/// structure at rest before it.
 #[test]
 fn sampled_signal_equals_the_step_values_at_step_times() {
-    use ancf_modal::signal::resample::{resample, AntiAlias};
+    use ancf_modal::signal::resample::{pre_trigger, resample_from_rest, AntiAlias};
     let model = Model::builtin();
     let mut every_step = ImpulseSettings::default();
     every_step.transient.end_time = 2e-3;
@@ -353,16 +355,29 @@ fn sampled_signal_equals_the_step_values_at_step_times() {
     sampled.sample_rate = Some(50_000.0);
     let r = run_impulse(&model, &sampled, &mut |_| {}).unwrap();
     assert_eq!(r.time.len(), 101, "samples over 2 ms at 50 kHz");
-    let filtered = resample(&reference.signal, 1e6, 50_000.0, &AntiAlias::default());
+    let design = AntiAlias::default();
+    let lead = pre_trigger(&design, 50_000.0);
+    assert!(lead as f64 / 50_000.0 >= design.half_length(50_000.0));
+    let filtered = resample_from_rest(
+        &reference.signal,
+        reference.signal[0],
+        1e6,
+        50_000.0,
+        &design,
+    );
     let scale = reference.signal.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     for (k, (&t, &y)) in r.time.iter().zip(&r.signal).enumerate() {
-        let step = 20 * k;
-        let dt = (reference.time[step] - t).abs();
-        assert!(
-            dt < 1e-12,
-            "sample {k}: t = {t} s vs step time {}",
-            reference.time[step]
-        );
+        let expected_t = (k as f64 - lead as f64) / 50_000.0;
+        assert!((t - expected_t).abs() < 1e-12, "sample {k}: t = {t} s");
+        if k >= lead {
+            let step = 20 * (k - lead);
+            let dt = (reference.time[step] - t).abs();
+            assert!(
+                dt < 1e-12,
+                "sample {k}: t = {t} s vs step time {}",
+                reference.time[step]
+            );
+        }
         let err = (filtered[k] - y).abs() / scale;
         assert!(
             err < 1e-12,

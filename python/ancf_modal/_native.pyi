@@ -218,7 +218,6 @@ class ModalResult:
         """Draws the first six elastic mode shapes to ``path`` (.svg, .png)."""
 
 @final
-@final
 class ImpulseResult:
     """The result of ``Model.impulse``; ``repr`` is the command line's report."""
 
@@ -322,7 +321,9 @@ class FrfResult:
         magnitude, residue."""
     @property
     def rejected(self) -> List[Dict[str, Any]]:
-        """Stable poles not reported as modes, with the reason."""
+        """Stable poles not reported as modes: dicts with frequency_hz [Hz],
+        damping_ratio [–], reason (``outside_band``, ``left_band``,
+        ``not_significant``, ``failed_refinement``) and why (in words)."""
     @property
     def stabilization(self) -> List[Dict[str, Any]]:
         """The stabilization diagram's poles."""

@@ -17,7 +17,9 @@ use super::band::automatic_band;
 pub use super::band::BandEnd;
 use super::frf::{estimate, FrfEstimate};
 use super::{MeasuredError, Measurement};
-use crate::signal::fit::{fit, FitSettings, ModalFit, RejectReason, RejectedPole};
+use crate::signal::fit::{
+    fit, fit_records, FitSettings, ModalFit, PoleBasis, Records, RejectReason, RejectedPole,
+};
 use crate::signal::Window;
 
 /// Which estimator the fit uses.
@@ -208,8 +210,25 @@ pub fn analyse(
         f_hi: band.1,
         max_order: settings.max_order,
         window_decay_rate: est.as_ref().map_or(0.0, |e| e.window_decay_rate),
+        basis: est
+            .as_ref()
+            .map_or(PoleBasis::Continuous, |e| PoleBasis::Filtered {
+                interval_s: 1.0 / e.sample_rate_hz,
+            }),
     };
-    let fit = fit(&frequency_hz, h, &fit_settings);
+    let fit = match &est {
+        Some(e) => fit_records(
+            &frequency_hz,
+            h,
+            Records {
+                truncation: &e.truncation_weight,
+                force_power: &e.force_power,
+                duration_s: e.samples as f64 / e.sample_rate_hz,
+            },
+            &fit_settings,
+        ),
+        None => fit(&frequency_hz, h, &fit_settings),
+    };
     let found: Vec<f64> = fit.modes.iter().map(|m| m.frequency_hz).collect();
     let mut rejected = fit.rejected.clone();
     rejected.extend(outside_band(

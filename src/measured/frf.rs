@@ -32,6 +32,9 @@ pub struct FrfEstimate {
     /// Mean force auto spectrum G_ff/hits, N² (unscaled DFT), to judge
     /// which band the hammer excited.
     pub force_power: Vec<f64>,
+    /// Weight of the decays cut off by the records' end in H1, 1/N
+    /// ([`crate::signal::frf::CrossSpectra::truncation_weight`]).
+    pub truncation_weight: Vec<Complex64>,
 }
 
 impl FrfEstimate {
@@ -102,6 +105,7 @@ pub fn estimate(records: &[TimeRecord], window: Window) -> Result<FrfEstimate, M
         window,
         window_decay_rate: cross.window_decay_rate(),
         force_power: cross.gff.iter().map(|g| g / records.len() as f64).collect(),
+        truncation_weight: cross.truncation_weight(),
         frequency_hz: cross.frequency_hz,
     })
 }

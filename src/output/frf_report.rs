@@ -48,6 +48,7 @@ pub fn frf_table(a: &FrfAnalysis, q: ResponseQuantity) -> String {
         a.fit.settings.max_order
     );
     let _ = writeln!(s, "the band ends {}", a.band_end.describe());
+    let _ = writeln!(s, "data taken as {}", a.fit.settings.basis.describe());
     if a.fit.modes.is_empty() {
         let _ = writeln!(s, "no stable mode found in the band");
     } else {

@@ -260,6 +260,11 @@ pub struct FrfOutput {
     pub band_end: String,
     /// The fitting method in words.
     pub method: String,
+    /// What the fit took the data for: `continuous` (an FRF on a frequency
+    /// axis), `sampled` (records sampled without a low-pass: discrete-time
+    /// poles) or `filtered` (records low-pass filtered before sampling:
+    /// continuous-time poles); for records, the better fit of the last two.
+    pub pole_basis: String,
     /// Frequency lines [Hz].
     pub frequency_hz: Vec<f64>,
     /// H1 per line, real and imaginary part [FRF unit]; null where not finite.
@@ -300,6 +305,7 @@ impl FrfOutput {
             band_hz: [a.band.0, a.band.1],
             band_end: a.band_end.key().to_string(),
             method: "LSCF (z-domain common denominator) with stabilization, poles refined by nonlinear least squares".to_string(),
+            pole_basis: a.fit.settings.basis.key().to_string(),
             frequency_hz: a.frequency_hz.clone(),
             h1: a.h1.iter().map(pair).collect(),
             h2: a.h2.as_ref().map(|h| h.iter().map(pair).collect()),

@@ -60,6 +60,8 @@ pub struct CrossSpectra {
     pub gxx: Vec<f64>,
     /// Σ F̄_i X_i per bin.
     pub gfx: Vec<Complex64>,
+    /// Σ F_i per bin, force unit (for [`CrossSpectra::truncation_weight`]).
+    pub sum_f: Vec<Complex64>,
     /// Pairs summed.
     pub averages: usize,
     /// Samples per record.
@@ -86,6 +88,7 @@ impl CrossSpectra {
             gff: vec![0.0; bins],
             gxx: vec![0.0; bins],
             gfx: vec![Complex64::new(0.0, 0.0); bins],
+            sum_f: vec![Complex64::new(0.0, 0.0); bins],
             averages: 0,
             samples: 0,
             sample_rate_hz,
@@ -106,6 +109,7 @@ impl CrossSpectra {
                 out.gff[k] += fk[k].norm_sqr();
                 out.gxx[k] += xk[k].norm_sqr();
                 out.gfx[k] += fk[k].conj() * xk[k];
+                out.sum_f[k] += fk[k];
             }
             out.averages += 1;
         }
@@ -113,6 +117,33 @@ impl CrossSpectra {
             return Err(SpectrumError::NoRecords);
         }
         Ok(out)
+    }
+
+    /// The weight W_k = e^(−2πi k n/L) conj(Σ F_i)/Σ|F_i|² with which a
+    /// response decay cut off by the end of the n-sample records enters H1
+    /// (L the DFT length): a record ends while the decay D λ^j of a mode
+    /// goes on, and the part it misses, Σ_(j≥n) D λ^j z^(−j), is
+    /// D λ^n z^(−n)/(1 − λ z^(−1)): the mode's own pole term, weighted by
+    /// z^(−n) and divided by the force (for hits of one shape). Zero where
+    /// the force has no power.
+    pub fn truncation_weight(&self) -> Vec<Complex64> {
+        let l = self.settings.fft_len as f64;
+        self.gff
+            .iter()
+            .zip(&self.sum_f)
+            .enumerate()
+            .map(|(k, (g, f))| {
+                if *g > 0.0 {
+                    let z = Complex64::from_polar(
+                        1.0,
+                        -2.0 * std::f64::consts::PI * k as f64 * self.samples as f64 / l,
+                    );
+                    z * f.conj() / *g
+                } else {
+                    Complex64::new(0.0, 0.0)
+                }
+            })
+            .collect()
     }
 
     fn check_pair(&self, force: &[f64], response: &[f64]) -> Result<(), SpectrumError> {

@@ -11,7 +11,11 @@
 //! * [`resample`] — linear interpolation of non-uniform samples onto a
 //!   uniform grid, and Kaiser-windowed sinc resampling to a lower rate;
 //! * [`fit`] — modal parameters from an FRF: LSCF poles with a
-//!   stabilization diagram, residues by least squares, poles refined;
+//!   stabilization diagram;
+//! * [`lsfd`] — the modal model of a band: residues by least squares, poles
+//!   refined, the physical and significant ones chosen;
+//! * [`residual_search`] — modes the LSCF seeds missed, found where the fit
+//!   residual stands above the noise;
 //! * [`lm`] — the one bounded Levenberg–Marquardt loop (the calibration of
 //!   model parameters and the pole refinement both use it);
 //! * [`mac`] — the modal assurance criterion between two mode sets.
@@ -23,8 +27,10 @@
 pub mod fit;
 pub mod frf;
 pub mod lm;
+pub mod lsfd;
 pub mod mac;
 pub mod resample;
+pub mod residual_search;
 pub mod spectrum;
 pub mod window;
 

@@ -180,16 +180,70 @@ pub fn resample(x: &[f64], f_in: f64, f_out: f64, design: &AntiAlias) -> Vec<f64
     if x.is_empty() {
         return Vec::new();
     }
+    let n_out = ((x.len() - 1) as f64 * f_out / f_in).floor() as usize + 1;
+    filter_onto(x, None, f_in, f_out, design, 0, n_out)
+}
+
+/// A record that starts at rest, resampled as an acquisition system with a
+/// pre-trigger records it: `x` (taken at `f_in` from t = 0) held at `rest`
+/// before t = 0, sampled at f_out from t = −P/f_out, P = [`pre_trigger`]
+/// samples, for as many samples as [`resample`] gives. The kernel is
+/// never cut, so both channels of a hit pass one linear filter: the
+/// low-pass's response to the blow (its ringing ahead of the blow, the
+/// kernel being symmetric) is kept, not renormalised away, and the ratio
+/// of the two channels' spectra is the structure's FRF. Returns the
+/// samples; the first is at t = −P/f_out.
+pub fn resample_from_rest(
+    x: &[f64],
+    rest: f64,
+    f_in: f64,
+    f_out: f64,
+    design: &AntiAlias,
+) -> Vec<f64> {
+    if x.is_empty() {
+        return Vec::new();
+    }
+    let n_out = ((x.len() - 1) as f64 * f_out / f_in).floor() as usize + 1;
+    filter_onto(
+        x,
+        Some(rest),
+        f_in,
+        f_out,
+        design,
+        pre_trigger(design, f_out),
+        n_out,
+    )
+}
+
+/// Samples ahead of t = 0 that [`resample_from_rest`] records: the
+/// kernel's half length in output samples, rounded up (29 at the default
+/// design, whatever the rate).
+pub fn pre_trigger(design: &AntiAlias, f_out: f64) -> usize {
+    (design.half_length(f_out) * f_out).ceil() as usize
+}
+
+/// `n_out` samples of `x` behind the low-pass at t_m = (m − lead)/f_out;
+/// taps before the input's start take `before` (or are cut and the kernel
+/// renormalised), taps past its end are cut.
+fn filter_onto(
+    x: &[f64],
+    before: Option<f64>,
+    f_in: f64,
+    f_out: f64,
+    design: &AntiAlias,
+    lead: usize,
+    n_out: usize,
+) -> Vec<f64> {
     let fc = 0.5 * (design.pass + design.stop) * f_out;
     let half = design.half_length(f_out);
     let window = KaiserTable::new(design.beta());
-    let n_out = ((x.len() - 1) as f64 * f_out / f_in).floor() as usize + 1;
     let reach = (half * f_in).ceil() as isize;
+    let first = if before.is_some() { isize::MIN } else { 0 };
     let mut y = Vec::with_capacity(n_out);
     for m in 0..n_out {
-        let t = m as f64 / f_out;
+        let t = (m as f64 - lead as f64) / f_out;
         let centre = (t * f_in).round() as isize;
-        let lo = (centre - reach).max(0);
+        let lo = (centre - reach).max(first);
         let hi = (centre + reach).min(x.len() as isize - 1);
         let (mut acc, mut norm) = (0.0, 0.0);
         // sin θ_k, θ_k = 2π f_c τ_k, by rotation from k = lo (τ falls by
@@ -202,7 +256,11 @@ pub fn resample(x: &[f64], f_in: f64, f_out: f64, design: &AntiAlias) -> Vec<f64
         // r = τ/T = θ/(2π f_c T).
         let r_per_theta = 1.0 / (2.0 * std::f64::consts::PI * fc * half);
         let mut theta = theta0;
-        for &xk in &x[lo as usize..=hi as usize] {
+        for k in lo..=hi {
+            let xk = match usize::try_from(k) {
+                Ok(k) => x[k],
+                Err(_) => before.unwrap_or(0.0),
+            };
             let r = (theta * r_per_theta).abs();
             if r < 1.0 {
                 let sinc = if theta.abs() < 1e-8 { 1.0 } else { sn / theta };

@@ -25,7 +25,7 @@
 //! reported. Without damping in the model the response does not decay
 //! within the record and the fitted ratio only measures the truncation.
 
-use crate::signal::fit::{fit, FitSettings};
+use crate::signal::fit::{fit_records, FitSettings, PoleBasis, Records};
 use crate::signal::frf::{CrossSpectra, CrossSpectraSettings};
 use crate::signal::Window;
 
@@ -89,14 +89,22 @@ pub fn identify_damping(
         remove_mean: false,
     };
     let h = CrossSpectra::estimate([(force, signal)], sample_rate_hz, settings).ok()?;
-    let fitted = fit(
+    let fitted = fit_records(
         &h.frequency_hz,
         &h.h1(),
+        Records {
+            truncation: &h.truncation_weight(),
+            force_power: &h.gff,
+            duration_s: h.samples as f64 / h.sample_rate_hz,
+        },
         &FitSettings {
             f_lo: band.lo_hz,
             f_hi: band.hi_hz,
             max_order: MAX_ORDER,
             window_decay_rate: 0.0,
+            basis: PoleBasis::Sampled {
+                interval_s: 1.0 / sample_rate_hz,
+            },
         },
     );
     let mode = fitted.modes.iter().min_by(|a, b| {

@@ -34,7 +34,7 @@ use super::transient::{Integrator, RunStats, State, TransientSettings};
 use crate::error::{AnalysisError, TransientError};
 use crate::model::{Model, SensorQuantity, TimeFunction};
 use crate::signal::frf::{frf_h1, Frf};
-use crate::signal::resample::{resample, AntiAlias};
+use crate::signal::resample::{pre_trigger, resample_from_rest, AntiAlias};
 use crate::signal::spectrum::{
     self, Peak, PeakSettings, Spectrum, SpectrumError, SpectrumSettings,
 };
@@ -410,7 +410,12 @@ fn identify_first_bending(
 /// [`crate::signal::resample`] (pass band to 0.4 f_s, −90 dB from the
 /// new Nyquist frequency f_s/2), as acquisition hardware filters before it
 /// samples: modes above f_s/2 leave no folded peak below it. The force
-/// passes the same filter.
+/// passes the same filter, and the record starts a pre-trigger ahead of
+/// the blow ([`crate::signal::resample::resample_from_rest`]: 29 samples,
+/// t < 0), so the low-pass's ringing ahead of the blow is recorded in
+/// both channels and their spectra's ratio is the structure's FRF (cut at
+/// t = 0 it had taken 5.7 % off the force's integral at 51.2 kHz and
+/// biased a fitted 925 Hz mode's damping by 8 %).
 struct Recorder<'p> {
     probe: &'p SensorProbe,
     rate: Option<f64>,
@@ -446,9 +451,15 @@ impl<'p> Recorder<'p> {
         let design = AntiAlias::default();
         let f_in = 1.0 / self.step;
         let t0 = self.time.first().copied().unwrap_or(0.0);
-        let signal = resample(&self.signal, f_in, rate, &design);
-        let force = resample(&raw_force, f_in, rate, &design);
-        let time = (0..signal.len()).map(|m| t0 + m as f64 / rate).collect();
+        // At rest before the blow: the sensor holds its first value, the
+        // excitation is zero.
+        let rest = self.signal.first().copied().unwrap_or(0.0);
+        let signal = resample_from_rest(&self.signal, rest, f_in, rate, &design);
+        let force = resample_from_rest(&raw_force, 0.0, f_in, rate, &design);
+        let lead = pre_trigger(&design, rate) as f64;
+        let time = (0..signal.len())
+            .map(|m| t0 + (m as f64 - lead) / rate)
+            .collect();
         (time, signal, force)
     }
 }

@@ -62,7 +62,9 @@ pub fn zoom_end(result: &ImpulseResult) -> f64 {
         Some(m) if m.frequency_hz > 0.0 => ZOOM_PERIODS / m.frequency_hz,
         _ => 0.02 * (t1 - t0),
     };
-    (t0 + span).min(t1)
+    // Counted from the blow at t = 0 when the record starts ahead of it
+    // (the pre-trigger of a sampled record).
+    (t0.max(0.0) + span).min(t1)
 }
 
 /// The signal and force panels over the samples up to `end` (and one
