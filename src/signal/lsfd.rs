@@ -704,7 +704,7 @@ pub fn select(
             .zip(&poles)
             .map(|(se, p)| -p.re / se)
             .enumerate()
-            .filter(|(_, t)| !(*t >= DECAY_RESOLUTION))
+            .filter(|(_, t)| t.is_nan() || *t < DECAY_RESOLUTION)
             .min_by(|a, b| a.1.total_cmp(&b.1));
         if let Some((i, _)) = unresolved {
             rejected.push((poles[i], RejectReason::UnresolvedDamping));
