@@ -317,3 +317,27 @@ fn impulse_uff_records_are_a_hammer_test_for_frf() {
         "first bending {f1} Hz, impulse's raw FFT {raw} Hz"
     );
 }
+
+/// A taper on impact records is warned about (the outside-eyes trial: a
+/// Hann window gave damping 4–5× low without a word); rect is not.
+#[test]
+fn frf_warns_of_a_taper_on_impact_records() {
+    let dir = tempfile::tempdir().unwrap();
+    let files = write_hits(dir.path(), 1);
+    let run = |window: &str| {
+        let out = bin()
+            .arg("frf")
+            .args(&files)
+            .args(["--window", window])
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        String::from_utf8(out.stderr).unwrap()
+    };
+    let hann = run("hann");
+    assert!(
+        hann.contains("warning") && hann.contains("hann window tapers the blow"),
+        "{hann}"
+    );
+    assert!(!run("rect").contains("tapers"));
+}

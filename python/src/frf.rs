@@ -171,10 +171,12 @@ pub fn frf(
         }
         analyse(measurements, o.settings).map_err(|e| Failure::input(&e))
     })?;
+    let notes = analysis.warnings();
+    crate::warn_all(py, &notes)?;
     Ok(PyFrfResult {
         analysis,
         quantity: o.quantity,
-        notes: Vec::new(),
+        notes,
     })
 }
 
@@ -224,6 +226,7 @@ pub fn frf_files(
             notes.extend(n);
         }
         let analysis = analyse(measurements, o.settings).map_err(|e| Failure::input(&e))?;
+        notes.extend(analysis.warnings());
         Ok((analysis, notes))
     })?;
     // The UFF datasets skipped: Python warnings and the document's `warnings`.

@@ -141,7 +141,7 @@ impl MeasuredArgs {
                 m
             })
             .collect();
-        Ok(analyse(
+        let analysis = analyse(
             measurements,
             AnalysisSettings {
                 window: self.window,
@@ -152,7 +152,12 @@ impl MeasuredArgs {
                 band: self.band,
                 max_order: self.max_order as usize,
             },
-        )?)
+        )?;
+        analysis
+            .warnings()
+            .into_iter()
+            .for_each(super::common::warn);
+        Ok(analysis)
     }
 }
 

@@ -92,6 +92,31 @@ pub struct FrfAnalysis {
 }
 
 impl FrfAnalysis {
+    /// What the user must know beside the table: a taper on impact records
+    /// (its damping is the window's, not the structure's), a band outside
+    /// the data's lines.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        let taper = matches!(
+            self.settings.window,
+            Window::Hann | Window::FlatTop | Window::Blackman
+        );
+        if taper && self.estimate.is_some() {
+            out.push(format!(
+                "the {} window tapers the blow and the start of the decay of impact records: the fitted poles carry the window's broadening, not the structure's damping (rect, force:P or exponential:P suit a hammer test)",
+                self.settings.window
+            ));
+        }
+        let last = self.frequency_hz.last().copied().unwrap_or(0.0);
+        if self.band.1 > last * (1.0 + 1e-9) {
+            out.push(format!(
+                "the fit band {:.1}–{:.1} Hz reaches past the data's last line, {:.1} Hz",
+                self.band.0, self.band.1, last
+            ));
+        }
+        out
+    }
+
     /// The estimator the fit used.
     pub fn fitted_frf(&self) -> &[Complex64] {
         match (self.settings.estimator, &self.h2) {

@@ -5,7 +5,7 @@
 //! the first bending peak, matched to the eigenvalue result.
 //!
 //! The FFT sees the integrator's numerical frequency, not the continuous
-//! one: generalized-α shortens periods by ≈ (ωh)²/12 (7e-5 at 4.6 kHz and
+//! one: generalized-α lengthens periods by ≈ (ωh)²/12 (7e-5 at 4.6 kHz and
 //! h = 1 µs). The identified peak is corrected by inverting the scheme's
 //! exact numerical frequency of a linear oscillator
 //! ([`super::dispersion::GenAlpha::true_frequency_from_observed`]); both
