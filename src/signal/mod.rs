@@ -29,6 +29,7 @@ pub mod frf;
 pub mod lm;
 pub mod lsfd;
 pub mod mac;
+pub mod pole_basis;
 pub mod resample;
 pub mod residual_search;
 pub mod spectrum;
