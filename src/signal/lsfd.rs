@@ -31,7 +31,8 @@
 //!
 //! **Refinement.** The poles are refined together by Levenberg–Marquardt
 //! on the misfit of the model, the residues and residual terms eliminated
-//! by linear least squares at every step (variable projection). LSCF's
+//! by linear least squares at every step (variable projection,
+//! [`super::projection`], with its exact Jacobian). LSCF's
 //! linearised equation error is biased by noise; this output error is not
 //! (for noise of equal variance across the band).
 //!
@@ -61,11 +62,12 @@
 
 use std::f64::consts::PI;
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 use realfft::num_complex::Complex64;
 
 use super::fit::{FitSettings, RejectReason, MAX_DAMPING};
-use super::lm;
+use super::projection::{design, pole_jacobian};
+pub use super::projection::{project, refine, Projection};
 
 pub use super::pole_basis::PoleBasis;
 
@@ -111,36 +113,20 @@ impl Band<'_> {
         self.rows.and_then(|w| w.get(k).copied()).unwrap_or(1.0)
     }
 
-    /// The weighted misfit of bin `k`: row(k)·(H − Ĥ).
-    pub(crate) fn residual(&self, k: usize, poles: &[Complex64], fitted: &Residues) -> Complex64 {
-        self.row(k) * (self.bins[k].1 - self.model(k, poles, fitted))
-    }
-
     /// The truncation weight at bin `k` (zero without records).
-    fn weight(&self, k: usize) -> Complex64 {
+    pub(crate) fn weight(&self, k: usize) -> Complex64 {
         self.truncation
             .and_then(|w| w.get(k).copied())
             .unwrap_or(Complex64::new(0.0, 0.0))
     }
 
     /// Real columns per pole in the linear fit: R, and D with records.
-    fn per_pole(&self) -> usize {
+    pub(crate) fn per_pole(&self) -> usize {
         if self.truncation.is_some() {
             4
         } else {
             2
         }
-    }
-
-    /// The fitted model at bin `k`, the cut-off decays included.
-    pub(crate) fn model(&self, k: usize, poles: &[Complex64], fitted: &Residues) -> Complex64 {
-        let f = self.bins[k].0;
-        let mut m = model_at(self.basis, f, poles, fitted);
-        let w = self.weight(k);
-        for (p, d) in poles.iter().zip(&fitted.truncation) {
-            m += w * self.basis.cutoff().pair(f, *p, *d);
-        }
-        m
     }
 
     /// Pole `j`'s part of the model at bin `k`: its modal term and its
@@ -158,9 +144,10 @@ impl Band<'_> {
 /// The weighted sum of squares of the misfit of `poles` over the band,
 /// their residues fitted.
 pub fn misfit(band: Band<'_>, poles: &[Complex64]) -> f64 {
-    let fitted = residues(band, poles);
-    (0..band.bins.len())
-        .map(|k| band.residual(k, poles, &fitted).norm_sqr())
+    project(band, poles)
+        .residual
+        .iter()
+        .map(|r| r.norm_sqr())
         .sum()
 }
 
@@ -203,153 +190,10 @@ pub fn model_at(basis: PoleBasis, f: f64, poles: &[Complex64], fitted: &Residues
     m
 }
 
-/// The design matrix of the residues and residual terms of `poles`: rows
-/// (Re, Im) per bin, columns (Re R_r, Im R_r) per pole, then (Re D_r,
-/// Im D_r) per pole with records, then U and L.
-fn design(band: Band<'_>, poles: &[Complex64]) -> DMatrix<f64> {
-    let np = poles.len();
-    let cols = band.per_pole() * np + 2 + RESIDUAL_POWERS.len();
-    let mut a = DMatrix::<f64>::zeros(2 * band.bins.len(), cols);
-    let i = Complex64::new(0.0, 1.0);
-    for (k, (f, _)) in band.bins.iter().enumerate() {
-        let w = band.weight(k);
-        for (r, p) in poles.iter().enumerate() {
-            // R = x + iy: R g + R̄ g' = x·(g + g') + y·i(g − g').
-            let g1 = band.basis.term(*f, *p);
-            let g2 = band.basis.term(*f, p.conj());
-            let (cx, cy) = (g1 + g2, i * (g1 - g2));
-            let (t1, t2) = (
-                band.basis.cutoff().term(*f, *p),
-                band.basis.cutoff().term(*f, p.conj()),
-            );
-            let (tx, ty) = (t1 + t2, i * (t1 - t2));
-            a[(2 * k, 2 * r)] = cx.re;
-            a[(2 * k + 1, 2 * r)] = cx.im;
-            a[(2 * k, 2 * r + 1)] = cy.re;
-            a[(2 * k + 1, 2 * r + 1)] = cy.im;
-            if band.truncation.is_some() && (p.re * band.record_s).exp() > TRUNCATION_FLOOR {
-                let (dx, dy) = (w * tx, w * ty);
-                a[(2 * k, 2 * np + 2 * r)] = dx.re;
-                a[(2 * k + 1, 2 * np + 2 * r)] = dx.im;
-                a[(2 * k, 2 * np + 2 * r + 1)] = dy.re;
-                a[(2 * k + 1, 2 * np + 2 * r + 1)] = dy.im;
-            }
-        }
-        a[(2 * k, cols - 2)] = 1.0;
-        let om = 2.0 * PI * f;
-        a[(2 * k, cols - 1)] = if *f != 0.0 { -1.0 / (om * om) } else { 0.0 };
-        if *f != 0.0 {
-            let jw = Complex64::new(0.0, om);
-            for (q, n) in RESIDUAL_POWERS.into_iter().enumerate() {
-                let c = jw.powi(n);
-                let col = cols - 2 - RESIDUAL_POWERS.len() + q;
-                a[(2 * k, col)] = c.re;
-                a[(2 * k + 1, col)] = c.im;
-            }
-        }
-        let row = band.row(k);
-        if row != 1.0 {
-            a.row_mut(2 * k).scale_mut(row);
-            a.row_mut(2 * k + 1).scale_mut(row);
-        }
-    }
-    a
-}
-
-/// Least-squares solution of `a` x = `b`, columns scaled to unit norm
-/// and zero columns left out (their unknowns 0): by Householder QR (Qᵀb
-/// applied in place, Q never formed), or by SVD when R is near singular
-/// (two poles on top of each other).
-fn least_squares(a: DMatrix<f64>, b: &DVector<f64>) -> DVector<f64> {
-    let cols = a.ncols();
-    let used: Vec<(usize, f64)> = (0..cols)
-        .map(|j| (j, a.column(j).norm()))
-        .filter(|(_, n)| *n > 0.0)
-        .collect();
-    let mut m = DMatrix::<f64>::zeros(a.nrows(), used.len());
-    for (c, (j, n)) in used.iter().enumerate() {
-        m.set_column(c, &(a.column(*j) / *n));
-    }
-    let k = used.len();
-    let qr = m.clone().qr();
-    let r = qr.r();
-    let largest = r.diagonal().iter().fold(0.0_f64, |mx, d| mx.max(d.abs()));
-    let regular = r.diagonal().iter().all(|d| d.abs() > 1e-10 * largest);
-    let y = if regular {
-        let mut qtb = b.clone();
-        qr.q_tr_mul(&mut qtb);
-        r.solve_upper_triangular(&qtb.rows(0, k).into_owned())
-    } else {
-        None
-    };
-    let y = y.unwrap_or_else(|| {
-        m.svd(true, true)
-            .solve(b, 1e-12)
-            .unwrap_or_else(|_| DVector::zeros(k))
-    });
-    let mut x = DVector::zeros(cols);
-    for (c, (j, n)) in used.iter().enumerate() {
-        x[*j] = y[c] / n;
-    }
-    x
-}
-
-/// The measured FRF of the band as (Re, Im) per bin, weighted.
-fn measured(band: Band<'_>) -> DVector<f64> {
-    DVector::from_iterator(
-        2 * band.bins.len(),
-        band.bins
-            .iter()
-            .enumerate()
-            .flat_map(|(k, (_, h))| [band.row(k) * h.re, band.row(k) * h.im]),
-    )
-}
-
 /// Residues R_r and residual terms U, L of `poles` by linear least squares
 /// (LSFD).
 pub fn residues(band: Band<'_>, poles: &[Complex64]) -> Residues {
-    let x = least_squares(design(band, poles), &measured(band));
-    let (cols, np) = (x.len(), poles.len());
-    let pair = |c: usize| Complex64::new(x[c], x[c + 1]);
-    Residues {
-        residues: (0..np).map(|r| pair(2 * r)).collect(),
-        truncation: if band.truncation.is_some() {
-            (0..np).map(|r| pair(2 * np + 2 * r)).collect()
-        } else {
-            Vec::new()
-        },
-        upper: x[cols - 2],
-        lower: x[cols - 1],
-        powers: std::array::from_fn(|q| x[cols - 2 - RESIDUAL_POWERS.len() + q]),
-    }
-}
-
-/// ∂(model)/∂(Re s_j, Im s_j) per bin (rows Re, Im, weighted), the
-/// residues held.
-fn pole_jacobian(band: Band<'_>, poles: &[Complex64], fitted: &Residues) -> DMatrix<f64> {
-    let mut jac = DMatrix::<f64>::zeros(2 * band.bins.len(), 2 * poles.len());
-    let i = Complex64::new(0.0, 1.0);
-    for (k, (f, _)) in band.bins.iter().enumerate() {
-        let w = band.weight(k);
-        for (j, (p, r)) in poles.iter().zip(&fitted.residues).enumerate() {
-            // The pole's coefficient in the data: R, plus W·D with records.
-            let zero = Complex64::new(0.0, 0.0);
-            let d = fitted.truncation.get(j).map_or(zero, |d| w * d);
-            let dc = fitted.truncation.get(j).map_or(zero, |d| w * d.conj());
-            let cut = band.basis.cutoff();
-            let d1 = *r * band.basis.term_derivative(*f, *p) + d * cut.term_derivative(*f, *p);
-            let d2 = r.conj() * band.basis.term_derivative(*f, p.conj())
-                + dc * cut.term_derivative(*f, p.conj());
-            let dx = d1 + d2;
-            let row = band.row(k);
-            let (dx, dy) = (row * dx, row * (i * d1 - i * d2));
-            jac[(2 * k, 2 * j)] = dx.re;
-            jac[(2 * k + 1, 2 * j)] = dx.im;
-            jac[(2 * k, 2 * j + 1)] = dy.re;
-            jac[(2 * k + 1, 2 * j + 1)] = dy.im;
-        }
-    }
-    jac
+    project(band, poles).fitted
 }
 
 /// Standard error of each pole's real part −σ = −ζω: the linearised
@@ -361,7 +205,11 @@ fn pole_jacobian(band: Band<'_>, poles: &[Complex64], fitted: &Residues) -> DMat
 /// half-power bandwidth 2ζf/Δf in bins (noise smoother than the peak is a
 /// background to it).
 pub fn decay_standard_errors(band: Band<'_>, poles: &[Complex64]) -> Vec<f64> {
-    let fitted = residues(band, poles);
+    let Projection {
+        fitted,
+        residual: r,
+        ..
+    } = project(band, poles);
     let jp = pole_jacobian(band, poles, &fitted);
     let a = design(band, poles);
     // The linear unknowns in play: a pole without a cut-off term has zero
@@ -384,9 +232,6 @@ pub fn decay_standard_errors(band: Band<'_>, poles: &[Complex64]) -> Vec<f64> {
     let Some(cov) = (j.transpose() * &j).try_inverse() else {
         return vec![f64::INFINITY; poles.len()];
     };
-    let r: Vec<Complex64> = (0..band.bins.len())
-        .map(|k| band.residual(k, poles, &fitted))
-        .collect();
     let r2: Vec<f64> = r.iter().map(|v| v.norm_sqr()).collect();
     // Noise correlated over ℓ bins carries 1/ℓ of the information of
     // independent noise: the variance of the estimate grows by ℓ.
@@ -448,13 +293,11 @@ fn unphysical(p: Complex64, settings: &FitSettings) -> Option<RejectReason> {
 /// correlated over ℓ bins ([`super::residual_search::correlation_length`]):
 /// such noise bends H over the pole's band as a pole would.
 pub fn significance(band: Band<'_>, poles: &[Complex64]) -> Vec<f64> {
-    let fitted = residues(band, poles);
-    let resid: Vec<Complex64> = band
-        .bins
-        .iter()
-        .enumerate()
-        .map(|(k, _)| band.residual(k, poles, &fitted))
-        .collect();
+    let Projection {
+        fitted,
+        residual: resid,
+        ..
+    } = project(band, poles);
     let df = match (band.bins.first(), band.bins.last()) {
         (Some(a), Some(b)) if band.bins.len() > 1 => (b.0 - a.0) / (band.bins.len() - 1) as f64,
         _ => 0.0,
@@ -480,10 +323,12 @@ pub fn significance(band: Band<'_>, poles: &[Complex64]) -> Vec<f64> {
                 centre.saturating_sub(4 * NOISE_WINDOW_BINS),
                 (centre + 4 * NOISE_WINDOW_BINS + 1).min(resid.len()),
             );
-            let mut around: Vec<f64> = resid[lo..hi].iter().map(|v| v.norm_sqr()).collect();
-            around.sort_by(f64::total_cmp);
-            let floor =
-                around.get(around.len() / 2).copied().unwrap_or(0.0) / std::f64::consts::LN_2;
+            let around: Vec<f64> = resid[lo..hi].iter().map(|v| v.norm_sqr()).collect();
+            let floor = if around.is_empty() {
+                0.0
+            } else {
+                super::residual_search::upper_median(&around) / std::f64::consts::LN_2
+            };
             e2 = e2.max(floor * m as f64);
             // Noise correlated over ℓ bins bends H over the pole's band
             // as a pole would: a pole as wide as that bend must stand
@@ -537,8 +382,7 @@ fn redundant(band: Band<'_>, poles: &[Complex64]) -> Option<usize> {
     let half = |p: &Complex64| (-p.re / (2.0 * PI)).max(MIN_HALF_POWER_BINS * df);
     let fd = |p: &Complex64| p.im / (2.0 * PI);
     let misfit = |ps: &[Complex64]| -> (f64, Vec<Complex64>) {
-        let fitted = residues(band, ps);
-        let r: Vec<Complex64> = (0..n).map(|k| band.residual(k, ps, &fitted)).collect();
+        let r = project(band, ps).residual;
         (r.iter().map(|v| v.norm_sqr()).sum(), r)
     };
     let (all, r) = misfit(poles);
@@ -645,92 +489,4 @@ pub fn select(
         }
     }
     (Vec::new(), rejected)
-}
-
-/// The modal model's misfit to the band as a least-squares problem in the
-/// poles' real and imaginary parts x = (Re s₁, Im s₁, Re s₂, …), the
-/// residues and residual terms eliminated by linear least squares
-/// (variable projection).
-struct PoleRefinement<'a> {
-    band: Band<'a>,
-}
-
-fn poles_of(x: &[f64]) -> Vec<Complex64> {
-    x.chunks(2).map(|c| Complex64::new(c[0], c[1])).collect()
-}
-
-impl lm::Problem for PoleRefinement<'_> {
-    type Point = DVector<f64>;
-    type Error = std::convert::Infallible;
-
-    /// Model minus measurement, real and imaginary parts per bin.
-    fn evaluate(&mut self, x: &[f64]) -> Result<DVector<f64>, Self::Error> {
-        let p = poles_of(x);
-        let fitted = residues(self.band, &p);
-        let mut r = DVector::zeros(2 * self.band.bins.len());
-        for (k, (_, h)) in self.band.bins.iter().enumerate() {
-            let m = self.band.row(k) * (self.band.model(k, &p, &fitted) - h);
-            r[2 * k] = m.re;
-            r[2 * k + 1] = m.im;
-        }
-        Ok(r)
-    }
-
-    fn residuals(&self, point: &DVector<f64>) -> DVector<f64> {
-        point.clone()
-    }
-
-    /// Forward differences of the projected misfit, step 1e-7 |s| for each
-    /// pole's parts (the residues solved again at each: the full
-    /// variable-projection Jacobian; Kaufman's, with the residues held,
-    /// stalls a weak pole beside a large misfit).
-    fn jacobian(
-        &mut self,
-        x: &[f64],
-        _: &DVector<f64>,
-        r: &DVector<f64>,
-    ) -> Result<DMatrix<f64>, Self::Error> {
-        let mut jac = DMatrix::<f64>::zeros(r.len(), x.len());
-        for j in 0..x.len() {
-            let mut xj = x.to_vec();
-            let step = 1e-7 * Complex64::new(x[j / 2 * 2], x[j / 2 * 2 + 1]).norm();
-            xj[j] += step;
-            let rj = self.evaluate(&xj)?;
-            jac.set_column(j, &((rj - r) / step));
-        }
-        Ok(jac)
-    }
-}
-
-/// Settings of the refinement's Levenberg–Marquardt loop: μ from 10⁻³,
-/// ×4 on a rejected trial, ÷3 (down to 10⁻¹²) on a taken step; at most 50
-/// taken steps, 10 rejected trials in a row, or a taken step that lowers
-/// the misfit by 10⁻¹² of itself.
-const REFINE: lm::Settings = lm::Settings {
-    initial_damping: lm::Scale::Absolute(1e-3),
-    grow: 4.0,
-    shrink: 3.0,
-    damping_floor: lm::Scale::Absolute(1e-12),
-    damping_ceiling: f64::INFINITY,
-    max_rejections: 10,
-    step_tolerance: 0.0,
-    min_relative_decrease: 1e-12,
-    max_evaluations: usize::MAX,
-    max_iterations: 50,
-};
-
-/// Nonlinear least-squares refinement of the poles (module doc; the one
-/// Levenberg–Marquardt loop, [`lm::solve`], with the analytic Jacobian of
-/// the pole terms).
-pub fn refine(band: Band<'_>, poles: &mut [Complex64]) {
-    if poles.is_empty() {
-        return;
-    }
-    let mut problem = PoleRefinement { band };
-    let x0: Vec<f64> = poles.iter().flat_map(|p| [p.re, p.im]).collect();
-    let unbounded = vec![f64::INFINITY; x0.len()];
-    let lower: Vec<f64> = unbounded.iter().map(|v| -v).collect();
-    let Ok(start) = lm::Problem::evaluate(&mut problem, &x0);
-    let Ok(out) = lm::solve(&mut problem, x0, start, &lower, &unbounded, &REFINE);
-    poles.copy_from_slice(&poles_of(&out.x));
 }

@@ -14,6 +14,11 @@
 //!   stabilization diagram;
 //! * [`lsfd`] — the modal model of a band: residues by least squares, poles
 //!   refined, the physical and significant ones chosen;
+//! * [`projection`] — the linear least-squares fit of the model's
+//!   coefficients for given poles, and the poles' refinement by variable
+//!   projection with its exact Jacobian;
+//! * [`pole_basis`] — the pole term of the FRF's origin (continuous,
+//!   sampled, filtered);
 //! * [`residual_search`] — modes the LSCF seeds missed, found where the fit
 //!   residual stands above the noise;
 //! * [`lm`] — the one bounded Levenberg–Marquardt loop (the calibration of
@@ -30,6 +35,7 @@ pub mod lm;
 pub mod lsfd;
 pub mod mac;
 pub mod pole_basis;
+pub mod projection;
 pub mod resample;
 pub mod residual_search;
 pub mod spectrum;

@@ -24,11 +24,36 @@ pub enum PoleBasis {
 impl PoleBasis {
     /// The term g(ω, s) of a unit residue, at `f` Hz.
     pub fn term(self, f: f64, s: Complex64) -> Complex64 {
+        self.at(f).term(self.factor(s))
+    }
+
+    /// The factors of the terms at `f` Hz shared by every pole: one
+    /// evaluation per bin, where a term per pole and bin costs a division.
+    pub fn at(self, f: f64) -> BinTerms {
         let iw = Complex64::new(0.0, 2.0 * PI * f);
-        match self {
-            PoleBasis::Continuous | PoleBasis::Filtered { .. } => 1.0 / (iw - s),
-            PoleBasis::Sampled { interval_s: dt } => dt / (1.0 - ((s - iw) * dt).exp()),
+        let shift = match self {
+            PoleBasis::Continuous => Complex64::new(1.0, 0.0),
+            PoleBasis::Sampled { interval_s: dt } | PoleBasis::Filtered { interval_s: dt } => {
+                (-iw * dt).exp()
+            }
+        };
+        BinTerms {
+            basis: self,
+            iw,
+            shift,
         }
+    }
+
+    /// The factor e^(sΔt) of the pole `s` in the sampled term (1 on a
+    /// continuous axis): one evaluation per pole.
+    pub fn factor(self, s: Complex64) -> PoleFactor {
+        let growth = match self {
+            PoleBasis::Continuous => Complex64::new(1.0, 0.0),
+            PoleBasis::Sampled { interval_s: dt } | PoleBasis::Filtered { interval_s: dt } => {
+                (s * dt).exp()
+            }
+        };
+        PoleFactor { s, growth }
     }
 
     /// The basis of the decays the records' end cut off: the tail is a
@@ -42,14 +67,7 @@ impl PoleBasis {
 
     /// ∂g/∂s at `f` Hz (g is holomorphic in s).
     pub fn term_derivative(self, f: f64, s: Complex64) -> Complex64 {
-        let g = self.term(f, s);
-        match self {
-            PoleBasis::Continuous | PoleBasis::Filtered { .. } => g * g,
-            PoleBasis::Sampled { interval_s: dt } => {
-                let iw = Complex64::new(0.0, 2.0 * PI * f);
-                g * g * ((s - iw) * dt).exp()
-            }
-        }
+        self.at(f).term_derivative(self.factor(s))
     }
 
     /// A key for outputs: `continuous`, `sampled` or `filtered`.
@@ -89,6 +107,67 @@ impl PoleBasis {
 
     /// A pole pair's contribution R g(ω, s) + R̄ g(ω, s̄) at `f` Hz.
     pub fn pair(self, f: f64, s: Complex64, r: Complex64) -> Complex64 {
-        r * self.term(f, s) + r.conj() * self.term(f, s.conj())
+        self.at(f).pair(self.factor(s), r)
+    }
+}
+
+/// A pole s with its factor e^(sΔt) ([`PoleBasis::factor`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PoleFactor {
+    /// The pole, 1/s.
+    pub s: Complex64,
+    /// e^(sΔt) (1 on a continuous axis).
+    growth: Complex64,
+}
+
+impl PoleFactor {
+    /// The conjugate pole s̄ and its factor.
+    pub fn conj(self) -> PoleFactor {
+        PoleFactor {
+            s: self.s.conj(),
+            growth: self.growth.conj(),
+        }
+    }
+}
+
+/// The pole terms at one frequency ([`PoleBasis::at`]): iω, and
+/// e^(−iωΔt) for the sampled term Δt/(1 − e^(sΔt)·e^(−iωΔt)).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BinTerms {
+    basis: PoleBasis,
+    iw: Complex64,
+    shift: Complex64,
+}
+
+impl BinTerms {
+    /// The term g(ω, s) of a unit residue.
+    pub fn term(&self, p: PoleFactor) -> Complex64 {
+        match self.basis {
+            PoleBasis::Continuous | PoleBasis::Filtered { .. } => 1.0 / (self.iw - p.s),
+            PoleBasis::Sampled { interval_s: dt } => dt / (1.0 - p.growth * self.shift),
+        }
+    }
+
+    /// ∂g/∂s (g is holomorphic in s).
+    pub fn term_derivative(&self, p: PoleFactor) -> Complex64 {
+        let g = self.term(p);
+        match self.basis {
+            PoleBasis::Continuous | PoleBasis::Filtered { .. } => g * g,
+            PoleBasis::Sampled { .. } => g * g * p.growth * self.shift,
+        }
+    }
+
+    /// The same frequency in the basis of the cut-off decays
+    /// ([`PoleBasis::cutoff`]).
+    pub fn cutoff(&self) -> BinTerms {
+        BinTerms {
+            basis: self.basis.cutoff(),
+            ..*self
+        }
+    }
+
+    /// A pole pair's contribution R g(ω, s) + R̄ g(ω, s̄).
+    pub fn pair(&self, p: PoleFactor, r: Complex64) -> Complex64 {
+        r * self.term(p) + r.conj() * self.term(p.conj())
     }
 }

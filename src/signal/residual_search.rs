@@ -44,7 +44,7 @@ use std::f64::consts::PI;
 
 use realfft::num_complex::Complex64;
 
-use super::lsfd::{residues, Band, MIN_HALF_POWER_BINS};
+use super::lsfd::{project, Band, MIN_HALF_POWER_BINS};
 
 /// Smallest half-width, in bins, of the window whose median residual sets
 /// the noise level.
@@ -85,6 +85,15 @@ pub fn exponential_mean_level(w: usize, p: f64) -> f64 {
     hi / w as f64
 }
 
+/// The element at position len/2 of `values` sorted (the upper median),
+/// found without sorting them all; `values` must not be empty.
+pub fn upper_median(values: &[f64]) -> f64 {
+    let mut v = values.to_vec();
+    let mid = v.len() / 2;
+    let (_, m, _) = v.select_nth_unstable_by(mid, f64::total_cmp);
+    *m
+}
+
 /// The correlation length ℓ = (1 + ρ)/(1 − ρ) of the residual `r`, in bins
 /// (module doc; ρ at most 0.99).
 pub fn correlation_length(r: &[Complex64]) -> f64 {
@@ -109,8 +118,7 @@ pub fn residual_peak(
     if n < 8 {
         return None;
     }
-    let fitted = residues(band, poles);
-    let r: Vec<Complex64> = (0..n).map(|k| band.residual(k, poles, &fitted)).collect();
+    let r = project(band, poles).residual;
     let r2: Vec<f64> = r.iter().map(|v| v.norm_sqr()).collect();
     let ell = correlation_length(&r);
     let df = (band.bins[n - 1].0 - band.bins[0].0) / (n - 1) as f64;
@@ -118,11 +126,7 @@ pub fn residual_peak(
     for k in 0..n {
         prefix[k + 1] = prefix[k] + r2[k];
     }
-    let median_power = |slice: &[f64]| {
-        let mut v = slice.to_vec();
-        v.sort_by(f64::total_cmp);
-        v[v.len() / 2] / std::f64::consts::LN_2
-    };
+    let median_power = |slice: &[f64]| upper_median(slice) / std::f64::consts::LN_2;
     // The band's noise power, and around each bin the smaller of it and
     // the local one: a missed mode's wings, spread by the fit of the
     // others, raise the local median near it.
@@ -130,7 +134,7 @@ pub fn residual_peak(
     // Noise on the force adds an error ∝ |Ĥ| (module doc): its share b of
     // |Ĥ|², from the strongest tenth of the bins, above the band's level.
     let model2: Vec<f64> = (0..n)
-        .map(|k| (band.row(k) * band.model(k, poles, &fitted)).norm_sqr())
+        .map(|k| (band.row(k) * band.bins[k].1 - r[k]).norm_sqr())
         .collect();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|a, b| model2[*b].total_cmp(&model2[*a]));
