@@ -94,3 +94,40 @@ fn ambiguous_or_misused_columns_are_errors() {
         "hit.csv:1: column 1 (`time_s`) cannot be the force: the first column is time"
     );
 }
+
+/// A time column named in milliseconds or microseconds is read in that
+/// unit: the record sampled at 10,240 Hz written as `time_ms` (t·1e3) or
+/// `t [us]` (t·1e6) gives the sample rate and the modes it gives in
+/// seconds; names that only contain the letters (`terms`, `bus`) stay
+/// seconds (found by the outside-eyes trial of issue 33: `time_ms` was
+/// read as seconds, a 10 Hz record).
+#[test]
+fn a_time_column_in_ms_or_us_is_read_in_that_unit() {
+    let seconds = csv("time_s,vel,force_n", true);
+    let truth = parse_csv(Path::new("hit.csv"), &seconds, &Channels::default()).unwrap();
+    assert!((truth.sample_rate_hz - 10_240.0).abs() < 1e-6 * 10_240.0);
+    for (header, scale) in [
+        ("time_ms", 1e3),
+        ("t [ms]", 1e3),
+        ("time (us)", 1e6),
+        ("t_µs", 1e6),
+    ] {
+        let mut text = format!("{header},vel,force_n\n");
+        for line in seconds.lines().skip(1) {
+            let (t, rest) = line.split_once(',').unwrap();
+            let t: f64 = t.parse().unwrap();
+            let _ = writeln!(text, "{:.9e},{rest}", t * scale);
+        }
+        let r = parse_csv(Path::new("hit.csv"), &text, &Channels::default()).unwrap();
+        let rel = (r.sample_rate_hz - truth.sample_rate_hz).abs() / truth.sample_rate_hz;
+        assert!(rel < 1e-9, "{header}: {} Hz", r.sample_rate_hz);
+        let (a, b) = (modes(&text), modes(&seconds));
+        assert_eq!(a.len(), b.len());
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).abs() < 1e-9 * y, "{header}: {x} Hz against {y} Hz");
+        }
+    }
+    for name in ["terms", "bus", "time", "time_s", "t [s]"] {
+        assert_eq!(ancf_modal::measured::csv::time_scale(name), 1.0, "{name}");
+    }
+}

@@ -1,7 +1,10 @@
 //! Time records from CSV files.
 //!
 //! Layout: one header row of column names, then one row per sample; the
-//! first column is time in seconds, strictly increasing on a uniform grid.
+//! first column is time, strictly increasing on a uniform grid, in seconds
+//! unless its name gives milliseconds or microseconds ([`time_scale`]:
+//! `time_ms`, `t [ms]`, `time (us)`, `t_µs`, …; a 51.2 kHz record whose
+//! `time_ms` column was read as seconds would be a 51.2 Hz one).
 //! The force and response columns are chosen by header name or 1-based
 //! index. By default the force is the one column whose name holds `force`
 //! (any case; as in what `impulse --csv` writes: `time_s`, the sensor,
@@ -134,6 +137,27 @@ fn check_roles(
     Ok(())
 }
 
+/// Seconds per unit of the time column named `name`: 1e-3 when its name
+/// ends in a millisecond unit (`ms`, after `_`, ` `, `[`, `(` or `/`, a
+/// closing bracket allowed), 1e-6 for microseconds (`us`, `µs`, `μs`), else
+/// 1 (seconds, with or without `_s`).
+pub fn time_scale(name: &str) -> f64 {
+    let lower = name.trim().to_lowercase();
+    let unit = lower.trim_end_matches([']', ')']);
+    let ends = |u: &str| {
+        unit.strip_suffix(u).is_some_and(|head| {
+            head.ends_with(['_', ' ', '[', '(', '/', '-']) || head.ends_with("in ")
+        })
+    };
+    if ends("ms") {
+        1e-3
+    } else if ends("us") || ends("µs") || ends("μs") {
+        1e-6
+    } else {
+        1.0
+    }
+}
+
 /// Parses CSV text (see the module doc) into a time record.
 pub fn parse_csv(
     file: &Path,
@@ -163,6 +187,7 @@ pub fn parse_csv(
         if fi == 1 { 3 } else { 2 },
     )?;
     check_roles(file, header_line, &names, (fi, ri))?;
+    let seconds = time_scale(names[0]);
     let (mut t, mut force, mut response, mut lines) = (vec![], vec![], vec![], vec![]);
     for (line, row) in rows {
         let cells = split(row, sep);
@@ -198,7 +223,7 @@ pub fn parse_csv(
         for c in 0..cells.len() {
             cell(c)?;
         }
-        t.push(cell(0)?);
+        t.push(cell(0)? * seconds);
         force.push(cell(fi)?);
         response.push(cell(ri)?);
         lines.push(line);
