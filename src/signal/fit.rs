@@ -218,6 +218,8 @@ pub const STABLE_DAMPING: f64 = 0.05;
 pub const CLUSTER_DAMPING: f64 = 0.2;
 /// Largest damping ratio taken as physical.
 pub const MAX_DAMPING: f64 = 0.3;
+/// Most Schur (QR) sweeps per root of the companion matrix.
+const SCHUR_SWEEPS_PER_ROOT: usize = 100;
 /// Poles (f Hz, ζ, s) of one LSCF order from the Toeplitz lag sums.
 fn poles_of_order(
     n: usize,
@@ -237,7 +239,11 @@ fn poles_of_order(
     let mm = tt - ss.transpose() * rinv_s;
     let a00 = mm.view((0, 0), (n, n)).into_owned();
     let rhs = -mm.view((0, n), (n, 1)).into_owned();
-    let Some(a) = a00.lu().solve(&rhs) else {
+    let Some(a) = a00
+        .lu()
+        .solve(&rhs)
+        .filter(|a| a.iter().all(|v| v.is_finite()))
+    else {
         return Vec::new();
     };
     // Companion matrix of z^n + a_{n-1} z^{n-1} + … + a_0.
@@ -248,7 +254,15 @@ fn poles_of_order(
     for j in 0..n {
         c[(n - 1, j)] = -a[j];
     }
-    c.complex_eigenvalues()
+    // nalgebra's `complex_eigenvalues` iterates without a bound and did
+    // not return on a generated record (property suite): the Schur
+    // iteration is bounded, and an order whose roots it does not find
+    // adds no poles.
+    let Some(schur) = c.try_schur(f64::EPSILON, SCHUR_SWEEPS_PER_ROOT * n) else {
+        return Vec::new();
+    };
+    schur
+        .complex_eigenvalues()
         .iter()
         .filter_map(|z| {
             let z = Complex64::new(z.re, z.im);
