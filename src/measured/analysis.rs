@@ -16,7 +16,7 @@ use realfft::num_complex::Complex64;
 use super::band::automatic_band;
 pub use super::band::BandEnd;
 use super::frf::{estimate, FrfEstimate};
-use super::{MeasuredError, Measurement};
+use super::{record_checks, MeasuredError, Measurement};
 use crate::signal::fit::{
     fit, fit_records, FitSettings, ModalFit, PoleBasis, Records, RejectReason, RejectedPole,
 };
@@ -89,12 +89,16 @@ pub struct FrfAnalysis {
     /// Stable poles that are not modes: the fit's own and the modes found
     /// outside the band, by frequency.
     pub rejected: Vec<RejectedPole>,
+    /// What the records themselves show ([`super::record_checks`]):
+    /// channels that look swapped, records too short for the fit.
+    pub record_notes: Vec<String>,
 }
 
 impl FrfAnalysis {
     /// What the user must know beside the table: a taper on impact records
     /// (its damping is the window's, not the structure's), a band outside
-    /// the data's lines.
+    /// the data's lines, and the records' own notes (channels that look
+    /// swapped, records too short for the fit).
     pub fn warnings(&self) -> Vec<String> {
         let mut out = Vec::new();
         let taper = matches!(
@@ -114,6 +118,7 @@ impl FrfAnalysis {
                 self.band.0, self.band.1, last
             ));
         }
+        out.extend(self.record_notes.iter().cloned());
         out
     }
 
@@ -278,6 +283,10 @@ pub fn analyse(
         settings,
         band,
         band_end,
+        record_notes: record_checks::swapped_channels(&records)
+            .into_iter()
+            .chain(record_checks::short_records(&records, fit.modes.len()))
+            .collect(),
         fit,
         rejected,
     })

@@ -26,6 +26,7 @@ pub mod csv;
 pub mod error;
 pub mod frf;
 mod quantity;
+pub mod record_checks;
 pub mod uff;
 
 pub use error::MeasuredError;
