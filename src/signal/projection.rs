@@ -126,8 +126,8 @@ pub fn project(band: Band<'_>, poles: &[Complex64]) -> Projection {
         .filter(|(_, n)| *n > 0.0)
         .collect();
     let k = used.len();
-    let m = DMatrix::from_fn(a.nrows(), k, |i, c| a[(i, used[c].0)] / used[c].1);
-    let qr = m.clone().qr();
+    let scaled = || DMatrix::from_fn(a.nrows(), k, |i, c| a[(i, used[c].0)] / used[c].1);
+    let qr = scaled().qr();
     let r = qr.r();
     let largest = r.diagonal().iter().fold(0.0_f64, |mx, d| mx.max(d.abs()));
     let regular = r.diagonal().iter().all(|d| d.abs() > 1e-10 * largest);
@@ -140,7 +140,9 @@ pub fn project(band: Band<'_>, poles: &[Complex64]) -> Projection {
     };
     let factors = solved.is_some().then_some(qr);
     let y = solved.unwrap_or_else(|| {
-        m.svd(true, true)
+        // Near singular (rare): the scaled columns again, for the SVD.
+        scaled()
+            .svd(true, true)
             .solve(&b, 1e-12)
             .unwrap_or_else(|_| DVector::zeros(k))
     });

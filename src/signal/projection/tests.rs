@@ -90,7 +90,9 @@ proptest! {
             down[j] -= h;
             let d = (misfit_at(band, &poles_of(&up)) - misfit_at(band, &poles_of(&down))) / (2.0 * h);
             let err = (jac.column(j) - &d).norm() / d.norm().max(f64::MIN_POSITIVE);
-            prop_assert!(err < 1e-5, "column {j}: relative error {err:e}");
+            // Central differences at h = 1e-6 |s| carry round-off of
+            // about 1e-7 relative here (measured): 1e-6 is 10 × that.
+            prop_assert!(err < 1e-6, "column {j}: relative error {err:e}");
         }
     }
 }
