@@ -200,7 +200,13 @@ fn bad_measurement_files_are_one_line_errors() {
     );
     // Foreign datasets are skipped by their framing, whatever their number
     // (a 2412 and a made-up 777 here): what is left holds no FRF or record.
-    fails(&p, &[], "weird.uff: the file holds no dataset 58");
+    fails(&p, &[], "weird.uff: the file holds no dataset 58"); // A negative band edge reaches the band's own check, not clap's hint
+                                                               // to write `-- -5` (the outside-eyes trial of issue 33).
+    fails(
+        &good,
+        &["--band", "-5:300"],
+        "the band needs 0 ≤ LO < HI, got -5:300",
+    );
 }
 
 #[test]

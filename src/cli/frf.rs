@@ -79,7 +79,7 @@ pub struct MeasuredArgs {
     pub estimator: EstimatorArg,
     /// Fit band LO:HI in Hz (default: where the hammer excited the
     /// structure, up to 0.8 × Nyquist).
-    #[arg(long, value_name = "LO:HI", value_parser = parse_band)]
+    #[arg(long, value_name = "LO:HI", allow_hyphen_values = true, value_parser = parse_band)]
     pub band: Option<(f64, f64)>,
     /// Highest model order of the stabilization diagram.
     #[arg(long, default_value_t = 40, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 2, Some(200)))]

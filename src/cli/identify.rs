@@ -58,7 +58,7 @@ pub struct ComparisonArgs {
     #[arg(long, value_name = "W", default_value = "rect", requires = "measured")]
     pub measured_window: ancf_modal::signal::Window,
     /// Fit band of the measured records, LO:HI in Hz (see `frf --band`).
-    #[arg(long, value_name = "LO:HI", requires = "measured", value_parser = super::frf::parse_band)]
+    #[arg(long, value_name = "LO:HI", requires = "measured", allow_hyphen_values = true, value_parser = super::frf::parse_band)]
     pub measured_band: Option<(f64, f64)>,
 }
 

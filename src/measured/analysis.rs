@@ -89,15 +89,17 @@ pub struct FrfAnalysis {
     /// Stable poles that are not modes: the fit's own and the modes found
     /// outside the band, by frequency.
     pub rejected: Vec<RejectedPole>,
-    /// What the records themselves show ([`super::record_checks`]):
-    /// channels that look swapped, records too short for the fit.
-    pub record_notes: Vec<String>,
+    /// What the user must know of the input: a given band cut at the
+    /// data's last line, and what the records themselves show
+    /// ([`super::record_checks`]): channels that look swapped, records too
+    /// short for the fit.
+    pub notes: Vec<String>,
 }
 
 impl FrfAnalysis {
     /// What the user must know beside the table: a taper on impact records
-    /// (its damping is the window's, not the structure's), a band outside
-    /// the data's lines, and the records' own notes (channels that look
+    /// (its damping is the window's, not the structure's), a band cut at
+    /// the data's last line, and the records' own notes (channels that look
     /// swapped, records too short for the fit).
     pub fn warnings(&self) -> Vec<String> {
         let mut out = Vec::new();
@@ -111,14 +113,7 @@ impl FrfAnalysis {
                 self.settings.window
             ));
         }
-        let last = self.frequency_hz.last().copied().unwrap_or(0.0);
-        if self.band.1 > last * (1.0 + 1e-9) {
-            out.push(format!(
-                "the fit band {:.1}–{:.1} Hz reaches past the data's last line, {:.1} Hz",
-                self.band.0, self.band.1, last
-            ));
-        }
-        out.extend(self.record_notes.iter().cloned());
+        out.extend(self.notes.iter().cloned());
         out
     }
 
@@ -227,7 +222,22 @@ pub fn analyse(
         est.as_ref().map(|e| e.force_power.as_slice()),
         &records,
     );
+    let mut notes = Vec::new();
+    let last = frequency_hz.last().copied().unwrap_or(0.0);
     let (band, band_end) = match settings.band {
+        Some((lo, _)) if lo >= last => {
+            return Err(MeasuredError::BandPastData {
+                file: files[0].clone(),
+                lo_hz: lo,
+                last_hz: last,
+            })
+        }
+        Some((lo, hi)) if hi > last * (1.0 + 1e-9) => {
+            notes.push(format!(
+                "the fit band {lo:.1}–{hi:.1} Hz reaches past the data's last line: fitted over {lo:.1}–{last:.1} Hz"
+            ));
+            ((lo, last), BandEnd::Given)
+        }
         Some(b) => (b, BandEnd::Given),
         None => (automatic, automatic_end),
     };
@@ -283,8 +293,9 @@ pub fn analyse(
         settings,
         band,
         band_end,
-        record_notes: record_checks::swapped_channels(&records)
+        notes: notes
             .into_iter()
+            .chain(record_checks::swapped_channels(&records))
             .chain(record_checks::short_records(&records, fit.modes.len()))
             .collect(),
         fit,

@@ -159,6 +159,12 @@ pub enum MeasuredError {
     UffUnterminated { file: PathBuf, line: usize },
     #[error("{}: holds an FRF, which cannot be averaged with other files; give it alone", file.display())]
     MixedKinds { file: PathBuf },
+    #[error("{}: the fit band starts at {lo_hz} Hz, at or past the data's last line, {last_hz} Hz", file.display())]
+    BandPastData {
+        file: PathBuf,
+        lo_hz: f64,
+        last_hz: f64,
+    },
     #[error("{}: {what}", file.display())]
     NoChannel { file: PathBuf, what: &'static str },
     #[error("{}: {source}", file.display())]
