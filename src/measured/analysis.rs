@@ -279,6 +279,12 @@ pub fn analyse(
         &found,
     ));
     rejected.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
+    notes.extend(record_checks::swapped_channels(&records));
+    notes.extend(
+        est.as_ref()
+            .and_then(|e| record_checks::force_noise_note(&records, e, band)),
+    );
+    notes.extend(record_checks::short_records(&records, fit.modes.len()));
     Ok(FrfAnalysis {
         files,
         channels: records
@@ -293,11 +299,7 @@ pub fn analyse(
         settings,
         band,
         band_end,
-        notes: notes
-            .into_iter()
-            .chain(record_checks::swapped_channels(&records))
-            .chain(record_checks::short_records(&records, fit.modes.len()))
-            .collect(),
+        notes,
         fit,
         rejected,
     })

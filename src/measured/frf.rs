@@ -8,6 +8,7 @@
 
 use realfft::num_complex::Complex64;
 
+use super::record_checks::force_noise_variance;
 use super::{MeasuredError, TimeRecord};
 use crate::signal::frf::{CrossSpectra, CrossSpectraSettings};
 use crate::signal::Window;
@@ -35,6 +36,22 @@ pub struct FrfEstimate {
     /// Weight of the decays cut off by the records' end in H1, 1/N
     /// ([`crate::signal::frf::CrossSpectra::truncation_weight`]).
     pub truncation_weight: Vec<Complex64>,
+    /// The noise the force records show outside their blows
+    /// ([`super::record_checks::force_noise_variance`], the mean over the
+    /// hits that have one; zero for none).
+    pub force_noise: ForceNoise,
+}
+
+/// What noise on the force does to H1, per bin.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ForceNoise {
+    /// Variance of the force's noise per sample, N².
+    pub variance: f64,
+    /// The share ε of G_ff per bin that the noise makes: H1 reads
+    /// (1 − ε) of the truth ([`crate::signal::frf::CrossSpectra::force_noise_share`]).
+    pub share: Vec<f64>,
+    /// Bins over which that error is correlated.
+    pub correlation_bins: f64,
 }
 
 impl FrfEstimate {
@@ -95,7 +112,18 @@ pub fn estimate(records: &[TimeRecord], window: Window) -> Result<FrfEstimate, M
                 source,
             }
         })?;
+    let variances: Vec<f64> = records
+        .iter()
+        .filter_map(|r| force_noise_variance(&r.force))
+        .collect();
+    let variance = variances.iter().sum::<f64>() / variances.len().max(1) as f64;
+    let (share, correlation_bins) = cross.force_noise_share(variance);
     Ok(FrfEstimate {
+        force_noise: ForceNoise {
+            variance,
+            share,
+            correlation_bins,
+        },
         h1: cross.h1(),
         h2: cross.h2(),
         coherence: cross.coherence(),

@@ -11,11 +11,21 @@
 //! whose force channel spans over twice its response's has them swapped,
 //! or a force that is not a blow.
 //!
+//! **Noise on the force.** Outside the blow a force transducer records
+//! only noise. Its variance σ², taken over the samples farther than the
+//! blow's span from it ([`force_noise_variance`]), is what the records
+//! say of the force's noise without a fit: it inflates G_ff by hits·σ²Σw²
+//! under the force window w, so H1 reads low by that share ε of G_ff and
+//! scatters by √(ε/(hits(1 − ε)))
+//! ([`crate::signal::frf::CrossSpectra::force_noise_share`]).
+//!
 //! **Short records.** A mode of damping ζ at f spreads over 2ζf Hz, a
 //! record of T s resolves lines 1/T apart: a fit that finds nothing in a
 //! record a few lines per mode long says how long the record was.
 
+use super::frf::FrfEstimate;
 use super::TimeRecord;
+use crate::signal::Window;
 
 /// Samples from the first to the last at which |x| reaches a tenth of
 /// its peak (module doc); 0 for a silent channel.
@@ -29,6 +39,94 @@ pub fn active_span(x: &[f64]) -> usize {
         (Some(first), Some(last)) => last - first,
         _ => 0,
     }
+}
+
+/// Fewest samples outside the blow for a force-noise estimate.
+pub const MIN_NOISE_SAMPLES: usize = 64;
+
+/// The variance of a record's force outside its blow, N² (module doc):
+/// the samples farther than the blow's span (at least 4 samples) from
+/// the first and the last sample at a tenth of its peak, about their
+/// mean. `None` with fewer than [`MIN_NOISE_SAMPLES`] such samples or a
+/// silent channel.
+pub fn force_noise_variance(force: &[f64]) -> Option<f64> {
+    let peak = force.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let loud = |v: &f64| v.abs() >= 0.1 * peak;
+    let (first, last) = (force.iter().position(loud)?, force.iter().rposition(loud)?);
+    let margin = (last - first).max(4);
+    let quiet: Vec<f64> = force[..first.saturating_sub(margin)]
+        .iter()
+        .chain(force.get(last + margin + 1..).unwrap_or(&[]))
+        .copied()
+        .collect();
+    if peak <= 0.0 || quiet.len() < MIN_NOISE_SAMPLES {
+        return None;
+    }
+    let n = quiet.len() as f64;
+    let mean = quiet.iter().sum::<f64>() / n;
+    Some(quiet.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n)
+}
+
+/// Smallest H1 bias from noise on the force (the share ε of G_ff it
+/// makes) that is said.
+pub const FORCE_NOISE_BIAS: f64 = 0.01;
+
+/// A note when the noise the force records show outside their blows
+/// biases H1 somewhere in the fit band by over [`FORCE_NOISE_BIAS`] (module
+/// doc; the median and the largest bias over the band are said, and the
+/// scatter at the median). Unless the window already is one, a `force:P`
+/// window that keeps twice the blows' span is suggested (it keeps the
+/// blow and cuts the noise).
+pub fn force_noise_note(
+    records: &[TimeRecord],
+    estimate: &FrfEstimate,
+    band: (f64, f64),
+) -> Option<String> {
+    let noise = &estimate.force_noise;
+    let first = records.first()?;
+    let mut share: Vec<f64> = estimate
+        .frequency_hz
+        .iter()
+        .zip(&noise.share)
+        .filter(|(f, _)| **f >= band.0 && **f <= band.1)
+        .map(|(_, e)| *e)
+        .collect();
+    share.sort_by(f64::total_cmp);
+    let (Some(&median), Some(&worst)) = (share.get(share.len() / 2), share.last()) else {
+        return None;
+    };
+    if noise.variance <= 0.0 || worst < FORCE_NOISE_BIAS {
+        return None;
+    }
+    let hits = estimate.averages.max(1) as f64;
+    let scatter = (median / (hits * (1.0 - median).max(f64::MIN_POSITIVE))).sqrt();
+    let peak = first.force.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let rms = noise.variance.sqrt();
+    let effect = format!(
+        "the force channel `{}` shows noise outside the blow (RMS {rms:.3e} N, {:.2} % of its peak): over the fit band it lowers |H1| by a median {:.1} % (up to {:.1} % where the force is weakest) and scatters it by ±{:.1} % per line",
+        first.force_label,
+        100.0 * rms / peak.max(f64::MIN_POSITIVE),
+        100.0 * median,
+        100.0 * worst,
+        100.0 * scatter
+    );
+    if matches!(estimate.window, Window::Force { .. }) {
+        return Some(format!("{effect}; more hits average the scatter down"));
+    }
+    let blow_end = records
+        .iter()
+        .filter_map(|r| {
+            let peak = r.force.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            r.force.iter().rposition(|v| v.abs() >= 0.1 * peak)
+        })
+        .max()
+        .unwrap_or(0);
+    let keep =
+        (2.0 * (blow_end + 1) as f64 / estimate.samples.max(1) as f64 * 100.0).ceil() / 100.0;
+    Some(format!(
+        "{effect}; a force:{} window keeps the blow and cuts that noise",
+        keep.clamp(0.01, 1.0)
+    ))
 }
 
 /// A note per record whose force spans over twice its response (module

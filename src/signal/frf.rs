@@ -146,6 +146,27 @@ impl CrossSpectra {
             .collect()
     }
 
+    /// The share ε of G_ff per bin that white noise of variance
+    /// `noise_variance` (N², per sample) on every force record makes:
+    /// E|N|² = σ² Σw² per record (w the force weights), so
+    /// ε = hits σ² Σw²/Σ|F_i|², capped at 1. H1 reads (1 − ε) of the truth
+    /// there, and scatters by √(ε/(hits (1 − ε))) of it (to first order,
+    /// δH1 = −H Σ F̄_i N_i/Σ|F_i|²). Zero where the force has no power;
+    /// with the bins over which that error is correlated, n/Σw² (1
+    /// without a window, 1/P under `force:P`).
+    pub fn force_noise_share(&self, noise_variance: f64) -> (Vec<f64>, f64) {
+        let w = self.settings.window.force_weights(self.samples);
+        let energy: f64 = w.iter().map(|v| v * v).sum();
+        let noise = self.averages as f64 * noise_variance * energy;
+        let share = self
+            .gff
+            .iter()
+            .map(|g| if *g > 0.0 { (noise / g).min(1.0) } else { 0.0 })
+            .collect();
+        let bins = self.settings.fft_len as f64 / energy.max(f64::MIN_POSITIVE);
+        (share, bins.max(1.0))
+    }
+
     fn check_pair(&self, force: &[f64], response: &[f64]) -> Result<(), SpectrumError> {
         check_samples(force, "force")?;
         check_samples(response, "response")?;
