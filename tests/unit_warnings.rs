@@ -265,7 +265,70 @@ fn the_accuracy_warning_of_a_very_fine_mesh_names_its_round_off() {
     assert_eq!(code, Some(0), "{stderr}");
     let w = accuracy_warning(&stdout);
     assert!(
-        w.contains("the round-off of a very fine mesh limits them") && !w.contains("sizes"),
+        w.contains("the round-off of the stiffest entries limits them: a very fine mesh")
+            && !w.contains("sizes"),
+        "{w}"
+    );
+}
+
+/// An aluminium ruler (0.3 m, 30 × `height` mm... in metres) on two foam
+/// springs of 50 N/m, the right one anchored at `anchor` (outside-eyes
+/// trial of issue 33).
+fn ruler_on_foam(height: f64, anchor: [f64; 2]) -> Value {
+    json!({
+        "name": "ruler",
+        "beams": [{
+            "id": "ruler", "start": [0.0, 0.0], "angle_deg": 0.0, "length": 0.3,
+            "elements": 20,
+            "section": {"height": height, "width": 0.03},
+            "material": {"young": 70e9, "density": 2700.0}
+        }],
+        "springs": [
+            {"id": "foamL", "a": {"beam": "ruler", "s": 0.0672},
+             "b": {"ground": [0.0672, -0.02]}, "stiffness": 50.0, "free_length": 0.02},
+            {"id": "foamR", "a": {"beam": "ruler", "s": 0.2328},
+             "b": {"ground": anchor}, "stiffness": 50.0, "free_length": 0.02}
+        ]
+    })
+}
+
+#[test]
+fn a_spring_point_in_millimetres_names_the_spring() {
+    // The anchor typed in millimetres: the spring runs from (0.2328, 0)
+    // to (232.8, -20).
+    let (in_json, on_stderr) = modal_warnings(&ruler_on_foam(1e-3, [232.8, -20.0]));
+    let length = (232.8_f64 - 0.2328).hypot(20.0);
+    let said: Vec<&String> = in_json
+        .iter()
+        .filter(|w| w.contains("springs[1]: the spring is"))
+        .collect();
+    assert_eq!(said.len(), 1, "{in_json:?}");
+    let expected = format!(
+        "springs[1]: the spring is {} m long at the reference, {} times the length 0.3 m of beam `ruler` it holds",
+        ancf_modal::model::number::significant(length, 3),
+        ancf_modal::model::number::significant(length / 0.3, 3)
+    );
+    assert!(said[0].contains(&expected), "{} lacks {expected}", said[0]);
+    assert!(on_stderr.iter().any(|l| l.contains(&expected)));
+    // In metres, nothing is said.
+    let (in_json, _) = modal_warnings(&ruler_on_foam(1e-3, [0.2328, -0.02]));
+    assert!(in_json.is_empty(), "{in_json:?}");
+}
+
+#[test]
+fn the_accuracy_warning_names_a_value_in_other_units() {
+    // The height typed in millimetres (1.0 for 1 mm): the 0.3 m ruler is
+    // a metre-high block on 50 N/m springs, the table's bound is loose,
+    // and the warning names the height, not a fine mesh (20 elements).
+    let (code, stdout, stderr) = run(
+        &ruler_on_foam(1.0, [0.2328, -0.02]),
+        &["modal", "--modes", "3"],
+    );
+    assert_eq!(code, Some(0), "{stderr}");
+    let w = accuracy_warning(&stdout);
+    assert!(
+        w.contains("values that look like other units than SI limit them: beams[0].section.height")
+            && !w.contains("fine mesh"),
         "{w}"
     );
 }

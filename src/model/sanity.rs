@@ -26,7 +26,9 @@
 //!   costs accuracy: the stiffness and mass entries then span (L_max/L_min)⁴
 //!   and more, and the eigen-solve certifies the lowest frequencies to a
 //!   fraction of what the arithmetic gives a consistent model. Each part is
-//!   named once, for its largest ratio.
+//!   named once, for its largest ratio. So is a spring over that many
+//!   times as long, at the reference, as the largest part it holds (a
+//!   point of it in millimetres).
 
 use super::number::significant;
 use super::validate::PointTarget;
@@ -82,6 +84,17 @@ pub enum UnitWarning {
         reference: String,
         ratio: f64,
     },
+    #[error("{path}: the spring is {} m long at the reference, {} times the {part_size} of {part} it holds: are all its points in metres?", significant(*length, 3), significant(*ratio, 3))]
+    SpringLength {
+        /// The spring (`springs[0]`).
+        path: String,
+        /// Distance between its ends [SI: m].
+        length: f64,
+        part: String,
+        /// The part's size as text (`length 0.3 m`).
+        part_size: String,
+        ratio: f64,
+    },
 }
 
 impl UnitWarning {
@@ -90,7 +103,9 @@ impl UnitWarning {
     pub fn is_size(&self) -> bool {
         matches!(
             self,
-            UnitWarning::Size { .. } | UnitWarning::LeverArm { .. }
+            UnitWarning::Size { .. }
+                | UnitWarning::LeverArm { .. }
+                | UnitWarning::SpringLength { .. }
         )
     }
 }
@@ -175,7 +190,48 @@ impl Model {
                 }
             }
         }
-        worst.into_iter().flatten().collect()
+        let mut out: Vec<UnitWarning> = worst.into_iter().flatten().collect();
+        out.extend(self.spring_length_warnings());
+        out
+    }
+
+    /// The springs over [`MAX_SIZE_RATIO`] times as long, at the
+    /// reference, as the largest part they hold (module doc): a point typed
+    /// in millimetres into a metre model (a ground point at 232.8 for
+    /// 0.2328) makes a spring hundreds of metres long.
+    fn spring_length_warnings(&self) -> Vec<UnitWarning> {
+        let mut out = Vec::new();
+        for (i, spring) in self.springs.iter().enumerate() {
+            let path = format!("springs[{i}]");
+            let (Some(a), Some(b)) = (
+                self.end(&spring.a, &format!("{path}.a")),
+                self.end(&spring.b, &format!("{path}.b")),
+            ) else {
+                continue;
+            };
+            let (pa, pb) = (a.target.position_or_centre(), b.target.position_or_centre());
+            let length = (pa[0] - pb[0]).hypot(pa[1] - pb[1]);
+            let largest = [&a.target, &b.target]
+                .into_iter()
+                .filter_map(|t| Some((size(t)?, t)))
+                .max_by(|x, y| x.0.total_cmp(&y.0));
+            let Some((held, target)) = largest else {
+                continue;
+            };
+            let Some((part, _)) = part_name(target) else {
+                continue;
+            };
+            if length > MAX_SIZE_RATIO * held {
+                out.push(UnitWarning::SpringLength {
+                    path,
+                    length,
+                    part,
+                    part_size: size_text(target, held),
+                    ratio: length / held,
+                });
+            }
+        }
+        out
     }
 
     /// A joint's or spring's end, resolved; `None` when it does not
@@ -311,7 +367,9 @@ fn part_name(t: &PointTarget) -> Option<(String, String)> {
 
 fn ratio(w: &UnitWarning) -> f64 {
     match w {
-        UnitWarning::Size { ratio, .. } | UnitWarning::LeverArm { ratio, .. } => *ratio,
+        UnitWarning::Size { ratio, .. }
+        | UnitWarning::LeverArm { ratio, .. }
+        | UnitWarning::SpringLength { ratio, .. } => *ratio,
         _ => 0.0,
     }
 }

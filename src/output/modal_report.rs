@@ -101,7 +101,7 @@ pub fn modal_table(model: &Model, r: &ModalResult) -> String {
         let _ = writeln!(
             s,
             "warning: {}",
-            accuracy_warning_text(worst, &model.size_warnings())
+            accuracy_warning_text(worst, &model.unit_warnings())
         );
     }
     s
@@ -109,32 +109,39 @@ pub fn modal_table(model: &Model, r: &ModalResult) -> String {
 
 /// The warning of a modal result whose lowest frequencies the eigen-solve
 /// certifies only to `worst` (relative), above
-/// [`crate::analysis::modal::ACCURACY_WARNING`], with its cause: the parts
-/// of `sizes` ([`Model::size_warnings`]) when the model has parts whose
-/// sizes disagree by orders of magnitude (their matrices then span many
-/// more orders than a consistent model's), else the round-off of a very
-/// fine mesh.
-pub fn accuracy_warning_text(worst: f64, sizes: &[UnitWarning]) -> String {
+/// [`crate::analysis::modal::ACCURACY_WARNING`], with its cause, from the
+/// model's unit warnings ([`Model::unit_warnings`]): the parts whose sizes
+/// disagree by orders of magnitude (their matrices then span many more
+/// orders than a consistent model's), else the values that look like
+/// other units, else the round-off of the stiffest entries (a very fine
+/// mesh, or stiff parts on soft springs).
+pub fn accuracy_warning_text(worst: f64, units: &[UnitWarning]) -> String {
     let head = format!(
         "the eigen-solve certifies the lowest frequencies only to {worst:.1e} (relative), \
          more than the {:.0e} a useful mesh reaches; ",
         crate::analysis::modal::ACCURACY_WARNING
     );
-    let parts: Vec<&str> = sizes
+    let parts: Vec<&str> = units
         .iter()
         .filter_map(|w| match w {
             UnitWarning::Size { part, .. } | UnitWarning::LeverArm { part, .. } => {
                 Some(part.as_str())
             }
+            UnitWarning::SpringLength { path, .. } => Some(path.as_str()),
             _ => None,
         })
         .collect();
-    if parts.is_empty() {
-        format!(
-            "{head}the round-off of a very fine mesh limits them \
-             (fewer elements give a tighter bound)"
-        )
-    } else {
+    let values: Vec<&str> = units
+        .iter()
+        .filter_map(|w| match w {
+            UnitWarning::Slender { path, .. }
+            | UnitWarning::Young { path, .. }
+            | UnitWarning::Density { path, .. }
+            | UnitWarning::WaveSpeed { path, .. } => Some(path.as_str()),
+            _ => None,
+        })
+        .collect();
+    if !parts.is_empty() {
         format!(
             "{head}parts whose sizes disagree by orders of magnitude limit them: {} \
              (over {} times the size or lever arm of a part joined to {}; is a length in other \
@@ -142,6 +149,19 @@ pub fn accuracy_warning_text(worst: f64, sizes: &[UnitWarning]) -> String {
             parts.join(", "),
             crate::model::sanity::MAX_SIZE_RATIO,
             if parts.len() == 1 { "it" } else { "them" }
+        )
+    } else if !values.is_empty() {
+        format!(
+            "{head}values that look like other units than SI limit them: {} (see the unit \
+             warning{})",
+            values.join(", "),
+            if values.len() == 1 { "" } else { "s" }
+        )
+    } else {
+        format!(
+            "{head}the round-off of the stiffest entries limits them: a very fine mesh, or a \
+             stiff part on soft springs, makes the stiffness span many orders (fewer elements \
+             give a tighter bound)"
         )
     }
 }
