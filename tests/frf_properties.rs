@@ -18,7 +18,8 @@
 //!   held to the tolerance (one bin tells it from a noise spike);
 //! - no other pole is reported (each reported pole is within 10 half-power
 //!   widths ζf + Δf of its nearest true mode, and no two share one);
-//! - every reported pole lies in the band with 0 < ζ < 1.
+//! - every reported pole lies in the band with 0 < ζ < 1;
+//! - no rejected pole is listed twice.
 
 mod measured_support;
 
@@ -164,6 +165,16 @@ fn check(c: &Case) -> Result<(), TestCaseError> {
         },
     )
     .map_err(|e| TestCaseError::fail(e.to_string()))?;
+    // No pole is listed twice (two seeds the refinement took to one pole).
+    for pair in a.rejected.windows(2) {
+        prop_assert!(
+            !(pair[0].reason == pair[1].reason
+                && (pair[0].frequency_hz - pair[1].frequency_hz).abs()
+                    <= 1e-6 * pair[1].frequency_hz),
+            "listed twice: {:?}",
+            pair
+        );
+    }
     let noisy = c.response_noise > 0.0 || c.force_noise > 0.0;
     let (tol_f, tol_z): (f64, f64) = if noisy { (1e-3, 0.05) } else { (1e-5, 0.005) };
     let found: Vec<(f64, f64)> = a

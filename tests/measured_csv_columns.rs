@@ -132,6 +132,36 @@ fn a_time_column_in_ms_or_us_is_read_in_that_unit() {
     }
 }
 
+/// A time column in ms under a plain name is read as seconds, a record
+/// sampled at 10.24 Hz: that is said (outside-eyes trial of issue 33,
+/// second round: modes at 0.058 Hz were reported without a word). In
+/// seconds, nothing is said.
+#[test]
+fn a_record_sampled_slower_than_any_hammer_test_asks_for_the_time_unit() {
+    let seconds = csv("time,vel,force_n", true);
+    let mut ms = String::from("time,vel,force_n\n");
+    for line in seconds.lines().skip(1) {
+        let (t, rest) = line.split_once(',').unwrap();
+        let t: f64 = t.parse().unwrap();
+        let _ = writeln!(ms, "{:.9e},{rest}", t * 1e3);
+    }
+    let said = |text: &str| -> Vec<String> {
+        analysed(text, &Channels::default())
+            .warnings()
+            .into_iter()
+            .filter(|w| w.contains("is the time in ms or µs?"))
+            .collect()
+    };
+    let slow = said(&ms);
+    assert_eq!(slow.len(), 1, "{slow:?}");
+    assert!(
+        slow[0].contains("sampled at 10.24 Hz, below the 20 Hz"),
+        "{}",
+        slow[0]
+    );
+    assert!(said(&seconds).is_empty());
+}
+
 fn analysed(text: &str, channels: &Channels) -> ancf_modal::measured::analysis::FrfAnalysis {
     let r = parse_csv(Path::new("hit.csv"), text, channels).unwrap();
     analyse(vec![Measurement::Time(r)], AnalysisSettings::default()).unwrap()

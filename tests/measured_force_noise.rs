@@ -10,7 +10,8 @@
 //!   power within its statistical spread, for the rect and the force
 //!   window.
 //! - `frf` says it when the bias reaches 1 %, and suggests a force window;
-//!   a clean force, or a force window that cuts the noise, says nothing.
+//!   a clean force, or a force window that cuts the noise, says nothing;
+//!   under a taper only the taper is said.
 
 mod measured_support;
 
@@ -147,4 +148,23 @@ fn frf_says_a_noisy_force_and_how_to_cut_it() {
     // The force window keeps 82 samples of 8192: the share falls 100×,
     // under the 1 % said.
     assert!(warnings(0.02, Window::Force { fraction: 0.01 }).is_empty());
+}
+
+#[test]
+fn under_a_taper_only_the_taper_is_said() {
+    // Hann cuts the blow at the record's start: its own warning says so,
+    // and the force noise (now a large share of what is left) and any
+    // mode not found follow from it.
+    let records = hammer_records(&two_modes(), FS, 8_192, 3, 0.02, 1e-9, 3);
+    let w = analyse(
+        records.into_iter().map(Measurement::Time).collect(),
+        AnalysisSettings {
+            window: Window::Hann,
+            ..AnalysisSettings::default()
+        },
+    )
+    .unwrap()
+    .warnings();
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].contains("the hann window tapers the blow"), "{}", w[0]);
 }

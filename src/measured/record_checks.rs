@@ -12,12 +12,15 @@
 //! or a force that is not a blow.
 //!
 //! **Noise on the force.** Outside the blow a force transducer records
-//! only noise. Its variance σ², taken over the samples farther than the
-//! blow's span from it ([`force_noise_variance`]), is what the records
+//! only noise. Its variance σ², taken over the samples farther than four
+//! blow spans from it ([`force_noise_variance`]), is what the records
 //! say of the force's noise without a fit: it inflates G_ff by hits·σ²Σw²
 //! under the force window w, so H1 reads low by that share ε of G_ff and
 //! scatters by √(ε/(hits(1 − ε)))
 //! ([`crate::signal::frf::CrossSpectra::force_noise_share`]).
+//!
+//! **Slow sampling.** A hammer record sampled below 20 Hz has its time
+//! in other units than seconds ([`slow_sampling`]).
 //!
 //! **Short records.** A mode of damping ζ at f spreads over 2ζf Hz, a
 //! record of T s resolves lines 1/T apart: a fit that finds nothing in a
@@ -45,15 +48,15 @@ pub fn active_span(x: &[f64]) -> usize {
 pub const MIN_NOISE_SAMPLES: usize = 64;
 
 /// The variance of a record's force outside its blow, N² (module doc):
-/// the samples farther than the blow's span (at least 4 samples) from
-/// the first and the last sample at a tenth of its peak, about their
-/// mean. `None` with fewer than [`MIN_NOISE_SAMPLES`] such samples or a
+/// the samples farther than four times the blow's span (at least 32
+/// samples: an anti-alias filter's ringing belongs to the blow) from the
+/// first and the last sample at a tenth of its peak, about their mean. `None` with fewer than [`MIN_NOISE_SAMPLES`] such samples or a
 /// silent channel.
 pub fn force_noise_variance(force: &[f64]) -> Option<f64> {
     let peak = force.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let loud = |v: &f64| v.abs() >= 0.1 * peak;
     let (first, last) = (force.iter().position(loud)?, force.iter().rposition(loud)?);
-    let margin = (last - first).max(4);
+    let margin = (4 * (last - first)).max(MIN_NOISE_SAMPLES / 2);
     let quiet: Vec<f64> = force[..first.saturating_sub(margin)]
         .iter()
         .chain(force.get(last + margin + 1..).unwrap_or(&[]))
@@ -149,6 +152,24 @@ pub fn swapped_channels(records: &[TimeRecord]) -> Vec<String> {
             })
         })
         .collect()
+}
+
+/// Slowest sample rate of a hammer record taken as meant, Hz: a blow
+/// lasts milliseconds, and even a bridge's hammer test samples at
+/// hundreds of hertz. A time column in ms read as seconds makes a
+/// 2048 Hz record a 2.048 Hz one.
+pub const MIN_HAMMER_RATE_HZ: f64 = 20.0;
+
+/// A note when the records are sampled below [`MIN_HAMMER_RATE_HZ`].
+pub fn slow_sampling(records: &[TimeRecord]) -> Option<String> {
+    let r = records.first()?;
+    (r.sample_rate_hz < MIN_HAMMER_RATE_HZ).then(|| {
+        format!(
+            "{}: the records are sampled at {} Hz, below the {MIN_HAMMER_RATE_HZ} Hz of any hammer test: is the time in ms or µs? (a CSV time column is read in ms or µs when its name says so: time_ms, t [us])",
+            r.file.display(),
+            crate::model::number::significant(r.sample_rate_hz, 4)
+        )
+    })
 }
 
 /// A note when a fit of time records found no mode: their length and line
