@@ -103,6 +103,38 @@ fn first_bending_is_proportional_to_height() {
 }
 
 #[test]
+fn listed_values_are_swept_in_their_order() {
+    // `height=V1,V2,…` (issue 34): the points are the values as listed,
+    // f₁ ∝ h holds across them, and the values a range also holds give
+    // that range's results to the bit.
+    let listed = complete(&sweep(
+        &model(&blade()),
+        &["height=1.5e-3,0.5e-3,1.25e-3"],
+        "first_bending_hz",
+        6,
+    ));
+    assert_eq!(listed.parameters[0].values, vec![1.5e-3, 0.5e-3, 1.25e-3]);
+    let f = results(&listed);
+    for (fi, hi) in f.iter().zip(&listed.parameters[0].values) {
+        let r = fi / hi / (f[0] / 1.5e-3);
+        assert!(
+            (r - 1.0).abs() < 1e-9,
+            "h = {hi}: f₁/h off by {:e}",
+            r - 1.0
+        );
+    }
+    let range = complete(&sweep(
+        &model(&blade()),
+        &["height=0.5e-3:2e-3:7"],
+        "first_bending_hz",
+        6,
+    ));
+    // 0.5e-3 and 1.25e-3 are the range's 1st and 4th values.
+    assert_eq!(f[1], results(&range)[0]);
+    assert_eq!(f[2], results(&range)[3]);
+}
+
+#[test]
 fn first_bending_scales_with_wave_speed_over_an_e_rho_grid() {
     let d = complete(&sweep(
         &model(&blade()),

@@ -401,7 +401,9 @@ class TransientResult:
 
 def sweep(
     model: Model,
-    params: Mapping[str, Union[str, Tuple[float, float, int], Tuple[float, float, int, str]]],
+    params: Mapping[
+        str, Union[str, Tuple[float, float, int], Tuple[float, float, int, str], Sequence[float]]
+    ],
     quantity: str,
     modes: int = 6,
     prestress: bool = False,
@@ -412,8 +414,8 @@ def sweep(
 ) -> SweepResult:
     """A parameter study (``ancf-modal sweep``): ``quantity``
     (first_bending_hz [Hz], frequency:K [Hz], time_to_distance_s [s],
-    peak:SENSOR) over the grid of ``params`` {name: "LO:HI:N[:log]" or
-    (LO, HI, N)} [SI]; ``step``, ``end_time`` [s] of transient quantities;
+    peak:SENSOR) over the grid of ``params`` {name: "LO:HI:N[:log]",
+    (LO, HI, N), "V1,V2,..." or a list of the values} [SI]; ``step``, ``end_time`` [s] of transient quantities;
     ``threads`` workers. KeyboardInterrupt stops it."""
 
 def frf(

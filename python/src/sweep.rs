@@ -21,11 +21,18 @@ use std::time::{Duration, Instant};
 /// A chunk of points may take this long before the next signal check.
 const CHUNK_TIME: Duration = Duration::from_millis(250);
 
-/// `NAME=LO:HI:N[:log]` from a key and a value "LO:HI:N[:log]" or a tuple
-/// (LO, HI, N[, "log"]).
+/// `NAME=LO:HI:N[:log]` or `NAME=V1,V2,…` from a key and a value
+/// "LO:HI:N[:log]", a tuple (LO, HI, N[, "log"]), or a list (or 1-D
+/// array) of the values.
 fn spec(name: &str, value: &Bound<'_, PyAny>) -> PyResult<String> {
     if let Ok(text) = value.cast::<PyString>() {
         return Ok(format!("{name}={}", text.to_cow()?));
+    }
+    if !value.is_instance_of::<pyo3::types::PyTuple>() {
+        if let Ok(values) = value.extract::<Vec<f64>>() {
+            let text: Vec<String> = values.iter().map(|v| format!("{v:?}")).collect();
+            return Ok(format!("{name}={}", text.join(",")));
+        }
     }
     if let Ok((lo, hi, n)) = value.extract::<(f64, f64, i64)>() {
         return Ok(format!("{name}={lo:?}:{hi:?}:{n}"));
@@ -34,7 +41,7 @@ fn spec(name: &str, value: &Bound<'_, PyAny>) -> PyResult<String> {
         Failure::argument(
             "params",
             value.repr().map(|r| r.to_string()).unwrap_or_default(),
-            &format!("the value of `{name}` must be \"LO:HI:N[:log]\" or (LO, HI, N[, \"log\"])"),
+            &format!("the value of `{name}` must be \"LO:HI:N[:log]\", (LO, HI, N[, \"log\"]) or a list of values"),
         )
     })?;
     Ok(format!("{name}={lo:?}:{hi:?}:{n}:{spacing}"))

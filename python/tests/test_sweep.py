@@ -23,6 +23,22 @@ def test_first_bending_is_proportional_to_the_height():
     assert np.max(np.abs(ratio / ratio[0] - 1.0)) < 1e-9
 
 
+def test_listed_values_follow_the_command_line(cli):
+    # A list (or array) of values is swept as listed, as `--param height=V1,V2,…`;
+    # f ∝ h across them.
+    model = ancf_modal.Model.builtin("beam_free_free")
+    listed = ancf_modal.sweep(model, {"height": [1.2e-3, 0.6e-3]}, "first_bending_hz")
+    as_array = ancf_modal.sweep(model, {"height": np.array([1.2e-3, 0.6e-3])}, "first_bending_hz")
+    assert listed.to_dict() == as_array.to_dict()
+    assert list(listed.values[:, 0]) == [1.2e-3, 0.6e-3]
+    assert abs(listed.result[0] / listed.result[1] / 2.0 - 1.0) < 1e-9
+    doc = cli.json(
+        "sweep", "models/beam_free_free.json", "--param", "height=1.2e-3,6e-4",
+        "--quantity", "first_bending_hz",
+    )
+    assert [p["result"] for p in doc["points"]] == list(listed.result)
+
+
 def test_grid_order_threads_and_the_command_line(cli):
     model = ancf_modal.Model.builtin()
     params = {"blade.young": "100e9:150e9:3", "height": (0.9e-3, 1.3e-3, 4)}

@@ -28,10 +28,11 @@ pub struct SweepArgs {
     /// model (`beams[blade].section.height`, `springs[0].stiffness`), a
     /// short name of `calibrate --param` (`height`, `blade.young`), or
     /// `load_scale:ID[,ID...]` (multiplies those loads; linearizes at the
-    /// static equilibrium). Values SI; `:log` spaces them geometrically.
+    /// static equilibrium). Values SI: LO:HI:N from LO to HI (`:log` spaces
+    /// them geometrically), or V1,V2,... as listed.
     #[arg(
         long = "param",
-        value_name = "NAME=LO:HI:N[:log]",
+        value_name = "NAME=LO:HI:N[:log]|V1,V2,...",
         allow_hyphen_values = true
     )]
     pub params: Vec<String>,

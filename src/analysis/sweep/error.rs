@@ -13,7 +13,7 @@ use crate::model::path::PathError;
 pub enum SweepError {
     #[error("no parameter to vary")]
     NoParameters,
-    #[error("`{given}` is not NAME=LO:HI:N[:log] or NAME+=LO:HI:N[:log] (an offset; not for load_scale:)")]
+    #[error("`{given}` is not NAME=LO:HI:N[:log], NAME=V1,V2,… or NAME+= either (an offset; not for load_scale:)")]
     ParamSyntax { given: String },
     #[error("`{name}+=`: the model has no value at `{path}` to offset (give it in the model file, or set it with `{name}=`)")]
     NoValueToOffset { name: String, path: String },

@@ -1,5 +1,5 @@
-//! The points of a sweep: one axis per parameter (`LO:HI:N`, linear, or
-//! `LO:HI:N:log`, geometric), their full grid in row-major order of the
+//! The points of a sweep: one axis per parameter (`LO:HI:N`, linear,
+//! `LO:HI:N:log`, geometric, or the values listed, `V1,V2,…`), their full grid in row-major order of the
 //! parameters (the first parameter varies slowest), and shards of it.
 //!
 //! A point's index `i` and its grid coordinates `(i₁, …, i_d)` are related
@@ -14,30 +14,25 @@ pub const MAX_AXIS_VALUES: usize = 1_000_000;
 /// Most points of a grid.
 pub const MAX_POINTS: usize = 10_000_000;
 
-/// The values of one parameter.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Axis {
-    pub lo: f64,
-    pub hi: f64,
-    pub count: usize,
-    /// Geometric spacing (equal ratios) instead of equal steps.
-    pub log: bool,
+/// The values of one parameter: a range, or the values listed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Axis {
+    /// `LO:HI:N[:log]`: N values from LO to HI.
+    Range {
+        lo: f64,
+        hi: f64,
+        count: usize,
+        /// Geometric spacing (equal ratios) instead of equal steps.
+        log: bool,
+    },
+    /// `V1,V2,…`: these values, in this order.
+    List(Vec<f64>),
 }
 
 impl Axis {
-    /// Parses `LO:HI:N` or `LO:HI:N:log`; `given` names the whole flag value
-    /// in errors.
+    /// Parses `LO:HI:N`, `LO:HI:N:log` or `V1,V2,…` (one value alone is
+    /// a list of one); `given` names the whole flag value in errors.
     pub fn parse(text: &str, given: &str) -> Result<Axis, SweepError> {
-        let parts: Vec<&str> = text.split(':').map(str::trim).collect();
-        let (lo, hi, n, spacing) = match parts[..] {
-            [lo, hi, n] => (lo, hi, n, None),
-            [lo, hi, n, s] => (lo, hi, n, Some(s)),
-            _ => {
-                return Err(SweepError::ParamSyntax {
-                    given: given.to_string(),
-                })
-            }
-        };
         let number = |what: &'static str, t: &str| {
             t.parse::<f64>()
                 .ok()
@@ -47,6 +42,30 @@ impl Axis {
                     what,
                     text: t.to_string(),
                 })
+        };
+        if !text.contains(':') {
+            let values = text
+                .split(',')
+                .map(|t| number("a value", t.trim()))
+                .collect::<Result<Vec<f64>, _>>()?;
+            if values.len() > MAX_AXIS_VALUES {
+                return Err(SweepError::BadCount {
+                    given: given.to_string(),
+                    text: values.len().to_string(),
+                    max: MAX_AXIS_VALUES,
+                });
+            }
+            return Ok(Axis::List(values));
+        }
+        let parts: Vec<&str> = text.split(':').map(str::trim).collect();
+        let (lo, hi, n, spacing) = match parts[..] {
+            [lo, hi, n] => (lo, hi, n, None),
+            [lo, hi, n, s] => (lo, hi, n, Some(s)),
+            _ => {
+                return Err(SweepError::ParamSyntax {
+                    given: given.to_string(),
+                })
+            }
         };
         let (lo, hi) = (number("LO", lo)?, number("HI", hi)?);
         let count = n
@@ -75,25 +94,42 @@ impl Axis {
                 hi,
             });
         }
-        Ok(Axis { lo, hi, count, log })
+        Ok(Axis::Range { lo, hi, count, log })
     }
 
-    /// The values, LO first and HI last exactly (one value: LO).
+    /// Whether the values are spaced geometrically.
+    pub fn is_log(&self) -> bool {
+        matches!(self, Axis::Range { log: true, .. })
+    }
+
+    /// The first value.
+    pub fn first(&self) -> f64 {
+        match self {
+            Axis::Range { lo, .. } => *lo,
+            Axis::List(v) => v.first().copied().unwrap_or(f64::NAN),
+        }
+    }
+
+    /// The values: a range's LO first and HI last exactly (one value: LO);
+    /// a list's as given.
     pub fn values(&self) -> Vec<f64> {
-        let n = self.count;
+        let (lo, hi, n, log) = match self {
+            Axis::List(v) => return v.clone(),
+            Axis::Range { lo, hi, count, log } => (*lo, *hi, *count, *log),
+        };
         (0..n)
             .map(|i| {
                 if i == 0 {
-                    return self.lo;
+                    return lo;
                 }
                 if i + 1 == n {
-                    return self.hi;
+                    return hi;
                 }
                 let (a, b, m) = ((n - 1 - i) as f64, i as f64, (n - 1) as f64);
-                let v = if self.log {
-                    ((a * self.lo.ln() + b * self.hi.ln()) / m).exp()
+                let v = if log {
+                    ((a * lo.ln() + b * hi.ln()) / m).exp()
                 } else {
-                    (a * self.lo + b * self.hi) / m
+                    (a * lo + b * hi) / m
                 };
                 // 15 significant digits, so that a decimal range stays
                 // decimal (1e-3:1.2e-3:3 gives 1.1e-3, not
@@ -106,11 +142,19 @@ impl Axis {
 
 impl std::fmt::Display for Axis {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{:?}:{:?}:{}", self.lo, self.hi, self.count)?;
-        if self.log {
-            f.write_str(":log")?;
+        match self {
+            Axis::Range { lo, hi, count, log } => {
+                write!(f, "{lo:?}:{hi:?}:{count}")?;
+                if *log {
+                    f.write_str(":log")?;
+                }
+                Ok(())
+            }
+            Axis::List(values) => {
+                let text: Vec<String> = values.iter().map(|v| format!("{v:?}")).collect();
+                f.write_str(&text.join(","))
+            }
         }
-        Ok(())
     }
 }
 
@@ -249,9 +293,23 @@ mod tests {
             "1:2:3:lin",
             "0:1:3:log",
             "1:inf:2",
+            "1,,2",
+            "1,x",
+            "",
+            "1,nan",
         ] {
             assert!(Axis::parse(bad, bad).is_err(), "{bad}");
         }
+    }
+
+    #[test]
+    fn a_list_is_its_values_in_order_and_prints_back() {
+        let a = Axis::parse("1.1e-3, 1e-3,1.3e-3", "h=…").unwrap();
+        assert_eq!(a.values(), vec![1.1e-3, 1e-3, 1.3e-3]);
+        assert_eq!(a.first(), 1.1e-3);
+        assert!(!a.is_log());
+        assert_eq!(Axis::parse(&a.to_string(), "h").unwrap(), a);
+        assert_eq!(Axis::parse("-2", "x").unwrap().values(), vec![-2.0]);
     }
 
     #[test]

@@ -131,7 +131,7 @@ impl Sweep {
                     name: p.name.clone(),
                     target: p.target.clone(),
                     values: v.clone(),
-                    log: p.axis.log,
+                    log: p.axis.is_log(),
                 })
                 .collect(),
             prestress: settings.prestress,

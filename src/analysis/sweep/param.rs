@@ -62,8 +62,8 @@ pub struct Parameter {
 }
 
 impl Parameter {
-    /// Resolves `NAME=LO:HI:N[:log]` against `model` (JSON form `json`);
-    /// `NAME+=LO:HI:N` adds the values to the model's number (an offset,
+    /// Resolves `NAME=LO:HI:N[:log]` or `NAME=V1,V2,…` against `model`
+    /// (JSON form `json`); `NAME+=…` adds the values to the model's number (an offset,
     /// e.g. a point moved by 0 → −1 mm).
     pub fn parse(model: &Model, json: &Value, given: &str) -> Result<Parameter, SweepError> {
         let syntax = || SweepError::ParamSyntax {
@@ -109,8 +109,8 @@ impl Parameter {
                 let current = path.get(json);
                 let integer = current.is_some_and(|v| v.is_i64() || v.is_u64());
                 let (op, lowest) = match (offset, current.and_then(Value::as_f64)) {
-                    (false, _) => (Op::Set, axis.lo),
-                    (true, Some(base)) => (Op::Shift { base }, base + axis.lo),
+                    (false, _) => (Op::Set, axis.first()),
+                    (true, Some(base)) => (Op::Shift { base }, base + axis.first()),
                     (true, None) => {
                         return Err(SweepError::NoValueToOffset {
                             name: name.to_string(),
@@ -162,7 +162,7 @@ impl Parameter {
                 text: format!("{value:?}"),
             });
         }
-        let axis = Axis {
+        let axis = Axis::Range {
             lo: value,
             hi: value,
             count: 1,
