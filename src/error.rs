@@ -240,6 +240,10 @@ pub enum LoadPath {
     Together,
     /// The loads ramped to their factor, then gravity.
     LoadsFirst,
+    /// The loads alone (the model has no gravity).
+    LoadsOnly,
+    /// Gravity alone (no load acts at the factor asked).
+    GravityOnly,
 }
 
 impl std::fmt::Display for LoadPath {
@@ -248,6 +252,8 @@ impl std::fmt::Display for LoadPath {
             LoadPath::GravityFirst => "gravity first, then the loads",
             LoadPath::Together => "gravity and the loads together",
             LoadPath::LoadsFirst => "the loads first, then gravity",
+            LoadPath::LoadsOnly => "the loads alone (no gravity)",
+            LoadPath::GravityOnly => "gravity alone (no loads)",
         })
     }
 }

@@ -93,6 +93,30 @@ fn tensioned_string_under_gravity_is_found_at_every_load_factor() {
     }
 }
 
+#[test]
+fn a_model_with_one_of_gravity_and_loads_names_that_one_path() {
+    // Without gravity only the loads are ramped, and gravity alone at load
+    // factor 0 (outside-eyes trial of issue 33: a gravity-free column was
+    // said to be on the path "gravity first, then the loads").
+    let mut v = serde_json::to_value(string(8)).unwrap();
+    v["gravity"] = json!([0.0, 0.0]);
+    let no_gravity = Model::from_json(&v.to_string(), Source::BuiltIn).unwrap();
+    let path = |m: &Model, load_scale: f64| {
+        let sys = System::new(m);
+        let settings = StaticSettings {
+            load_scale,
+            ..Default::default()
+        };
+        solve_equilibrium(&sys, &settings).unwrap().branch.path
+    };
+    assert_eq!(path(&no_gravity, 1.0), Some(LoadPath::LoadsOnly));
+    assert_eq!(path(&string(8), 0.0), Some(LoadPath::GravityOnly));
+    assert!(matches!(
+        path(&string(8), 1.0),
+        Some(LoadPath::GravityFirst | LoadPath::Together | LoadPath::LoadsFirst)
+    ));
+}
+
 /// A clamped beam with a tip mass and a preloaded spring from its tip to
 /// the ground, under gravity and a dead tip load, all moderate (below a
 /// quarter of the cantilever's buckling load in compression).

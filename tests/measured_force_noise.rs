@@ -168,3 +168,62 @@ fn under_a_taper_only_the_taper_is_said() {
     assert_eq!(w.len(), 1, "{w:?}");
     assert!(w[0].contains("the hann window tapers the blow"), "{}", w[0]);
 }
+
+/// Mean of H1/H over `trials` sets of `hits` hits of a pure gain H = 2
+/// (response = 2 × the clean blow) with noise σ on the force, over the
+/// bins 1..`bins`; and the mean ε there, from the clean blow.
+fn mean_h1(hits: usize, sigma: f64, trials: usize, bins: usize) -> (f64, f64) {
+    let blow = pulse(N, FS, 4.0, 1e-4, 2e-4);
+    let response: Vec<f64> = blow.iter().map(|v| 2.0 * v).collect();
+    let mut noise = Noise::new(23);
+    let (mut h, mut eps) = (0.0, 0.0);
+    for _ in 0..trials {
+        let forces: Vec<Vec<f64>> = (0..hits)
+            .map(|_| blow.iter().map(|v| v + sigma * noise.gauss()).collect())
+            .collect();
+        let cross = CrossSpectra::estimate(
+            forces.iter().map(|f| (f.as_slice(), response.as_slice())),
+            FS,
+            CrossSpectraSettings {
+                window: Window::Rectangular,
+                fft_len: N,
+                remove_mean: false,
+            },
+        )
+        .unwrap();
+        let h1 = cross.h1();
+        for k in 1..bins {
+            h += h1[k].re / 2.0;
+        }
+    }
+    // ε from the clean blow: σ²N of noise per line against |S|² + σ²N.
+    let ones = vec![1.0; N];
+    for k in 1..bins {
+        let noise = sigma * sigma * N as f64;
+        eps += trials as f64 * noise / (clean_power(&blow, &ones, k) + noise);
+    }
+    let count = (trials * (bins - 1)) as f64;
+    (h / count, eps / count)
+}
+
+#[test]
+fn one_hit_is_scattered_and_several_are_lowered() {
+    // Noise at 1/19 of the blow's power per line (ε ≈ 0.05): to first
+    // order E[H1]/H = 1 − ε(1 − 1/n) for n hits (the warning's figure);
+    // one hit's H1 = X/F is exactly 1 − e^(−|S|²/E|N|²) = 1 − e^(−19),
+    // not the 1 − ε a share of Σ|F|² would suggest.
+    let blow = pulse(N, FS, 4.0, 1e-4, 2e-4);
+    let dc: f64 = blow.iter().sum();
+    let sigma = (dc * dc / 19.0 / N as f64).sqrt();
+    for hits in [1, 4] {
+        let (h, eps) = mean_h1(hits, sigma, 200, 40);
+        let first = 1.0 - eps * (1.0 - 1.0 / hits as f64);
+        assert!((0.04..0.06).contains(&eps), "ε {eps}");
+        // O(ε²) ≈ 0.0025 left out; the mean of 200 × 39 lines of
+        // ±√(ε/(n(1−ε))) scatter is good to 0.003.
+        assert!(
+            (h - first).abs() < 3.0 * eps * eps + 0.003,
+            "{hits} hits: mean H1/H {h}, first order {first}"
+        );
+    }
+}

@@ -159,7 +159,7 @@ pub enum MeasuredError {
     UffUnterminated { file: PathBuf, line: usize },
     #[error("{}: holds an FRF, which cannot be averaged with other files; give it alone", file.display())]
     MixedKinds { file: PathBuf },
-    #[error("{}: the fit band starts at {lo_hz} Hz, at or past the data's last line, {last_hz} Hz", file.display())]
+    #[error("{}: the fit band starts at {lo_hz} Hz, at or past the data's last line, {} Hz", file.display(), crate::model::number::significant(*last_hz, 6))]
     BandPastData {
         file: PathBuf,
         lo_hz: f64,

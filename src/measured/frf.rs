@@ -47,8 +47,9 @@ pub struct FrfEstimate {
 pub struct ForceNoise {
     /// Variance of the force's noise per sample, N².
     pub variance: f64,
-    /// The share ε of G_ff per bin that the noise makes: H1 reads
-    /// (1 − ε) of the truth ([`crate::signal::frf::CrossSpectra::force_noise_share`]).
+    /// The share ε of G_ff per bin that the noise makes
+    /// ([`crate::signal::frf::CrossSpectra::force_noise_share`]: what it
+    /// does to H1).
     pub share: Vec<f64>,
     /// Bins over which that error is correlated.
     pub correlation_bins: f64,

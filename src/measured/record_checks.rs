@@ -15,8 +15,9 @@
 //! only noise. Its variance σ², taken over the samples farther than four
 //! blow spans from it ([`force_noise_variance`]), is what the records
 //! say of the force's noise without a fit: it inflates G_ff by hits·σ²Σw²
-//! under the force window w, so H1 reads low by that share ε of G_ff and
-//! scatters by √(ε/(hits(1 − ε)))
+//! under the force window w, a share ε of G_ff. To first order that lowers
+//! the H1 of several hits by ε(1 − 1/hits) (one hit's H1 = X/F is not
+//! lowered on average) and scatters it by √(ε/(hits(1 − ε)))
 //! ([`crate::signal::frf::CrossSpectra::force_noise_share`]).
 //!
 //! **Slow sampling.** A hammer record sampled below 20 Hz has its time
@@ -105,8 +106,18 @@ pub fn force_noise_note(
     let scatter = (median / (hits * (1.0 - median).max(f64::MIN_POSITIVE))).sqrt();
     let peak = first.force.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let rms = noise.variance.sqrt();
+    // To first order E[H1]/H = 1 − ε(1 − 1/hits): one hit's H1 = X/F is
+    // scattered by the noise, not lowered; an average over hits is
+    // lowered by the noise power its Σ|F|² holds.
+    let lowered = match estimate.averages {
+        0 | 1 => "which a single hit's H1 = X/F does not lower on average".to_string(),
+        n => format!(
+            "which lowers the {n} hits' H1 by about {:.1} % (ε(1 − 1/hits))",
+            100.0 * median * (1.0 - 1.0 / n as f64)
+        ),
+    };
     let effect = format!(
-        "the force channel `{}` shows noise outside the blow (RMS {rms:.3e} N, {:.2} % of its peak): over the fit band it lowers |H1| by a median {:.1} % (up to {:.1} % where the force is weakest) and scatters it by ±{:.1} % per line",
+        "the force channel `{}` shows noise outside the blow (RMS {rms:.3e} N, {:.2} % of its peak): over the fit band it makes a median ε = {:.1} % of Σ|F|² (up to {:.1} % where the force is weakest), {lowered}, and scatters H1 by ±{:.1} % per line",
         first.force_label,
         100.0 * rms / peak.max(f64::MIN_POSITIVE),
         100.0 * median,

@@ -149,9 +149,10 @@ impl CrossSpectra {
     /// The share ε of G_ff per bin that white noise of variance
     /// `noise_variance` (N², per sample) on every force record makes:
     /// E|N|² = σ² Σw² per record (w the force weights), so
-    /// ε = hits σ² Σw²/Σ|F_i|², capped at 1. H1 reads (1 − ε) of the truth
-    /// there, and scatters by √(ε/(hits (1 − ε))) of it (to first order,
-    /// δH1 = −H Σ F̄_i N_i/Σ|F_i|²). Zero where the force has no power;
+    /// ε = hits σ² Σw²/Σ|F_i|², capped at 1. To first order in ε,
+    /// E[H1]/H = 1 − ε(1 − 1/hits) (one hit's H1 = X/F is not lowered on
+    /// average: exactly, E[S/(S + N)] = 1 − e^(−|S|²/E|N|²)), and H1
+    /// scatters by √(ε/(hits (1 − ε))) of H (δH1 = −H Σ F̄_i N_i/Σ|F_i|²). Zero where the force has no power;
     /// with the bins over which that error is correlated, n/Σw² (1
     /// without a window, 1/P under `force:P`).
     pub fn force_noise_share(&self, noise_variance: f64) -> (Vec<f64>, f64) {

@@ -171,8 +171,10 @@ pub fn solve_equilibrium(
             LoadPath::Together,
             LoadPath::LoadsFirst,
         ]
+    } else if solver.has_gravity {
+        &[LoadPath::GravityOnly]
     } else {
-        &[LoadPath::GravityFirst]
+        &[LoadPath::LoadsOnly]
     };
     let mut first_error = None;
     for &path in paths {
@@ -398,7 +400,7 @@ impl<'a> Solver<'a> {
     fn follow(&self, state: &mut State, path: LoadPath) -> Result<(), AnalysisError> {
         let loads = self.settings.load_scale;
         match path {
-            LoadPath::GravityFirst => {
+            LoadPath::GravityFirst | LoadPath::GravityOnly | LoadPath::LoadsOnly => {
                 if self.has_gravity {
                     self.ramp(state, Ramp::Gravity, 1.0, path)?;
                 }
