@@ -332,3 +332,33 @@ fn the_accuracy_warning_names_a_value_in_other_units() {
         "{w}"
     );
 }
+
+#[test]
+fn a_slow_elastic_mode_prints_its_digits_not_zero() {
+    // A 3 m steel cantilever typed as 3000 (millimetres meant): its first
+    // bending mode, Euler–Bernoulli (1.8751²/2πL²)·√(EI/ρA) = 4.6e-6 Hz,
+    // printed with four significant digits, not as `0.000` beside "0
+    // zero-frequency modes" (second outside-eyes trial of issue 33).
+    let (l, h, e, rho) = (3000.0_f64, 0.05_f64, 210e9_f64, 7850.0_f64);
+    let model = json!({
+        "name": "long",
+        "beams": [{
+            "id": "board", "start": [0.0, 0.0], "angle_deg": 0.0, "length": l,
+            "elements": 20,
+            "section": {"height": h, "width": 0.5},
+            "material": {"young": e, "density": rho}
+        }],
+        "joints": [{"type": "weld", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "board", "s": 0.0}}]
+    });
+    let (code, stdout, stderr) = run(&model, &["modal", "--modes", "2"]);
+    assert_eq!(code, Some(0), "{stderr}");
+    let beta_l = 1.875_104_068_711_961_f64;
+    let f1 =
+        beta_l * beta_l / (2.0 * std::f64::consts::PI * l * l) * (e * h * h / (12.0 * rho)).sqrt();
+    let row = stdout
+        .lines()
+        .find(|r| r.trim_start().starts_with("1 "))
+        .unwrap_or_else(|| panic!("mode 1 in {stdout}"));
+    assert!(row.contains(&format!("{f1:.3e}")), "{row} lacks {f1:.3e}");
+    assert!(stdout.contains("0 zero-frequency modes"), "{stdout}");
+}

@@ -15,12 +15,22 @@ use std::fmt::Write;
 /// A mode's frequency cell: `0` for zero modes, `f` to 3 decimals, or the
 /// imaginary frequency `√|ω²|/2π` with an `i` for a negative eigenvalue.
 pub fn frequency_cell(m: &Mode) -> String {
+    // Below 1 Hz three decimals would print a slow elastic mode (a
+    // 2.99e-6 Hz bending mode of a beam typed 1000× too long) as `0.000`
+    // beside "0 zero-frequency modes": four significant digits instead.
+    let cell = |f: f64| {
+        if f >= 1.0 {
+            format!("{f:.3}")
+        } else {
+            format!("{f:.3e}")
+        }
+    };
     if m.kind.is_zero() {
         String::from("0")
     } else if m.frequency_hz < 0.0 {
-        format!("{:.3}i", -m.frequency_hz)
+        format!("{}i", cell(-m.frequency_hz))
     } else {
-        format!("{:.3}", m.frequency_hz)
+        cell(m.frequency_hz)
     }
 }
 
