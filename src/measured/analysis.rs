@@ -297,6 +297,10 @@ pub fn analyse(
                 .and_then(|e| record_checks::force_noise_note(&records, e, band)),
         );
         notes.extend(record_checks::short_records(&records, fit.modes.len()));
+        notes.extend(
+            est.as_ref()
+                .and_then(|e| record_checks::ringing_at_end(&fit.modes, e)),
+        );
     }
     Ok(FrfAnalysis {
         files,

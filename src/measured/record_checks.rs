@@ -23,6 +23,9 @@
 //! **Slow sampling.** A hammer record sampled below 20 Hz has its time
 //! in other units than seconds ([`slow_sampling`]).
 //!
+//! **Ringing at the end.** A mode still ringing at the records' end has
+//! its residue undetermined ([`ringing_at_end`]).
+//!
 //! **Short records.** A mode of damping ζ at f spreads over 2ζf Hz, a
 //! record of T s resolves lines 1/T apart: a fit that finds nothing in a
 //! record a few lines per mode long says how long the record was.
@@ -179,6 +182,45 @@ pub fn slow_sampling(records: &[TimeRecord]) -> Option<String> {
             "{}: the records are sampled at {} Hz, below the {MIN_HAMMER_RATE_HZ} Hz of any hammer test: is the time in ms or µs? (a CSV time column is read in ms or µs when its name says so: time_ms, t [us])",
             r.file.display(),
             crate::model::number::significant(r.sample_rate_hz, 4)
+        )
+    })
+}
+
+/// Largest amplitude e^(Re(s)·T) a mode's decay may keep at the records'
+/// end for its residue (and |H| at its peak) to be given: the decay cut
+/// off there enters H1 as a term of the same pole, weighted by 1/F, which
+/// for a short blow is nearly a constant multiple of the residue's term,
+/// so the fit cannot tell the two apart (second outside-eyes trial of
+/// issue 33: residues 17–131 % off at e^(Re(s)T) = 0.12–0.45, 0.7 % at
+/// 0.04; frequency and damping stayed right).
+pub const RINGING_AT_END: f64 = 0.05;
+
+/// A note naming the modes whose decay (under the window's, when one
+/// decays) keeps over [`RINGING_AT_END`] of its amplitude at the records'
+/// end: their residues and peak |H| may be off (the same trial's other
+/// record, 6 s at 0.18, kept them to 0.9 %: the warning is a caution).
+pub fn ringing_at_end(
+    modes: &[crate::signal::fit::FittedMode],
+    estimate: &FrfEstimate,
+) -> Option<String> {
+    let duration = estimate.samples as f64 / estimate.sample_rate_hz;
+    let ringing: Vec<String> = modes
+        .iter()
+        .filter_map(|m| {
+            let left = ((m.pole.re - estimate.window_decay_rate) * duration).exp();
+            (left > RINGING_AT_END).then(|| {
+                format!(
+                    "{} Hz (e^(Re(s)T) = {})",
+                    crate::model::number::significant(m.frequency_hz, 6),
+                    crate::model::number::significant(left, 2)
+                )
+            })
+        })
+        .collect();
+    (!ringing.is_empty()).then(|| {
+        format!(
+            "still ringing at the records' end: {}; a decay cut off there can trade with the residue in the fit, so these modes' residues and |H| at their peaks may be off (17–131 % were seen at 0.12–0.45 from one short blow; their frequencies and damping are not affected); records long enough for the decay to fall under {RINGING_AT_END} of its start, or an exponential window, avoid it",
+            ringing.join(", ")
         )
     })
 }
