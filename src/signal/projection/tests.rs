@@ -91,8 +91,10 @@ proptest! {
             let d = (misfit_at(band, &poles_of(&up)) - misfit_at(band, &poles_of(&down))) / (2.0 * h);
             let err = (jac.column(j) - &d).norm() / d.norm().max(f64::MIN_POSITIVE);
             // Central differences at h = 1e-6 |s| carry round-off of
-            // about 1e-7 relative here (measured): 1e-6 is 10 × that.
-            prop_assert!(err < 1e-6, "column {j}: relative error {err:e}");
+            // about 1e-7 relative here, and their truncation error grows
+            // for close poles (3.5e-6 measured on a pair 3 % apart): 1e-5.
+            // Kaufman's first term alone fails at 4.6e-2.
+            prop_assert!(err < 1e-5, "column {j}: relative error {err:e}");
         }
     }
 }
