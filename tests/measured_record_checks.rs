@@ -105,9 +105,9 @@ fn the_share_of_the_force_power_is_what_many_hits_show() {
         // Bins 20..220 (50–550 Hz): the predicted noise power ε·G_ff
         // against G_ff less the clean blows' power, averaged.
         let (mut predicted, mut seen) = (0.0, 0.0);
-        for k in 20..220 {
-            predicted += share[k] * cross.gff[k];
-            seen += cross.gff[k] - hits as f64 * clean_power(&blow, &w, k);
+        for (k, (e, g)) in share.iter().zip(&cross.gff).enumerate().take(220).skip(20) {
+            predicted += e * g;
+            seen += g - hits as f64 * clean_power(&blow, &w, k);
         }
         let expected = 200.0 * hits as f64 * sigma * sigma * energy;
         assert!((predicted - expected).abs() < 1e-9 * expected, "{window}");
@@ -196,9 +196,7 @@ fn mean_h1(hits: usize, sigma: f64, trials: usize, bins: usize) -> (f64, f64) {
         )
         .unwrap();
         let h1 = cross.h1();
-        for k in 1..bins {
-            h += h1[k].re / 2.0;
-        }
+        h += h1[1..bins].iter().map(|v| v.re / 2.0).sum::<f64>();
     }
     // ε from the clean blow: σ²N of noise per line against |S|² + σ²N.
     let ones = vec![1.0; N];
