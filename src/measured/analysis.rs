@@ -270,6 +270,11 @@ pub fn analyse(
         ),
         None => fit(&frequency_hz, h, &fit_settings),
     };
+    let mut fit = fit;
+    let undetermined = match &est {
+        Some(e) => super::cut_off::tie_residues(&mut fit, &records, e),
+        None => Vec::new(),
+    };
     let found: Vec<f64> = fit.modes.iter().map(|m| m.frequency_hz).collect();
     let mut rejected = fit.rejected.clone();
     rejected.extend(outside_band(
@@ -297,10 +302,10 @@ pub fn analyse(
                 .and_then(|e| record_checks::force_noise_note(&records, e, band)),
         );
         notes.extend(record_checks::short_records(&records, fit.modes.len()));
-        notes.extend(
-            est.as_ref()
-                .and_then(|e| record_checks::ringing_at_end(&fit.modes, e)),
-        );
+        notes.extend(est.as_ref().and_then(|e| {
+            let untied: Vec<_> = undetermined.iter().map(|&j| fit.modes[j]).collect();
+            record_checks::ringing_at_end(&untied, e)
+        }));
     }
     Ok(FrfAnalysis {
         files,

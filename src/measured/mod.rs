@@ -23,6 +23,7 @@
 pub mod analysis;
 pub mod band;
 pub mod csv;
+pub mod cut_off;
 pub mod error;
 pub mod frf;
 mod quantity;

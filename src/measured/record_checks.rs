@@ -23,8 +23,8 @@
 //! **Slow sampling.** A hammer record sampled below 20 Hz has its time
 //! in other units than seconds ([`slow_sampling`]).
 //!
-//! **Ringing at the end.** A mode still ringing at the records' end has
-//! its residue undetermined ([`ringing_at_end`]).
+//! **Ringing at the end.** A mode whose decay hardly falls over the
+//! records has its residue undetermined ([`ringing_at_end`]).
 //!
 //! **Short records.** A mode of damping ζ at f spreads over 2ζf Hz, a
 //! record of T s resolves lines 1/T apart: a fit that finds nothing in a
@@ -187,18 +187,16 @@ pub fn slow_sampling(records: &[TimeRecord]) -> Option<String> {
 }
 
 /// Largest amplitude e^(Re(s)·T) a mode's decay may keep at the records'
-/// end for its residue (and |H| at its peak) to be given: the decay cut
-/// off there enters H1 as a term of the same pole, weighted by 1/F, which
-/// for a short blow is nearly a constant multiple of the residue's term,
-/// so the fit cannot tell the two apart (second outside-eyes trial of
-/// issue 33: residues 17–131 % off at e^(Re(s)T) = 0.12–0.45, 0.7 % at
-/// 0.04; frequency and damping stayed right).
+/// end, without its residue tied to it ([`super::cut_off`]), for its
+/// residue (and |H| at its peak) to be given: the decay cut off there
+/// enters H1 as a term of the same pole, weighted by 1/F, which for a
+/// short blow is nearly a constant multiple of the residue's term.
 pub const RINGING_AT_END: f64 = 0.05;
 
-/// A note naming the modes whose decay (under the window's, when one
-/// decays) keeps over [`RINGING_AT_END`] of its amplitude at the records'
-/// end: their residues and peak |H| may be off (the same trial's other
-/// record, 6 s at 0.18, kept them to 0.9 %: the warning is a caution).
+/// A note naming the modes (those whose residue [`super::cut_off`] could
+/// not tie to their cut-off decay) whose decay, under the window's when
+/// one decays, keeps over [`RINGING_AT_END`] of its amplitude at the
+/// records' end: their residues and peak |H| are not determined.
 pub fn ringing_at_end(
     modes: &[crate::signal::fit::FittedMode],
     estimate: &FrfEstimate,
@@ -219,7 +217,7 @@ pub fn ringing_at_end(
         .collect();
     (!ringing.is_empty()).then(|| {
         format!(
-            "still ringing at the records' end: {}; a decay cut off there can trade with the residue in the fit, so these modes' residues and |H| at their peaks may be off (17–131 % were seen at 0.12–0.45 from one short blow; their frequencies and damping are not affected); records long enough for the decay to fall under {RINGING_AT_END} of its start, or an exponential window, avoid it",
+            "still ringing at the records' end: {}; the decay cut off there hardly falls over the record, so it cannot be told from the residue: these modes' residues and |H| at their peaks are not determined (their frequencies and damping are); records long enough for the decay to fall under {RINGING_AT_END} of its start, or an exponential window, determine them",
             ringing.join(", ")
         )
     })

@@ -112,6 +112,10 @@ pub struct FittedMode {
     pub pole: Complex64,
     /// Residue R of the pole in the measured (windowed) FRF, FRF unit × 1/s.
     pub residue: Complex64,
+    /// Coefficient D of its decay cut off by the records' end (zero
+    /// without records, or for a decay that dies out inside them),
+    /// FRF unit × N/s ([`lsfd::Band::truncation`]).
+    pub cut_off: Complex64,
     /// |H| of the fitted model at the damped frequency.
     pub magnitude: f64,
 }
@@ -449,10 +453,10 @@ fn fit_with(
         .collect();
     let lsfd::Residues {
         residues: res,
+        truncation: cut,
         upper: u,
         lower: l,
         powers,
-        ..
     } = lsfd::residues(bins, &kept);
     result.upper_residual = u;
     result.residual_powers = powers;
@@ -460,30 +464,39 @@ fn fit_with(
     result.modes = kept
         .iter()
         .zip(&res)
-        .map(|(&raw, &residue)| {
+        .enumerate()
+        .map(|(j, (&raw, &residue))| {
             let (frequency_hz, damping_ratio) = physical(raw);
             FittedMode {
                 frequency_hz,
                 damping_ratio,
                 pole: raw + sigma_w,
                 residue,
+                cut_off: cut.get(j).copied().unwrap_or_default(),
                 magnitude: 0.0,
             }
         })
         .collect();
-    let magnitudes: Vec<f64> = result
-        .modes
-        .iter()
-        .map(|m| {
-            result
-                .evaluate(m.pole.im / (2.0 * std::f64::consts::PI))
-                .norm()
-        })
-        .collect();
-    for (m, a) in result.modes.iter_mut().zip(magnitudes) {
-        m.magnitude = a;
-    }
+    result.update_magnitudes();
     result
+}
+
+impl ModalFit {
+    /// Sets each mode's `magnitude` to |the fitted model| at its damped
+    /// frequency ([`ModalFit::evaluate`]).
+    pub fn update_magnitudes(&mut self) {
+        let magnitudes: Vec<f64> = self
+            .modes
+            .iter()
+            .map(|m| {
+                self.evaluate(m.pole.im / (2.0 * std::f64::consts::PI))
+                    .norm()
+            })
+            .collect();
+        for (m, a) in self.modes.iter_mut().zip(magnitudes) {
+            m.magnitude = a;
+        }
+    }
 }
 
 /// The poles kept from `seeds` ([`lsfd::select`]), then from the peaks
