@@ -16,9 +16,10 @@ use realfft::num_complex::Complex64;
 use super::band::automatic_band;
 pub use super::band::BandEnd;
 use super::frf::{estimate, FrfEstimate};
-use super::{record_checks, MeasuredError, Measurement};
+use super::{record_checks, MeasuredError, Measurement, TimeRecord};
 use crate::signal::fit::{
-    fit, fit_records, FitSettings, ModalFit, PoleBasis, Records, RejectReason, RejectedPole,
+    fit, fit_records, FitSettings, FittedMode, ModalFit, PoleBasis, Records, RejectReason,
+    RejectedPole,
 };
 use crate::signal::Window;
 
@@ -91,16 +92,16 @@ pub struct FrfAnalysis {
     pub rejected: Vec<RejectedPole>,
     /// What the user must know of the input: a given band cut at the
     /// data's last line, and what the records themselves show
-    /// ([`super::record_checks`]): channels that look swapped, records too
-    /// short for the fit.
+    /// ([`super::record_checks`]): slow sampling, channels that look
+    /// swapped, noise on the force, records too short for the fit, modes
+    /// whose residue the records do not determine.
     pub notes: Vec<String>,
 }
 
 impl FrfAnalysis {
     /// What the user must know beside the table: a taper on impact records
-    /// (its damping is the window's, not the structure's), a band cut at
-    /// the data's last line, and the records' own notes (channels that look
-    /// swapped, records too short for the fit).
+    /// (its damping is the window's, not the structure's), then the
+    /// analysis' notes ([`FrfAnalysis::notes`]).
     pub fn warnings(&self) -> Vec<String> {
         let mut out = Vec::new();
         if is_taper(self.settings.window) && self.estimate.is_some() {
@@ -120,6 +121,31 @@ impl FrfAnalysis {
             _ => &self.h1,
         }
     }
+}
+
+/// What the records show beside the fit ([`record_checks`]): sampling too
+/// slow for a hammer test, channels that look swapped, and, but under a
+/// taper (whose own warning says the blow is cut, so these follow from
+/// it), noise on the force, records too short for any mode, and modes
+/// whose residue the records do not determine (`untied`).
+fn record_notes(
+    records: &[TimeRecord],
+    est: Option<&FrfEstimate>,
+    settings: &AnalysisSettings,
+    band: (f64, f64),
+    fit: &ModalFit,
+    untied: &[FittedMode],
+) -> Vec<String> {
+    let mut notes: Vec<String> = record_checks::slow_sampling(records)
+        .into_iter()
+        .chain(record_checks::swapped_channels(records))
+        .collect();
+    if !is_taper(settings.window) {
+        notes.extend(est.and_then(|e| record_checks::force_noise_note(records, e, band)));
+        notes.extend(record_checks::short_records(records, fit.modes.len()));
+        notes.extend(est.and_then(|e| record_checks::ringing_at_end(untied, e)));
+    }
+    notes
 }
 
 /// A cosine window, which tapers an impact record's blow away.
@@ -292,21 +318,15 @@ pub fn analyse(
             && (a.frequency_hz - b.frequency_hz).abs() <= 1e-6 * b.frequency_hz
             && (a.damping_ratio - b.damping_ratio).abs() <= 1e-4 * b.damping_ratio
     });
-    notes.extend(record_checks::slow_sampling(&records));
-    notes.extend(record_checks::swapped_channels(&records));
-    // Under a taper its own warning says what is wrong: the blow is cut,
-    // so the force's noise and the modes not found follow from it.
-    if !is_taper(settings.window) {
-        notes.extend(
-            est.as_ref()
-                .and_then(|e| record_checks::force_noise_note(&records, e, band)),
-        );
-        notes.extend(record_checks::short_records(&records, fit.modes.len()));
-        notes.extend(est.as_ref().and_then(|e| {
-            let untied: Vec<_> = undetermined.iter().map(|&j| fit.modes[j]).collect();
-            record_checks::ringing_at_end(&untied, e)
-        }));
-    }
+    let untied: Vec<_> = undetermined.iter().map(|&j| fit.modes[j]).collect();
+    notes.extend(record_notes(
+        &records,
+        est.as_ref(),
+        &settings,
+        band,
+        &fit,
+        &untied,
+    ));
     Ok(FrfAnalysis {
         files,
         channels: records

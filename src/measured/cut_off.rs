@@ -74,13 +74,25 @@ pub fn tie_residues(
         ) else {
             continue;
         };
+        // F_k0 = Σ v_i z^(−i) and λ^N F̃ = Σ v_i λ^(N−i), both by running
+        // powers from the record's end (n multiplications, no exp per
+        // sample; their round-off is n ε relative).
+        let (lambda, z) = (
+            (s * dt).exp(),
+            Complex64::from_polar(1.0, 2.0 * PI * k0 as f64 / n as f64),
+        );
         let (mut num, mut power) = (Complex64::new(0.0, 0.0), 0.0);
         for r in records {
             let (mut fk, mut tail) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
-            for (i, (x, wi)) in r.force.iter().zip(&weights).enumerate() {
+            let (mut rotation, mut decay) = (Complex64::new(1.0, 0.0), Complex64::new(1.0, 0.0));
+            for (x, wi) in r.force.iter().zip(&weights).rev() {
+                // Sample i = n − 1 − (steps so far): z^(−i) = z^(n−i) = z·z^(n−1−i),
+                // λ^(N−i) = λ·λ^(n−1−i).
+                rotation *= z;
+                decay *= lambda;
                 let v = x * wi;
-                fk += v * Complex64::from_polar(1.0, -2.0 * PI * (k0 * i % n) as f64 / n as f64);
-                tail += v * (s * ((n - i) as f64 * dt)).exp();
+                fk += v * rotation;
+                tail += v * decay;
             }
             num += fk.conj() * tail;
             power += fk.norm_sqr();
