@@ -34,18 +34,26 @@ use super::frf::FrfEstimate;
 use super::TimeRecord;
 use crate::signal::Window;
 
+/// The largest |x|.
+fn peak(x: &[f64]) -> f64 {
+    x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+}
+
+/// The first and the last sample at which |x| reaches a tenth of its
+/// peak; `None` for a silent channel.
+fn loud_range(x: &[f64]) -> Option<(usize, usize)> {
+    let peak = peak(x);
+    if peak <= 0.0 {
+        return None;
+    }
+    let loud = |v: &f64| v.abs() >= 0.1 * peak;
+    Some((x.iter().position(loud)?, x.iter().rposition(loud)?))
+}
+
 /// Samples from the first to the last at which |x| reaches a tenth of
 /// its peak (module doc); 0 for a silent channel.
 pub fn active_span(x: &[f64]) -> usize {
-    let peak = x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    if peak <= 0.0 {
-        return 0;
-    }
-    let loud = |v: &f64| v.abs() >= 0.1 * peak;
-    match (x.iter().position(loud), x.iter().rposition(loud)) {
-        (Some(first), Some(last)) => last - first,
-        _ => 0,
-    }
+    loud_range(x).map_or(0, |(first, last)| last - first)
 }
 
 /// Fewest samples outside the blow for a force-noise estimate.
@@ -54,19 +62,18 @@ pub const MIN_NOISE_SAMPLES: usize = 64;
 /// The variance of a record's force outside its blow, N² (module doc):
 /// the samples farther than four times the blow's span (at least 32
 /// samples: an anti-alias filter's ringing belongs to the blow) from the
-/// first and the last sample at a tenth of its peak, about their mean. `None` with fewer than [`MIN_NOISE_SAMPLES`] such samples or a
-/// silent channel.
+/// first and the last sample at a tenth of its peak, about their mean.
+/// `None` with fewer than [`MIN_NOISE_SAMPLES`] such samples or a silent
+/// channel.
 pub fn force_noise_variance(force: &[f64]) -> Option<f64> {
-    let peak = force.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    let loud = |v: &f64| v.abs() >= 0.1 * peak;
-    let (first, last) = (force.iter().position(loud)?, force.iter().rposition(loud)?);
+    let (first, last) = loud_range(force)?;
     let margin = (4 * (last - first)).max(MIN_NOISE_SAMPLES / 2);
     let quiet: Vec<f64> = force[..first.saturating_sub(margin)]
         .iter()
         .chain(force.get(last + margin + 1..).unwrap_or(&[]))
         .copied()
         .collect();
-    if peak <= 0.0 || quiet.len() < MIN_NOISE_SAMPLES {
+    if quiet.len() < MIN_NOISE_SAMPLES {
         return None;
     }
     let n = quiet.len() as f64;
@@ -107,7 +114,7 @@ pub fn force_noise_note(
     }
     let hits = estimate.averages.max(1) as f64;
     let scatter = (median / (hits * (1.0 - median).max(f64::MIN_POSITIVE))).sqrt();
-    let peak = first.force.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let peak = peak(&first.force);
     let rms = noise.variance.sqrt();
     // To first order E[H1]/H = 1 − ε(1 − 1/hits): one hit's H1 = X/F is
     // scattered by the noise, not lowered; an average over hits is
@@ -132,10 +139,7 @@ pub fn force_noise_note(
     }
     let blow_end = records
         .iter()
-        .filter_map(|r| {
-            let peak = r.force.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-            r.force.iter().rposition(|v| v.abs() >= 0.1 * peak)
-        })
+        .filter_map(|r| loud_range(&r.force).map(|(_, last)| last))
         .max()
         .unwrap_or(0);
     let keep =
