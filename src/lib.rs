@@ -11,6 +11,7 @@
 #![forbid(unsafe_code)]
 
 pub mod analysis;
+pub mod commands;
 pub mod error;
 pub mod linalg;
 pub mod measured;

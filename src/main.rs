@@ -15,7 +15,7 @@ fn main() {
         Err(e) => e.exit(),
     };
     match cli::run(args) {
-        Ok(()) => cli::print_warnings(),
+        Ok(warnings) => cli::print_warnings(&warnings),
         Err(e) => {
             eprintln!("Error: {}", one_line(&e));
             std::process::exit(1);

@@ -46,6 +46,18 @@ impl Failure {
     }
 }
 
+impl From<ancf::commands::CommandError> for Failure {
+    /// A command's error: bad input as `ModelError`, a failed analysis as
+    /// `AnalysisError`, with the command line's one-line message.
+    fn from(e: ancf::commands::CommandError) -> Self {
+        if e.is_input() {
+            Failure::Input(one_line(&e))
+        } else {
+            Failure::Analysis(one_line(&e))
+        }
+    }
+}
+
 impl From<Failure> for PyErr {
     fn from(f: Failure) -> PyErr {
         match f {

@@ -53,15 +53,32 @@ pub(crate) fn document_with(
 }
 
 /// Raises each of `texts` as a Python `UserWarning` (the command line's
-/// `warning:` lines).
+/// `warning:` lines about the model).
 pub(crate) fn warn_all(py: Python<'_>, texts: &[String]) -> PyResult<()> {
-    let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+    warn_as(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), texts)
+}
+
+/// Raises each of `texts` as a Python `RuntimeWarning` (an analysis's own
+/// warnings: not an equilibrium, unstable, beam theory).
+pub(crate) fn warn_runtime(py: Python<'_>, texts: &[String]) -> PyResult<()> {
+    warn_as(
+        py,
+        &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
+        texts,
+    )
+}
+
+fn warn_as(
+    py: Python<'_>,
+    category: &Bound<'_, pyo3::types::PyType>,
+    texts: &[String],
+) -> PyResult<()> {
     for t in texts {
         // A C string ends at a NUL: one inside the text (an id may hold
         // `\u0000`) is written out.
         let message = std::ffi::CString::new(t.replace('\0', "\\0"))
             .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
-        PyErr::warn(py, &category, &message, 1)?;
+        PyErr::warn(py, category, &message, 1)?;
     }
     Ok(())
 }

@@ -1,104 +1,23 @@
 //! `Model.modal(...)` and its result, `ancf_modal.ModalResult`.
 //!
-//! [`ModalOutcome::document`] is the one place that builds `to_dict()`.
+//! A front end over [`ancf::commands::modal`]: keyword arguments → request →
+//! `run` → wrap; `to_dict()` is the run's document.
 
 use crate::errors::{compute, Failure};
-use crate::model::{choice, equilibrium, finite, PyModel};
-use ancf::analysis::damped_modes::{mode_damping, ModeDamping};
-use ancf::analysis::prestress::{modal_at_equilibrium, PrestressedModal};
-use ancf::analysis::{modal_at_reference, EigenMethod, ModalResult, ModalSettings};
-use ancf::model::Model;
-use ancf::output::modal_uff::{export_nodes, translations};
-use ancf::System;
+use crate::model::{choice, PyModel};
+use ancf::analysis::EigenMethod;
+use ancf::commands::modal::{mac_of, run as modal, ModalRequest, ModalRun};
+use ancf::results::ModalJson;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use std::path::PathBuf;
-use std::sync::Arc;
-
-/// What a modal analysis computed: at the reference, or at the
-/// equilibrium beside the reference.
-pub enum ModalOutcome {
-    Reference(ModalResult),
-    Prestressed(Box<PrestressedModal>),
-}
-
-impl ModalOutcome {
-    /// The modes reported (the pre-stressed ones when pre-stressed).
-    pub fn result(&self) -> &ModalResult {
-        match self {
-            ModalOutcome::Reference(r) => r,
-            ModalOutcome::Prestressed(p) => &p.prestressed,
-        }
-    }
-
-    /// The state the modes are linearized at.
-    fn q<'a>(&'a self, system: &'a System) -> &'a [f64] {
-        match self {
-            ModalOutcome::Reference(_) => &system.q0,
-            ModalOutcome::Prestressed(p) => &p.equilibrium.q,
-        }
-    }
-
-    /// The document `modal --json` prints: the typed result
-    /// ([`ancf::results::ModalOutput`], or [`ancf::results::PrestressedOutput`])
-    /// with the provenance block.
-    fn document(
-        &self,
-        model: &Model,
-        label: &str,
-        damping: &[ModeDamping],
-        sha256: &str,
-    ) -> serde_json::Value {
-        let source = Some((model, label));
-        match self {
-            ModalOutcome::Reference(r) => crate::document_with(
-                &ancf::results::ModalOutput::new(model, r, damping),
-                source,
-                Some(sha256),
-                self.warnings(),
-            ),
-            ModalOutcome::Prestressed(p) => crate::document_with(
-                &ancf::results::PrestressedOutput::new(model, p, damping),
-                source,
-                Some(sha256),
-                self.warnings(),
-            ),
-        }
-    }
-
-    /// The analysis's own warnings, as the command line gives them: not an
-    /// equilibrium, unstable, then (at the reference) the beam theory's.
-    fn warnings(&self) -> Vec<String> {
-        match self {
-            ModalOutcome::Reference(r) => {
-                let mut w = ancf::results::modal::reference_warnings(r);
-                w.extend(ancf::analysis::shear::beam_theory_warnings(r));
-                w
-            }
-            ModalOutcome::Prestressed(p) => ancf::results::modal::prestressed_warnings(p),
-        }
-    }
-
-    /// The command line's table.
-    fn table(&self, model: &Model) -> String {
-        match self {
-            ModalOutcome::Reference(r) => ancf::output::modal_report::modal_table(model, r),
-            ModalOutcome::Prestressed(p) => {
-                ancf::output::modal_report::prestress_table(&model.name, p)
-            }
-        }
-    }
-}
 
 /// The result of `Model.modal`: frequencies, shapes and the command
 /// line's table and document.
 #[pyclass(name = "ModalResult", module = "ancf_modal", frozen)]
 pub struct PyModalResult {
-    model: Arc<Model>,
     source: String,
-    sha256: String,
-    outcome: ModalOutcome,
-    damping: Vec<ModeDamping>,
+    run: ModalRun,
 }
 
 /// The modal analysis of `model` (the command line's `modal`).
@@ -110,90 +29,37 @@ pub fn run(
     solver: &str,
     load_scale: f64,
 ) -> PyResult<PyModalResult> {
-    if modes < 1 {
-        return Err(Failure::argument("modes", modes, "must be a whole number ≥ 1").into());
-    }
-    let method = match choice("solver", solver, &["auto", "dense", "sparse"])? {
+    let solver = match choice("solver", solver, &["auto", "dense", "sparse"])? {
         "dense" => EigenMethod::Dense,
         "sparse" => EigenMethod::Sparse,
         _ => EigenMethod::Auto,
     };
-    let load_scale = finite("load_scale", load_scale)?;
-    let settings = ModalSettings {
-        modes: Some(modes as usize),
-        method,
+    let request = ModalRequest {
+        modes: usize::try_from(modes).unwrap_or(0),
+        solver,
+        prestress,
+        load_scale,
+        mac: None,
     };
-    let shared = Arc::clone(&model.model);
-    let label = model.label();
-    let (outcome, damping) = compute(py, move || {
-        let model = shared;
-        let system = System::new(&model);
-        let fail = |e: ancf::AnalysisError| Failure::analysis(&label, &e);
-        if prestress {
-            let eq = equilibrium(&label, &system, load_scale)?;
-            let prestressed = modal_at_equilibrium(&system, &eq, &settings).map_err(fail)?;
-            let reference = modal_at_reference(&system, &settings).map_err(fail)?;
-            let damping = mode_damping(&system, &eq.linearization(), &prestressed, model.damping)
-                .map_err(fail)?;
-            let p = PrestressedModal::new(&system, eq, reference, prestressed);
-            Ok((ModalOutcome::Prestressed(Box::new(p)), damping))
-        } else {
-            let mut r = modal_at_reference(&system, &settings).map_err(fail)?;
-            ancf::analysis::shear::annotate(&model, &system, &mut r);
-            let damping =
-                mode_damping(&system, &system.reference(), &r, model.damping).map_err(fail)?;
-            Ok((ModalOutcome::Reference(r), damping))
-        }
-    })?;
-    // The analysis's warnings (not an equilibrium, unstable) as Python
-    // warnings (`RuntimeWarning`), named by the model's source as the
-    // command line names them; `to_dict()["warnings"]` lists them too.
-    let own = match &outcome {
-        ModalOutcome::Reference(r) => ancf::results::modal::reference_warnings(r),
-        ModalOutcome::Prestressed(p) => ancf::results::modal::prestressed_warnings(p),
-    };
-    for w in own {
-        let text = std::ffi::CString::new(format!("{}: {w}", model.label()))
-            .map_err(|e| Failure::Analysis(e.to_string()))?;
-        PyErr::warn(
-            py,
-            &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
-            &text,
-            1,
-        )?;
+    if modes < 1 {
+        return Err(Failure::argument("modes", modes, "must be a whole number ≥ 1").into());
     }
+    let input = model.input();
+    let run = compute(py, move || modal(&input, &request).map_err(Failure::from))?;
+    // The analysis's own warnings (not an equilibrium, unstable, beam
+    // theory) as Python warnings (`RuntimeWarning`); the model's were
+    // given when it was read. `to_dict()["warnings"]` lists them all.
+    crate::warn_runtime(py, run.document.own_warnings())?;
     Ok(PyModalResult {
-        model: Arc::clone(&model.model),
         source: model.label(),
-        sha256: model.sha256.clone(),
-        outcome,
-        damping,
+        run,
     })
 }
 
 impl PyModalResult {
-    /// The elastic modes' translations at the export nodes (beam nodes,
-    /// body points), as `modal --mac` and `--uff` use them.
-    fn elastic_translations(&self, system: &System) -> (Vec<f64>, Vec<Vec<f64>>) {
-        let nodes = export_nodes(system);
-        let elastic: Vec<_> = self
-            .outcome
-            .result()
-            .modes
-            .iter()
-            .filter(|m| !m.kind.is_zero())
-            .collect();
-        (
-            elastic.iter().map(|m| m.frequency_hz).collect(),
-            elastic
-                .iter()
-                .map(|m| translations(&nodes, &m.shape))
-                .collect(),
-        )
-    }
-
     fn column(&self, f: impl Fn(usize, &ancf::analysis::Mode) -> f64) -> Vec<f64> {
-        self.outcome
+        self.run
+            .outcome
             .result()
             .modes
             .iter()
@@ -230,17 +96,21 @@ impl PyModalResult {
     /// dampers; 0 for an undamped model); NaN for zero modes.
     #[getter]
     fn damping_ratio<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        let d = &self.damping;
-        PyArray1::from_vec(
-            py,
-            self.column(|i, _| d.get(i).and_then(|d| d.damping_ratio).unwrap_or(f64::NAN)),
-        )
+        let zeta: Vec<f64> = match &self.run.document.output {
+            ModalJson::Reference(o) => o.modes.iter().map(|m| m.damping_ratio).collect(),
+            ModalJson::Prestressed(o) => o.modes.iter().map(|m| m.damping_ratio).collect(),
+            ModalJson::LoadSweep(_) => Vec::new(),
+        }
+        .into_iter()
+        .map(|z| z.unwrap_or(f64::NAN))
+        .collect();
+        PyArray1::from_vec(py, zeta)
     }
 
     /// Each mode's kind: `rigid`, `mechanism`, `bending`, `axial`, `spring`.
     #[getter]
     fn kinds(&self) -> Vec<String> {
-        let r = self.outcome.result();
+        let r = self.run.outcome.result();
         r.modes.iter().map(|m| m.kind.to_string()).collect()
     }
 
@@ -248,34 +118,34 @@ impl PyModalResult {
     /// those beyond `modes`).
     #[getter]
     fn rigid_modes(&self) -> usize {
-        self.outcome.result().rigid_modes
+        self.run.outcome.result().rigid_modes
     }
 
     /// How many of the zero-frequency modes are mechanisms of the joints.
     #[getter]
     fn mechanism_modes(&self) -> usize {
-        self.outcome.result().mechanism_modes
+        self.run.outcome.result().mechanism_modes
     }
 
     /// Reported modes of kind `unstable` (negative ω² at a verified
     /// equilibrium).
     #[getter]
     fn unstable_modes(&self) -> usize {
-        self.outcome.result().unstable_modes
+        self.run.outcome.result().unstable_modes
     }
 
     /// Reported modes of kind `negative` (negative ω² at a state that is
     /// not an equilibrium).
     #[getter]
     fn negative_modes(&self) -> usize {
-        self.outcome.result().negative_modes
+        self.run.outcome.result().negative_modes
     }
 
     /// Whether the modes' state is an equilibrium, as a dict (the
     /// document's `equilibrium` at the reference).
     #[getter]
     fn equilibrium<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let v = serde_json::to_value(&self.outcome.result().equilibrium)
+        let v = serde_json::to_value(&self.run.outcome.result().equilibrium)
             .map_err(|e| Failure::Analysis(e.to_string()))?;
         crate::json_to_python(py, &v)
     }
@@ -283,7 +153,7 @@ impl PyModalResult {
     /// Which eigensolver ran (`dense` or `sparse shift-invert Lanczos`).
     #[getter]
     fn solver(&self) -> &'static str {
-        self.outcome.result().solver
+        self.run.outcome.result().solver
     }
 
     /// Mode shapes, one row per mode, in the model's coordinates q (see
@@ -292,6 +162,7 @@ impl PyModalResult {
     #[getter]
     fn shapes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let rows: Vec<Vec<f64>> = self
+            .run
             .outcome
             .result()
             .modes
@@ -299,7 +170,11 @@ impl PyModalResult {
             .map(|m| m.shape.clone())
             .collect();
         if rows.is_empty() {
-            return Ok(PyArray2::zeros(py, [0, self.outcome.result().dofs], false));
+            return Ok(PyArray2::zeros(
+                py,
+                [0, self.run.outcome.result().dofs],
+                false,
+            ));
         }
         PyArray2::from_vec2(py, &rows).map_err(|e| Failure::Analysis(e.to_string()).into())
     }
@@ -312,23 +187,16 @@ impl PyModalResult {
         py: Python<'py>,
         other: &PyModalResult,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let (mine, theirs) = (Arc::clone(&self.model), Arc::clone(&other.model));
-        let other_source = other.source.clone();
-        let (a, b) = (self, other);
+        let other_source = PathBuf::from(&other.source);
+        let (a, b) = (&self.run, &other.run);
         let m = compute(py, || {
-            let (sa, sb) = (System::new(&mine), System::new(&theirs));
-            let (na, nb) = (export_nodes(&sa).len(), export_nodes(&sb).len());
-            if na != nb {
-                return Err(Failure::Input(format!(
-                    "{other_source}: {nb} export nodes, this model has {na}: the MAC needs the same nodes"
-                )));
-            }
-            let (_, x) = a.elastic_translations(&sa);
-            let (_, y) = b.elastic_translations(&sb);
-            let m = ancf::signal::mac::mac(&x, &y);
-            Ok((0..m.nrows())
-                .map(|i| m.row(i).iter().copied().collect::<Vec<f64>>())
-                .collect::<Vec<_>>())
+            mac_of(
+                (&a.system, a.outcome.result()),
+                (&b.system, b.outcome.result()),
+                &other_source,
+            )
+            .map(|t| t.matrix)
+            .map_err(Failure::from)
         })?;
         if m.is_empty() {
             return Ok(PyArray2::zeros(py, [0, 0], false));
@@ -338,23 +206,14 @@ impl PyModalResult {
 
     /// The result as the library's JSON document (`modal --json`) as a dict.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        crate::json_to_python(
-            py,
-            &self
-                .outcome
-                .document(&self.model, &self.source, &self.damping, &self.sha256),
-        )
+        crate::json_to_python(py, &self.run.document.document())
     }
 
     /// Writes the elastic modes as UFF 15 (nodes) and 55 (mass-normalised
     /// translations) to `path`, as `modal --uff`.
     fn write_uff(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
         compute(py, || {
-            let system = System::new(&self.model);
-            let provenance = ancf::results::provenance::header_lines(&self.sha256);
-            let text =
-                ancf::output::modal_uff::modal_uff(&system, self.outcome.result(), &provenance);
-            ancf::output::files::write_atomic(&path, text.as_bytes())
+            ancf::output::files::write_atomic(&path, self.run.uff().as_bytes())
                 .map_err(|e| Failure::input(&e))
         })
     }
@@ -362,19 +221,10 @@ impl PyModalResult {
     /// Draws the first six elastic mode shapes to `path` (.svg or .png),
     /// as `modal --plot`.
     fn plot(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        compute(py, || {
-            let system = System::new(&self.model);
-            ancf::output::figures::write_mode_shapes(
-                &system,
-                self.outcome.q(&system),
-                self.outcome.result(),
-                &path,
-            )
-            .map_err(|e| Failure::input(&e))
-        })
+        compute(py, || self.run.write_plot(&path).map_err(Failure::from))
     }
 
     fn __repr__(&self) -> String {
-        self.outcome.table(&self.model)
+        self.run.text()
     }
 }

@@ -37,6 +37,15 @@ impl PyModel {
         })
     }
 
+    /// The model as the commands take it.
+    pub fn input(&self) -> ancf::commands::ModelInput {
+        ancf::commands::ModelInput {
+            model: self.model.clone(),
+            source: self.source.clone(),
+            sha256: self.sha256.clone(),
+        }
+    }
+
     /// The model's name in messages: its path or `<built-in model>`.
     pub fn label(&self) -> String {
         self.source.to_string()

@@ -10,7 +10,7 @@ pub struct ModalArgs {
     /// Model file (JSON); the built-in paper assembly when omitted.
     pub model: Option<PathBuf>,
     /// Number of modes to report, rigid ones included.
-    #[arg(long, default_value_t = 12, allow_hyphen_values = true, value_parser = super::values::at_least_one)]
+    #[arg(long, default_value_t = ancf_modal::commands::modal::ModalRequest::default().modes as u64, allow_hyphen_values = true, value_parser = super::values::at_least_one)]
     pub modes: u64,
     /// Eigensolver: dense up to 300 free coordinates and sparse
     /// shift-invert above (auto), or one of them forced.

@@ -20,11 +20,21 @@ pub fn warn(text: String) {
         .push(text);
 }
 
-/// Prints each warning given as one `warning: …` line on stderr.
-pub fn print_warnings() {
-    for w in warnings() {
+/// A run's warnings, printed as `warning: …` lines at its end.
+pub type Warnings = Vec<String>;
+
+/// Prints each of `warnings` as one `warning: …` line on stderr.
+pub fn print_warnings(warnings: &[String]) {
+    for w in warnings {
         eprintln!("warning: {w}");
     }
+}
+
+/// Prints a command's document (result, provenance, the run's warnings)
+/// as pretty JSON.
+pub fn print_document<T: serde::Serialize>(run: &ancf_modal::commands::Run<T>) -> Result<()> {
+    outln!("{}", serde_json::to_string_pretty(&run.document())?);
+    Ok(())
 }
 
 /// The warnings given so far.

@@ -88,19 +88,21 @@ pub struct SchemaArgs {
     pub output: Option<String>,
 }
 
-pub fn run(cli: Cli) -> Result<()> {
+/// Runs the command; its warnings, to print after a success.
+pub fn run(cli: Cli) -> Result<common::Warnings> {
+    let global = |r: Result<()>| r.map(|()| common::warnings());
     match cli.command {
-        Command::Identify(a) => identify::run(a),
-        Command::Report(a) => report::run(a),
-        Command::Impulse(a) => impulse::run(a),
+        Command::Identify(a) => global(identify::run(a)),
+        Command::Report(a) => global(report::run(a)),
+        Command::Impulse(a) => global(impulse::run(a)),
         Command::Modal(a) => modal::run(a),
-        Command::Calibrate(a) => calibrate::run(a),
-        Command::Convergence(a) => convergence::run(a),
+        Command::Calibrate(a) => global(calibrate::run(a)),
+        Command::Convergence(a) => global(convergence::run(a)),
         Command::Static(a) => statics::run(a),
-        Command::Sweep(a) => sweep::run(a),
-        Command::SweepMerge(a) => sweep_merge::run(a),
-        Command::Transient(a) => transient::run(a),
-        Command::SwitchOff(a) => switch_off::run(a),
+        Command::Sweep(a) => global(sweep::run(a)),
+        Command::SweepMerge(a) => global(sweep_merge::run(a)),
+        Command::Transient(a) => global(transient::run(a)),
+        Command::SwitchOff(a) => global(switch_off::run(a)),
         Command::Schema(a) => {
             let schema = match &a.output {
                 Some(command) => ancf_modal::results::output_schema(command)
@@ -108,8 +110,8 @@ pub fn run(cli: Cli) -> Result<()> {
                 None => ancf_modal::Model::json_schema(),
             };
             outln!("{}", serde_json::to_string_pretty(&schema)?);
-            Ok(())
+            Ok(Vec::new())
         }
-        Command::Frf(a) => frf::run(a),
+        Command::Frf(a) => global(frf::run(a)),
     }
 }
