@@ -15,6 +15,7 @@ command line's one-line message.
 from ._native import (
     AnalysisError,
     CalibrationResult,
+    ConvergenceResult,
     FrfResult,
     ImpulseResult,
     ModalResult,
@@ -33,6 +34,7 @@ from ._native import (
 __all__ = [
     "AnalysisError",
     "CalibrationResult",
+    "ConvergenceResult",
     "FrfResult",
     "ImpulseResult",
     "ModalResult",

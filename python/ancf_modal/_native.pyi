@@ -12,6 +12,7 @@ __all__ = [
     "__version__",
     "AnalysisError",
     "CalibrationResult",
+    "ConvergenceResult",
     "FrfResult",
     "ImpulseResult",
     "ModalResult",
@@ -155,6 +156,11 @@ class Model:
         """A time integration (``ancf-modal transient``): ``end_time`` [s] in
         steps of ``step`` [s], generalized-α ``spectral_radius`` [–], from
         rest or ``from_equilibrium``; sensors at ``sample_rate`` [Hz]."""
+    def convergence(self, max_elements: int = 64, modes: int = 3) -> "ConvergenceResult":
+        """Mesh convergence of the first ``modes`` bending frequencies
+        (``ancf-modal convergence``): beams meshed with 2, 4, 8, … elements
+        up to ``max_elements``; errors against Euler–Bernoulli for a single
+        free beam, else against the finest mesh."""
     def static(self, load_scale: float = 1.0) -> "StaticResult":
         """The static equilibrium under the loads × load_scale [–] and
         gravity (``ancf-modal static``)."""
@@ -294,6 +300,30 @@ class CalibrationResult:
         """The calibrated model."""
     def to_dict(self) -> Dict[str, Any]:
         """The library's JSON document (``calibrate --json``)."""
+
+@final
+class ConvergenceResult:
+    """The result of ``Model.convergence``; ``repr`` is the command line's table."""
+
+    @property
+    def elements(self) -> List[int]:
+        """Elements per beam of each mesh, ascending."""
+    @property
+    def coordinates(self) -> List[int]:
+        """Number of coordinates of each mesh."""
+    @property
+    def reference_hz(self) -> npt.NDArray[np.float64]:
+        """Reference frequency of each bending mode [Hz]."""
+    @property
+    def frequencies_hz(self) -> npt.NDArray[np.float64]:
+        """Bending mode k at mesh i [Hz] (modes × meshes); NaN where absent."""
+    @property
+    def relative_errors(self) -> npt.NDArray[np.float64]:
+        """|f_k(n_i) − f_k|/f_k [–] (modes × meshes); NaN where undefined."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's JSON document (``convergence --json``)."""
+    def plot(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Draws the errors against the element count (.svg or .png)."""
 
 @final
 class FrfResult:

@@ -6,6 +6,7 @@
 
 mod builtin;
 mod calibrate;
+mod convergence;
 mod errors;
 mod frf;
 mod impulse;
@@ -111,6 +112,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<impulse::PyImpulseResult>()?;
     m.add_class::<statics::PyStaticResult>()?;
     m.add_class::<calibrate::PyCalibrationResult>()?;
+    m.add_class::<convergence::PyConvergenceResult>()?;
     m.add_class::<sweep::PySweepResult>()?;
     m.add_class::<switch_off::PySwitchOffResult>()?;
     m.add_class::<transient::PyTransientResult>()?;

@@ -339,6 +339,20 @@ impl PyModel {
         crate::statics::run(self, py, load_scale)
     }
 
+    /// The mesh convergence of the first `modes` bending frequencies (the
+    /// command line's `convergence`): every beam meshed with 2, 4, 8, …
+    /// elements up to `max_elements`, the errors against Euler–Bernoulli
+    /// for a single free beam, else against the finest mesh.
+    #[pyo3(signature = (max_elements = 64, modes = 3))]
+    fn convergence(
+        &self,
+        py: Python<'_>,
+        max_elements: i64,
+        modes: i64,
+    ) -> PyResult<crate::convergence::PyConvergenceResult> {
+        crate::convergence::run(self, py, max_elements, modes)
+    }
+
     /// Fits parameters to measured frequencies (the command line's
     /// `calibrate`, eigenvalue method): `target_hz` [Hz] one frequency or
     /// several (default: the model's `reference.first_bending_hz`),

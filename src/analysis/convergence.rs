@@ -24,7 +24,12 @@ use std::f64::consts::PI;
 pub const DEFAULT_ELEMENTS: [usize; 6] = [2, 4, 8, 16, 32, 64];
 
 /// Free-free βL, the roots of cos βL · cosh βL = 1 (standard tables).
-const FREE_FREE_BL: [f64; 4] = [4.730040745, 7.853204624, 10.99560784, 14.13716549];
+const FREE_FREE_BL: [f64; 4] = [
+    4.730_040_744_862_704,
+    7.853_204_624_095_838,
+    10.995_607_838_001_671,
+    14.137_165_491_257_464,
+];
 
 /// What the errors of a study are measured against.
 #[derive(Debug, Clone, Copy, PartialEq)]

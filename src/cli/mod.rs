@@ -97,7 +97,7 @@ pub fn run(cli: Cli) -> Result<common::Warnings> {
         Command::Impulse(a) => global(impulse::run(a)),
         Command::Modal(a) => modal::run(a),
         Command::Calibrate(a) => global(calibrate::run(a)),
-        Command::Convergence(a) => global(convergence::run(a)),
+        Command::Convergence(a) => convergence::run(a),
         Command::Static(a) => statics::run(a),
         Command::Sweep(a) => global(sweep::run(a)),
         Command::SweepMerge(a) => global(sweep_merge::run(a)),

@@ -14,7 +14,9 @@
 //! |---|---|---|
 //! | `modal` | [`modal::ModalRequest`] | [`modal::ModalRun`] |
 //! | `static` | [`statics::StaticRequest`] | [`statics::StaticRun`] |
+//! | `convergence` | [`convergence::ConvergenceRequest`] | [`convergence::ConvergenceRun`] |
 
+pub mod convergence;
 pub mod error;
 pub mod input;
 pub mod modal;
