@@ -7,7 +7,7 @@ use crate::model::{choice, equilibrium, finite, PyModel};
 use ancf::analysis::damped_modes::{mode_damping, ModeDamping};
 use ancf::analysis::prestress::{modal_at_equilibrium, PrestressedModal};
 use ancf::analysis::{modal_at_reference, EigenMethod, ModalResult, ModalSettings};
-use ancf::model::Model;
+use ancf::model::{Model, ValidModel};
 use ancf::output::modal_uff::{export_nodes, translations};
 use ancf::System;
 use numpy::{PyArray1, PyArray2};
@@ -94,7 +94,7 @@ impl ModalOutcome {
 /// line's table and document.
 #[pyclass(name = "ModalResult", module = "ancf_modal", frozen)]
 pub struct PyModalResult {
-    model: Arc<Model>,
+    model: Arc<ValidModel>,
     source: String,
     sha256: String,
     outcome: ModalOutcome,
