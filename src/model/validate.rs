@@ -241,6 +241,9 @@ impl Model {
         check_finite_pair(self.gravity, "gravity")?;
         self.validate_ids()?;
         let mut total_elements = 0usize;
+        // Read once: a model is validated again after every change
+        // (calibration steps, design paths), beam by beam.
+        let max_elements = available_memory().unwrap_or(usize::MAX) / BYTES_PER_ELEMENT;
         for (i, b) in self.beams.iter().enumerate() {
             let p = format!("beams[{i}]");
             check_finite_pair(b.start, &format!("{p}.start"))?;
@@ -252,7 +255,7 @@ impl Model {
             total_elements = total_elements.saturating_add(b.elements);
             // A model is limited by memory: refuse one that cannot fit
             // rather than abort on a failed allocation.
-            let max = available_memory().unwrap_or(usize::MAX) / BYTES_PER_ELEMENT;
+            let max = max_elements;
             if total_elements > max {
                 let problem = Problem::TooManyElements {
                     total: total_elements,
