@@ -19,12 +19,12 @@ use serde_json::{json, Value};
 
 /// Every kind of reference a model has, away from the origin (so the
 /// assembly moves it to its centre of mass), with a rigid beam: a clamped
-/// blade, a rigid arm welded to it by a pin with a torsion spring, a lever
+/// blade, a rigid arm joined to it by a pin with a torsion spring, a lever
 /// on the arm's end by a pin without `local` (the partner's point), a mass
 /// on a released slider pulled by a preloaded spring, a spring with a free
 /// length, loads in the beam and global frames, co-rotated and global
-/// sensors, a pin in a slot and a point against a ground line without a
-/// side.
+/// sensors, the arm's end in a slot of the lever (a stop) and the blade's
+/// tip against a ground line without a side.
 fn rich_json() -> Value {
     let section = json!({"height": 1.1e-3, "width": 5.2e-3});
     let material = json!({"young": 127e9, "density": 8940.0});
@@ -76,7 +76,7 @@ fn rich_json() -> Value {
         "contacts": [
             {"id": "stop", "type": "pin_slot",
              "slot": {"body": "lever", "from": [-0.005, 0.0], "to": [0.005, 0.0], "width": 0.004},
-             "pin": {"body": "bob"}, "pin_radius": 0.001,
+             "pin": {"beam": "arm", "s": 0.03}, "pin_radius": 0.001,
              "law": {"model": "linear", "stiffness": 1e5}},
             {"id": "wall", "type": "point_line", "point": {"beam": "blade", "s": 0.05},
              "radius": 0.001, "line": {"ground": true, "from": [10.01, 4.9], "to": [10.01, 5.2]},
@@ -490,6 +490,7 @@ fn no_edit_of_a_model_file_makes_the_assembly_panic() {
         })
         .unwrap();
     let (refused, built) = *counts.lock().unwrap();
+    eprintln!("{refused} edited models refused, {built} assembled");
     // Both outcomes occur: the edits reach the validation's checks and
     // leave valid models too.
     assert!(refused > 0 && built > 0, "{refused} refused, {built} built");
