@@ -6,10 +6,11 @@
 
 use ancf_modal::analysis::{modal_at_reference, ModalSettings};
 use ancf_modal::error::Source;
+use ancf_modal::model::ValidModel;
 use ancf_modal::{Model, System};
 use criterion::{criterion_group, criterion_main, Criterion};
 
-fn beam(elements: usize) -> Model {
+fn beam(elements: usize) -> ValidModel {
     let json = format!(
         r#"{{"name": "beam", "beams": [{{"id": "b", "start": [0, 0], "angle_deg": 0, "length": 0.025,
         "elements": {elements}, "section": {{"height": 1.1e-3, "width": 5.2e-3}},
@@ -18,7 +19,7 @@ fn beam(elements: usize) -> Model {
     Model::from_json(&json, Source::BuiltIn).unwrap()
 }
 
-fn cantilever(elements: usize) -> Model {
+fn cantilever(elements: usize) -> ValidModel {
     let json = format!(
         r#"{{"name": "cantilever", "beams": [{{"id": "b", "start": [0, 0], "angle_deg": 0, "length": 0.025,
         "elements": {elements}, "section": {{"height": 1.1e-3, "width": 5.2e-3}},
@@ -30,7 +31,7 @@ fn cantilever(elements: usize) -> Model {
 
 /// `k` horizontal and `k` vertical steel beams of 1 m, `e` elements each,
 /// welded at all k² crossings (the README's scaling table).
-pub fn grid(k: usize, e: usize) -> Model {
+pub fn grid(k: usize, e: usize) -> ValidModel {
     let step = 1.0 / (k - 1) as f64;
     let sec = r#""section": {"height": 5e-3, "width": 5e-3}, "material": {"young": 210e9, "density": 7850}"#;
     let mut beams = Vec::new();

@@ -5,14 +5,17 @@
 //! `cargo bench --bench transient_solver`.
 
 use ancf_modal::analysis::transient::{Integrator, LinearSolver, TransientSettings};
+use ancf_modal::model::ValidModel;
 use ancf_modal::{Model, System};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
-fn cantilever(elements: usize) -> Model {
+fn cantilever(elements: usize) -> ValidModel {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/models/cantilever.json");
-    let mut model = Model::from_file(std::path::Path::new(path)).unwrap();
+    let mut model = Model::from_file(std::path::Path::new(path))
+        .unwrap()
+        .into_model();
     model.beams[0].elements = elements;
-    model
+    model.validated().unwrap()
 }
 
 fn bench(c: &mut Criterion) {

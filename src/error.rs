@@ -126,6 +126,17 @@ pub enum Problem {
     },
 }
 
+/// A model that fails validation: the JSON path of the first offending
+/// value (e.g. `joints[1].b.s`) and what is wrong there
+/// ([`crate::model::Model::validated`]). A model read from a file reports
+/// it as [`ModelError::Invalid`], naming the file too.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{path}: {problem}")]
+pub struct InvalidModel {
+    pub path: String,
+    pub problem: Problem,
+}
+
 /// "`beam` and `ground`", or "none of them" for an empty list.
 fn given_keys(keys: &[&str]) -> String {
     match keys {
@@ -179,6 +190,13 @@ pub enum ModelError {
 /// Why an analysis failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum AnalysisError {
+    /// A mesh of a convergence study
+    /// ([`crate::analysis::convergence`]) fails validation.
+    #[error("the model at {elements} elements per beam is not valid")]
+    InvalidMesh {
+        elements: usize,
+        source: Box<InvalidModel>,
+    },
     #[error("{path}: the mass matrix is singular in the direction of {dof} (a body without inertia in a free direction)")]
     SingularMass { dof: String, path: String },
     #[error("the system has no free coordinates left after the constraints")]
@@ -289,6 +307,11 @@ pub enum DesignPathError {
     /// A state of one design could not be carried to the next.
     #[error("at {at:.4} of the way to the design: {source}")]
     Transfer { at: f64, source: TransferError },
+    /// A design on the way fails validation (e.g. joint points that meet
+    /// at both ends of the path but not between); `invalid` is in the
+    /// message, not a `source` (as `last` of `Stalled`).
+    #[error("the design at {at:.4} of the way is not a valid model: {invalid}")]
+    InvalidDesign { at: f64, invalid: Box<InvalidModel> },
     /// The state reached holds more total potential energy than the
     /// design's unloaded reference: a jump to another branch.
     #[error("the state reached holds a total potential energy of {found:.6e} J, above the {reference:.6e} J of the design's reference: a jump to another branch, refused")]
@@ -361,6 +384,10 @@ pub enum SimulationError {
     },
     #[error("the tracked point: {why}")]
     InvalidPoint { why: String },
+    /// The model with every beam rigid (the rigid comparison) fails
+    /// validation.
+    #[error("the model with every beam rigid")]
+    RigidModel(#[source] Box<InvalidModel>),
     #[error("joint `{joint}` is a released support: it lets go of the static equilibrium's hold, so the run must start from the static equilibrium")]
     ReleaseNeedsEquilibrium { joint: String },
 }

@@ -16,6 +16,7 @@ use ancf_modal::analysis::calibrate::{
 use ancf_modal::analysis::{ModalSettings, ModeKind};
 use ancf_modal::error::Source;
 use ancf_modal::model::path::PathError;
+use ancf_modal::model::ValidModel;
 use ancf_modal::Model;
 use assert_cmd::Command;
 use common::{free_beam, freqs, modal_all, model, H, W};
@@ -30,15 +31,15 @@ fn request(params: &[&str], targets: &[f64]) -> CalibrationRequest {
     }
 }
 
-fn first_bending(m: &Model) -> f64 {
+fn first_bending(m: &ValidModel) -> f64 {
     freqs(&modal_all(m), ModeKind::Bending)[0]
 }
 
-fn with_section(m: &Model, h: f64, w: f64) -> Model {
-    let mut m = m.clone();
+fn with_section(m: &ValidModel, h: f64, w: f64) -> ValidModel {
+    let mut m = m.to_model();
     m.beams[0].section.height = h;
     m.beams[0].section.width = w;
-    m
+    m.validated().expect("a valid section")
 }
 
 #[test]
@@ -155,9 +156,10 @@ fn a_rigid_body_mass_and_a_spring_stiffness_are_recovered() {
     // through the same Levenberg–Marquardt path: generate the targets at known
     // values of the rich model, start from its own values.
     let m = rich_model();
-    let mut truth = m.clone();
+    let mut truth = m.to_model();
     truth.rigid_bodies[0].mass = 0.6e-3;
     truth.springs[0].stiffness = 3500.0;
+    let truth = truth.validated().expect("a valid model");
     let f = freqs(&modal_all(&truth), ModeKind::Bending);
     let r = calibrate(
         &m,
@@ -262,7 +264,7 @@ fn an_evaluator_without_sensitivities_fits_by_bracketing_alone() {
     // The Euler–Bernoulli formula as the "experiment": f = (βL)²/(2πL²)
     // √(E h²/(12 ρ)), so the height for a target is known in closed form.
     let beam = free_beam(8);
-    let eb = SingleFrequency::new("euler-bernoulli", |m: &Model| {
+    let eb = SingleFrequency::new("euler-bernoulli", |m: &ValidModel| {
         let b = &m.beams[0];
         let (e, rho, h, l) = (
             b.material.young,
@@ -336,9 +338,10 @@ fn the_tracked_mode_follows_its_shape_through_a_crossing() {
     // A thick bare beam: first bending 49.6 kHz, first axial 75.4 kHz (h-
     // independent). Fitting first bending to 100 kHz moves it past the
     // axial mode; f ∝ h gives the answer.
-    let mut beam = free_beam(8);
+    let mut beam = free_beam(8).into_model();
     let h0 = 8e-3;
     beam.beams[0].section.height = h0;
+    let beam = beam.validated().expect("a valid beam");
     let before = modal_all(&beam);
     let fb0 = freqs(&before, ModeKind::Bending)[0];
     let fa = freqs(&before, ModeKind::Axial)[0];
@@ -368,7 +371,7 @@ fn the_tracked_mode_follows_its_shape_through_a_crossing() {
 /// Every fittable parameter kind in one model: beam, welded rigid body,
 /// pinned point mass, a rigid arm on a torsion spring, and two springs to
 /// the ground (one with a free length, one with a preload).
-fn rich_model() -> Model {
+fn rich_model() -> ValidModel {
     model(json!({
         "name": "rich",
         "beams": [common::blade(8)],
@@ -425,7 +428,7 @@ fn analytic_sensitivities_match_central_differences() {
         };
         let eval = EigenFrequencies::new(&m, &sel, 4, ModalSettings::default()).unwrap();
         let p0 = set.start();
-        let e = eval.evaluate(&set.apply(&p0), &set).unwrap();
+        let e = eval.evaluate(&set.apply(&p0).unwrap(), &set).unwrap();
         let s = e.sensitivities.unwrap();
         for (j, p) in set.params.iter().enumerate() {
             let d = 1e-5;
@@ -433,8 +436,8 @@ fn analytic_sensitivities_match_central_differences() {
             up[j] *= 1.0 + d;
             let mut dn = p0.clone();
             dn[j] *= 1.0 - d;
-            let fu = eval.frequencies(&set.apply(&up)).unwrap();
-            let fd = eval.frequencies(&set.apply(&dn)).unwrap();
+            let fu = eval.frequencies(&set.apply(&up).unwrap()).unwrap();
+            let fd = eval.frequencies(&set.apply(&dn).unwrap()).unwrap();
             for i in 0..4 {
                 // ∂f/∂ln p, analytic and central difference.
                 let analytic = s[i][j] * p0[j];

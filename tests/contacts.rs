@@ -11,6 +11,7 @@ use ancf_modal::analysis::transient::{Integrator, State, TransientSettings};
 use ancf_modal::analysis::ModalSettings;
 use ancf_modal::mechanics::pair::{PairGrad, PairHess};
 use ancf_modal::mechanics::spring::ForceElement;
+use ancf_modal::model::ValidModel;
 use ancf_modal::{Model, System};
 use common::model;
 use serde_json::{json, Value};
@@ -23,7 +24,7 @@ const K_HERTZ: f64 = 1e9;
 /// width 1 mm along x (ground) from x = −1 mm to x = +1 mm; clearance
 /// 0.1 mm. A half-sine pulse along +x of `impulse` [N s] over `duration`
 /// pushes it into the end cap at x = 1 mm.
-fn pin_in_slot(law: Value, impulse: f64, duration: f64) -> Model {
+fn pin_in_slot(law: Value, impulse: f64, duration: f64) -> ValidModel {
     let amplitude = impulse * PI / (2.0 * duration);
     model(json!({
         "name": "pin_in_slot",
@@ -48,7 +49,7 @@ struct Impact {
     duration: f64,
 }
 
-fn run_impact(model: &Model, step: f64, end: f64) -> Impact {
+fn run_impact(model: &ValidModel, step: f64, end: f64) -> Impact {
     let sys = System::new(model);
     let settings = TransientSettings {
         step,
@@ -205,7 +206,7 @@ fn damped_laws_match_an_independent_integration() {
 
 /// A point mass on a vertical guide above a Hertz wall (the ground line
 /// y = 0), radius 0.5 mm, a gap of `gap`, pressed down by `force`.
-fn mass_on_wall(force: f64, gap: f64) -> Model {
+fn mass_on_wall(force: f64, gap: f64) -> ValidModel {
     let r = 0.5e-3;
     model(json!({
         "name": "mass_on_wall",

@@ -24,6 +24,7 @@ use ancf_modal::analysis::switch_off::{run_switch_off_from, SwitchOffSettings};
 use ancf_modal::error::Source;
 use ancf_modal::mechanics::spring::ForceElement;
 use ancf_modal::model::Model;
+use ancf_modal::model::ValidModel;
 use ancf_modal::system::System;
 use proptest::prelude::*;
 use serde_json::Value;
@@ -88,7 +89,7 @@ fn walk(v: &Value, ptr: String, f: &mut impl FnMut(&str, &serde_json::Map<String
 
 /// The shipped model `name` with attachment `pointer` moved to `s`; `None`
 /// when the design is refused by validation (then with a one-line error).
-fn moved(name: &str, pointer: &str, s: f64) -> Option<Model> {
+fn moved(name: &str, pointer: &str, s: f64) -> Option<ValidModel> {
     let mut v = shipped(name);
     *v.pointer_mut(&format!("{pointer}/s")).expect("pointer") = s.into();
     v["name"] = format!("{name}_moved").into();
@@ -110,7 +111,7 @@ fn closed(sys: &System, eq: &Equilibrium) -> Vec<bool> {
 }
 
 /// The checks of the module doc on one design.
-fn check_design(base: &Model, m: &Model) -> Result<(), TestCaseError> {
+fn check_design(base: &ValidModel, m: &ValidModel) -> Result<(), TestCaseError> {
     let sys = System::new(m);
     let settings = StaticSettings::default();
     let own = solve_equilibrium(&sys, &settings);

@@ -5,6 +5,7 @@
 
 use ancf_modal::analysis::impulse::{run_impulse, ImpulseSettings};
 use ancf_modal::model::RayleighDamping;
+use ancf_modal::model::ValidModel;
 use ancf_modal::output::impulse_report::impulse_table;
 use ancf_modal::results::ImpulseOutput;
 use ancf_modal::Model;
@@ -12,14 +13,14 @@ use std::f64::consts::PI;
 
 /// The built-in paper assembly with Rayleigh damping giving its first
 /// bending mode (4577 Hz) the ratio `zeta`, split evenly between α and β.
-fn damped_builtin(zeta: f64) -> Model {
-    let mut m = Model::builtin();
+fn damped_builtin(zeta: f64) -> ValidModel {
+    let mut m = Model::builtin().into_model();
     let omega = 2.0 * PI * 4577.0;
     m.damping = Some(RayleighDamping {
         alpha: zeta * omega,
         beta: zeta / omega,
     });
-    m
+    m.validated().expect("a valid model")
 }
 
 #[test]

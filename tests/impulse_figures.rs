@@ -11,6 +11,7 @@
 //! line and writes nothing.
 
 use ancf_modal::analysis::impulse::{run_impulse, ImpulseResult, ImpulseSettings};
+use ancf_modal::model::ValidModel;
 use ancf_modal::output::figures::{response_figure, response_path, spectrum_figure};
 use ancf_modal::output::plot::{render, Figure, Format, PlotSize};
 use ancf_modal::Model;
@@ -22,7 +23,7 @@ const SIZE: PlotSize = PlotSize {
     height: 800,
 };
 
-fn short_run(end_time: f64) -> (Model, ImpulseResult) {
+fn short_run(end_time: f64) -> (ValidModel, ImpulseResult) {
     let model = Model::builtin();
     let mut s = ImpulseSettings::default();
     s.transient.end_time = end_time;

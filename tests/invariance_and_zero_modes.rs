@@ -5,12 +5,13 @@
 
 mod common;
 use ancf_modal::analysis::{modal_at_reference, ModalSettings, ModeKind};
+use ancf_modal::model::ValidModel;
 use ancf_modal::{Model, System};
 use common::*;
 use serde_json::{json, Value};
 
 /// Rotate a model file by `angle_deg` about the origin, then translate by `shift`.
-fn transform(base: &Model, angle_deg: f64, shift: [f64; 2]) -> Model {
+fn transform(base: &ValidModel, angle_deg: f64, shift: [f64; 2]) -> ValidModel {
     let mut v: Value = serde_json::from_str(&base.to_json()).unwrap();
     let (s, c) = angle_deg.to_radians().sin_cos();
     let map = |p: &Value| -> Value {
@@ -52,7 +53,7 @@ fn transform(base: &Model, angle_deg: f64, shift: [f64; 2]) -> Model {
     model(v)
 }
 
-fn elastic_frequencies(m: &Model) -> Vec<f64> {
+fn elastic_frequencies(m: &ValidModel) -> Vec<f64> {
     modal_all(m)
         .modes
         .iter()
@@ -95,7 +96,7 @@ fn frequencies_invariant_under_rigid_transformation_of_the_model() {
     }
 }
 
-fn two_beams(joint: Value) -> Model {
+fn two_beams(joint: Value) -> ValidModel {
     let mut b2 = blade(4);
     b2["id"] = json!("b2");
     b2["start"] = json!([L, 0.0]);
@@ -109,7 +110,7 @@ fn two_beams(joint: Value) -> Model {
 fn zero_frequency_modes_are_counted_and_reported_as_rigid() {
     // (zero modes, of which mechanisms): a zero mode in the span of the
     // whole assembly's rigid motions is `rigid`, any other a `mechanism`.
-    let split = |m: &Model| {
+    let split = |m: &ValidModel| {
         let r = modal_all(m);
         let reported = r.modes.iter().filter(|x| x.kind.is_zero()).count();
         assert_eq!(
@@ -131,7 +132,7 @@ fn zero_frequency_modes_are_counted_and_reported_as_rigid() {
         assert_eq!(mechanisms, r.mechanism_modes, "mechanisms counted");
         (r.rigid_modes, mechanisms)
     };
-    let count = |m: &Model| split(m).0;
+    let count = |m: &ValidModel| split(m).0;
     assert_eq!(count(&free_beam(8)), 3, "free beam: 3 rigid-body modes");
     assert_eq!(
         count(&Model::builtin()),

@@ -17,6 +17,7 @@ use ancf_modal::analysis::statics::{
 };
 use ancf_modal::error::Source;
 use ancf_modal::model::Model;
+use ancf_modal::model::ValidModel;
 use ancf_modal::system::System;
 use proptest::prelude::*;
 use serde_json::json;
@@ -29,7 +30,7 @@ const L: f64 = 0.65;
 const G: f64 = 9.81;
 const T0: f64 = 80.0;
 
-fn string(elements: usize) -> Model {
+fn string(elements: usize) -> ValidModel {
     let v = json!({
         "name": "taut_string", "gravity": [0.0, -G],
         "beams": [{"id": "strip", "start": [0.0, 0.0], "angle_deg": 0.0, "length": L,
@@ -101,7 +102,7 @@ fn a_model_with_one_of_gravity_and_loads_names_that_one_path() {
     let mut v = serde_json::to_value(string(8)).unwrap();
     v["gravity"] = json!([0.0, 0.0]);
     let no_gravity = Model::from_json(&v.to_string(), Source::BuiltIn).unwrap();
-    let path = |m: &Model, load_scale: f64| {
+    let path = |m: &ValidModel, load_scale: f64| {
         let sys = System::new(m);
         let settings = StaticSettings {
             load_scale,
@@ -127,7 +128,7 @@ fn prestressed_cantilever(
     tip_force: [f64; 2],
     preload: f64,
     gravity_angle_deg: f64,
-) -> Model {
+) -> ValidModel {
     let width = 2.0 * height;
     let ei = E * width * height.powi(3) / 12.0;
     // Forces in units of the cantilever's buckling load π²EI/(4L²).

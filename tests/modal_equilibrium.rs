@@ -14,6 +14,7 @@ use ancf_modal::analysis::modal::modal;
 use ancf_modal::analysis::prestress::prestressed_modal;
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings, ModeKind};
+use ancf_modal::model::ValidModel;
 use ancf_modal::output::modal_report::{modal_table, prestress_table};
 use ancf_modal::{Model, System};
 use common::model;
@@ -25,7 +26,7 @@ use std::process::Command;
 
 const SWITCH_OFF: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/rcbo_switch_off.json");
 
-fn switch_off() -> (Model, System) {
+fn switch_off() -> (ValidModel, System) {
     let m = Model::from_file(std::path::Path::new(SWITCH_OFF)).expect("the model loads");
     let s = System::new(&m);
     (m, s)
@@ -261,7 +262,7 @@ fn switch_off_shifts_pair_modes_of_the_same_shape() {
 /// A pinned-pinned column along `angle`: pin at s = 0, at s = L a roller
 /// along the axis, and a spring on the axis beyond the top pushing it
 /// with `p` [N] (compression preload).
-fn column(l: f64, h: f64, elements: usize, angle: f64, p: f64, k: f64) -> Model {
+fn column(l: f64, h: f64, elements: usize, angle: f64, p: f64, k: f64) -> ValidModel {
     let (s, c) = angle.to_radians().sin_cos();
     let top = [l * c, l * s];
     let beyond = [top[0] + 0.5 * l * c, top[1] + 0.5 * l * s];
@@ -346,7 +347,7 @@ type BeamSpec = (usize, f64, f64, f64, u8);
 /// end, a spring to the ground, gravity (used only when free).
 type Spec = (Vec<BeamSpec>, u8, bool, bool, [f64; 2]);
 
-fn unloaded(spec: &Spec) -> Model {
+fn unloaded(spec: &Spec) -> ValidModel {
     let (chain, support, body, spring, g) = spec;
     let (mut beams, mut joints) = (Vec::new(), Vec::new());
     let (mut start, mut angle) = ([0.0f64, 0.0], 0.0f64);

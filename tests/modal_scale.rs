@@ -6,11 +6,12 @@
 mod common;
 
 use ancf_modal::analysis::{modal_at_reference, EigenMethod, ModalResult, ModalSettings, ModeKind};
-use ancf_modal::{Model, System};
+use ancf_modal::model::ValidModel;
+use ancf_modal::System;
 use common::*;
 use serde_json::{json, Value};
 
-fn run(model: &Model, modes: usize, method: EigenMethod) -> ModalResult {
+fn run(model: &ValidModel, modes: usize, method: EigenMethod) -> ModalResult {
     let settings = ModalSettings {
         modes: Some(modes),
         method,
@@ -28,7 +29,7 @@ fn beam(elements: usize, l: f64, h: f64) -> Value {
     })
 }
 
-fn supported(elements: usize, l: f64, h: f64, joints: Value) -> Model {
+fn supported(elements: usize, l: f64, h: f64, joints: Value) -> ValidModel {
     model(json!({"name": "beam", "beams": [beam(elements, l, h)], "joints": joints}))
 }
 
@@ -114,7 +115,7 @@ fn slender_mems_and_large_beams_keep_exact_zero_counts_and_their_frequencies() {
 }
 
 /// Two rails along x, `rungs` rungs across, welded at the rail nodes.
-fn ladder(rungs: usize) -> Model {
+fn ladder(rungs: usize) -> ValidModel {
     let (span, gap) = (0.02, 0.01);
     let len = span * rungs as f64;
     let section = json!({"height": 1e-3, "width": 5e-3});
@@ -261,7 +262,7 @@ fn a_mass_between_preloaded_springs_keeps_its_transverse_frequency() {
 
 /// A square grid of `k` horizontal and `k` vertical beams of 1 m, welded
 /// at all k² crossings.
-fn grid(k: usize, elements: usize) -> Model {
+fn grid(k: usize, elements: usize) -> ValidModel {
     let step = 1.0 / (k - 1) as f64;
     let section = json!({"height": 5e-3, "width": 5e-3});
     let material = json!({"young": 210e9, "density": 7850.0});

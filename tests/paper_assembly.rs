@@ -6,18 +6,19 @@
 
 mod common;
 use ancf_modal::analysis::ModeKind;
+use ancf_modal::model::ValidModel;
 use ancf_modal::Model;
 use common::*;
 use serde_json::Value;
 
-fn assembly(elements: usize, nodes_at_attachments: bool) -> Model {
+fn assembly(elements: usize, nodes_at_attachments: bool) -> ValidModel {
     let mut v: Value = serde_json::from_str(&Model::builtin().to_json()).unwrap();
     v["beams"][0]["elements"] = elements.into();
     v["beams"][0]["nodes_at_attachments"] = nodes_at_attachments.into();
     model(v)
 }
 
-fn f1(m: &Model) -> f64 {
+fn f1(m: &ValidModel) -> f64 {
     freqs(&modal_all(m), ModeKind::Bending)[0]
 }
 

@@ -7,11 +7,12 @@ use ancf_modal::analysis::prestress::prestressed_modal;
 use ancf_modal::analysis::statics::StaticSettings;
 use ancf_modal::analysis::{modal_at_reference, EigenMethod, ModalResult, ModalSettings, ModeKind};
 use ancf_modal::model::Placement;
+use ancf_modal::model::ValidModel;
 use ancf_modal::{Model, System};
 use common::*;
 use serde_json::json;
 
-fn modal_with(m: &Model, modes: Option<usize>, method: EigenMethod) -> ModalResult {
+fn modal_with(m: &ValidModel, modes: Option<usize>, method: EigenMethod) -> ModalResult {
     let settings = ModalSettings { modes, method };
     modal_at_reference(&System::new(m), &settings).expect("modal analysis succeeds")
 }
@@ -42,7 +43,7 @@ fn same_modes(a: &ModalResult, b: &ModalResult, what: &str) {
 
 /// A free blade (8 elements, no extra nodes) with a rigid body welded
 /// between two nodes (s = 11 mm, inside element 3).
-fn welded_blade() -> Model {
+fn welded_blade() -> ValidModel {
     model(json!({
         "name": "welded blade", "beams": [blade(8)],
         "rigid_bodies": [{"id": "lever", "mass": 0.5e-3, "inertia": 3e-9,
@@ -63,6 +64,7 @@ fn a_body_welded_between_nodes_keeps_three_zero_modes_wherever_it_sits() {
         (217.0, [1e3, -1e3]),
     ] {
         let placed = base.placed(&Placement { angle_deg, offset });
+        let placed = placed.validated().expect("placed, still valid");
         let r = modal_with(&placed, None, EigenMethod::Dense);
         assert_eq!(
             r.rigid_modes, 3,
@@ -78,7 +80,7 @@ fn a_body_welded_between_nodes_keeps_three_zero_modes_wherever_it_sits() {
 
 /// The free blade (8 elements) with a lever pinned at arc length `s`;
 /// the lever's centre of mass on the pin.
-fn lever_on_blade(s: f64, young: f64, torsion: Option<f64>) -> Model {
+fn lever_on_blade(s: f64, young: f64, torsion: Option<f64>) -> ValidModel {
     let mut b = blade(8);
     b["material"]["young"] = json!(young);
     let mut pin = json!({"type": "pin", "a": {"body": "lever"}, "b": {"beam": "blade", "s": s}});
@@ -150,8 +152,7 @@ fn a_lever_on_a_torsion_spring_rocks_at_the_two_inertia_frequency() {
 fn the_sparse_path_lists_every_mode_below_its_highest() {
     // The 400-element cantilever: the second axial mode (113 kHz) lies
     // among the first eight; clamped–free axial f_k = (2k − 1)/(4L) √(E/ρ).
-    let mut m = cantilever(400);
-    m.beams[0].elements = 400;
+    let m = cantilever(400);
     let sparse = modal_with(&m, Some(8), EigenMethod::Sparse);
     let dense = modal_with(&m, Some(8), EigenMethod::Dense);
     let axial = freqs(&sparse, ModeKind::Axial);
@@ -190,6 +191,7 @@ fn every_shipped_model_gives_the_same_modes_turned_and_moved_a_kilometre_away() 
         let reference = modal_with(&base, Some(12), EigenMethod::Auto);
         for (angle_deg, offset) in [(30.0, [1e3, -1e3]), (-117.0, [0.01, 300.0])] {
             let placed = base.placed(&Placement { angle_deg, offset });
+            let placed = placed.validated().expect("placed, still valid");
             let r = modal_with(&placed, Some(12), EigenMethod::Auto);
             same_modes(
                 &r,
@@ -213,13 +215,14 @@ fn the_prestressed_assembly_finds_its_equilibrium_and_modes_wherever_it_sits() {
         modes: Some(10),
         method: EigenMethod::Auto,
     };
-    let run = |m: &Model| {
+    let run = |m: &ValidModel| {
         prestressed_modal(&System::new(m), &StaticSettings::default(), &settings)
             .expect("equilibrium and modes")
     };
     let reference = run(&base);
     for (angle_deg, offset) in [(30.0, [1e3, -1e3]), (200.0, [-250.0, 0.05])] {
-        let placed = run(&base.placed(&Placement { angle_deg, offset }));
+        let placed = base.placed(&Placement { angle_deg, offset });
+        let placed = run(&placed.validated().expect("placed, still valid"));
         same_modes(
             &placed.prestressed,
             &reference.prestressed,

@@ -50,7 +50,7 @@ fn a_preloaded_contact_is_elastic_until_it_separates() {
         sample_rate: 0.0,
         keep_partial: false,
     };
-    let anchor = sys.anchor_of(&m.resolve(&point(), "point").unwrap());
+    let anchor = sys.anchor_of(&m.resolve_point(&point(), "point").unwrap());
     let sim = simulate(sys, &[anchor], &settings).unwrap();
     let y = &sim.points[0][1];
     let c = &sim.contacts[0];

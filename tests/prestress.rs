@@ -7,6 +7,7 @@ use ancf_modal::analysis::prestress::{modal_at_equilibrium, prestressed_modal};
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf_modal::analysis::{modal, ModalSettings, ModeKind};
 use ancf_modal::error::AnalysisError;
+use ancf_modal::model::ValidModel;
 use ancf_modal::system::Linearization;
 use ancf_modal::{Model, System};
 use common::*;
@@ -16,7 +17,7 @@ use std::f64::consts::PI;
 /// Beam on the x axis, pinned to the ground at s = 0, its end s = L on a
 /// roller (slider along x) that carries the axial load `p` [N] (tension
 /// positive).
-fn pinned_roller(elements: usize, h: f64, p: f64) -> Model {
+fn pinned_roller(elements: usize, h: f64, p: f64) -> ValidModel {
     model(json!({
         "name": "pinned_roller",
         "beams": [{
@@ -46,7 +47,7 @@ fn euler_load(h: f64) -> f64 {
 /// the model's load × s, ascending. Modes are picked by shape (transverse
 /// node displacements dominate), independently of the energy label that
 /// `labels_follow_the_shape_under_tension` checks.
-fn bending_eigenvalues(m: &Model, s: f64, check: bool) -> Vec<f64> {
+fn bending_eigenvalues(m: &ValidModel, s: f64, check: bool) -> Vec<f64> {
     let sys = System::new(m);
     let settings = StaticSettings {
         load_scale: s,
@@ -214,7 +215,7 @@ fn first_frequency_vanishes_at_euler_load() {
 
 /// A rigid body (mass m, inertia J_c about its centre) hanging under gravity
 /// from a pin d above its centre, with an optional torsion spring k_t.
-fn pendulum(torsion: Option<f64>) -> (Model, f64, f64, f64, f64) {
+fn pendulum(torsion: Option<f64>) -> (ValidModel, f64, f64, f64, f64) {
     let (m, jc, d, g) = (2.0e-3, 3.0e-8, 4.0e-3, 9.81);
     let mut pin = json!({"type": "pin", "a": {"ground": [0.0, 0.0]}, "b": {"body": "bob"}});
     if let Some(k) = torsion {
@@ -281,7 +282,7 @@ fn constraint_term_gives_the_pendulum_its_stiffness() {
 }
 
 /// The pre-stressed paper assembly at its equilibrium.
-fn paper_prestressed() -> (Model, System) {
+fn paper_prestressed() -> (ValidModel, System) {
     let m = Model::from_file(std::path::Path::new("models/rcbo_prestressed.json"))
         .expect("models/rcbo_prestressed.json is valid");
     let sys = System::new(&m);

@@ -12,7 +12,8 @@
 mod common;
 use ancf_modal::analysis::{modal_at_reference, EigenMethod, ModalResult, ModalSettings, ModeKind};
 use ancf_modal::model::Placement;
-use ancf_modal::{Model, System};
+use ancf_modal::model::ValidModel;
+use ancf_modal::System;
 use common::{model, rel};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
@@ -90,7 +91,7 @@ fn on_chain(beams: &[(f64, f64)], elements: &[usize], f: f64, snap: Option<usize
     unreachable!("at least one beam")
 }
 
-fn build(spec: &Spec) -> Model {
+fn build(spec: &Spec) -> ValidModel {
     let mut beams = Vec::new();
     let mut joints = Vec::new();
     let (mut start, mut angle) = ([0.0f64, 0.0], 0.0f64);
@@ -182,7 +183,7 @@ fn rotate_back(v: [f64; 2], deg: f64) -> [f64; 2] {
 }
 
 fn modal(
-    m: &Model,
+    m: &ValidModel,
     method: EigenMethod,
     modes: Option<usize>,
 ) -> Result<ModalResult, TestCaseError> {
@@ -257,7 +258,9 @@ fn placement_changes_no_count_kind_or_frequency() {
                 offset: [r * d.cos(), r * d.sin()],
             };
             let a = modal(&m, EigenMethod::Dense, None)?;
-            let b = modal(&m.placed(&placement), EigenMethod::Dense, None)?;
+            let placed = m.placed(&placement).validated();
+            let placed = placed.map_err(|e| TestCaseError::fail(format!("placed: {e}")))?;
+            let b = modal(&placed, EigenMethod::Dense, None)?;
             same_modes(&b, &a, 1.0, 1e-9, &format!("{placement:?}"))?;
             // Kinds of clear modes (one kind holds 60 % of the energy) away
             // from any neighbour (a close pair may swap).
@@ -280,7 +283,7 @@ fn placement_changes_no_count_kind_or_frequency() {
 
 /// All lengths × λ, same E and ρ: masses × λ³, inertias × λ⁵, spring
 /// stiffness × λ, torsion stiffness × λ³, gravity × 1/λ, forces × λ².
-fn scaled(m: &Model, lambda: f64) -> Model {
+fn scaled(m: &ValidModel, lambda: f64) -> ValidModel {
     let mut v: Value = serde_json::from_str(&m.to_json()).unwrap();
     let l = |x: &Value| json!(x.as_f64().unwrap() * lambda);
     let l2 = |p: &Value| {
@@ -358,12 +361,14 @@ fn the_order_of_the_file_changes_nothing() {
     runner(1024, 3)
         .run(&spec(), |spec| {
             let m = build(&spec);
-            let mut p = m.clone();
+            let mut p = m.to_model();
             p.beams.reverse();
             p.rigid_bodies.reverse();
             p.point_masses.reverse();
             p.joints.reverse();
             p.springs.reverse();
+            let p = p.validated();
+            let p = p.map_err(|e| TestCaseError::fail(format!("reversed: {e}")))?;
             let a = modal(&m, EigenMethod::Dense, None)?;
             let b = modal(&p, EigenMethod::Dense, None)?;
             same_modes(&b, &a, 1.0, 1e-12, "reversed file")

@@ -10,7 +10,8 @@ use ancf_modal::analysis::simulate::{simulate, SimulationSettings};
 use ancf_modal::analysis::transient::{Integrator, TransientSettings};
 use ancf_modal::analysis::{modal_at_reference, ModalSettings};
 use ancf_modal::model::RayleighDamping;
-use ancf_modal::{Model, System};
+use ancf_modal::model::ValidModel;
+use ancf_modal::System;
 use common::*;
 use serde_json::json;
 use std::f64::consts::PI;
@@ -21,7 +22,7 @@ const STEP: f64 = 1e-6;
 
 /// The paper's blade clamped at s = 0, with a 20 µs half-sine pulse of
 /// 0.1 N at the tip (tip deflection ~1e-7 m: linear).
-fn pulsed_cantilever(damping: RayleighDamping) -> Model {
+fn pulsed_cantilever(damping: RayleighDamping) -> ValidModel {
     model(json!({
         "name": "pulsed cantilever", "beams": [blade(8)],
         "joints": [{"type": "weld", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "blade", "s": 0.0}}],
@@ -35,7 +36,7 @@ fn pulsed_cantilever(damping: RayleighDamping) -> Model {
 /// the pulse: the slope of ln(peak) against the peak times (successive
 /// maxima of a damped sinusoid A e^{−σt} sin(ω_d t + ψ) fall exactly by
 /// e^{−σT_d}), peaks located by a parabola through three samples.
-fn first_mode_decay(model: &Model, periods: f64) -> (f64, f64) {
+fn first_mode_decay(model: &ValidModel, periods: f64) -> (f64, f64) {
     let sys = System::new(model);
     let modal = modal_at_reference(&sys, &ModalSettings::default()).unwrap();
     let mode = modal.first_bending().unwrap();
@@ -122,8 +123,9 @@ fn first_mode_decays_at_zeta_omega() {
 /// A free beam spinning rigidly at Ω about its centre: v = Ω ẑ × (r − c)
 /// at the nodes and Ω ẑ × r′ for the slopes.
 fn spinning_beam(damping: RayleighDamping, turns: f64) -> (f64, f64, f64, f64) {
-    let mut m = free_beam(8);
+    let mut m = free_beam(8).into_model();
     m.damping = Some(damping);
+    let m = m.validated().expect("a valid model");
     let sys = System::new(&m);
     let omega = 200.0;
     let mut v = vec![0.0; sys.ndof()];
@@ -235,17 +237,19 @@ fn no_damping_entry_runs_exactly_as_before() {
     let mut a = pulsed_cantilever(RayleighDamping {
         alpha: 0.0,
         beta: 0.0,
-    });
+    })
+    .into_model();
     let plain = {
         let mut m = a.clone();
         m.damping = None;
-        m
+        m.validated().expect("a valid model")
     };
     a.damping = Some(RayleighDamping {
         alpha: 0.0,
         beta: 0.0,
     });
-    let run = |m: &Model| {
+    let a = a.validated().expect("a valid model");
+    let run = |m: &ValidModel| {
         let sys = System::new(m);
         let settings = TransientSettings {
             end_time: 2e-4,

@@ -16,6 +16,7 @@
 use ancf_modal::error::Source;
 use ancf_modal::model::number::significant;
 use ancf_modal::model::Model;
+use ancf_modal::model::ValidModel;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, FileFailurePersistence, RngSeed};
 use serde_json::{json, Value};
@@ -212,7 +213,7 @@ fn build(scale: f64, parts: &[PartSpec], scaled: Option<(usize, f64)>) -> Built 
     b
 }
 
-fn model(v: &Value) -> Model {
+fn model(v: &Value) -> ValidModel {
     Model::from_json(&v.to_string(), Source::BuiltIn).expect("a valid generated model")
 }
 

@@ -4,13 +4,14 @@
 mod common;
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf_modal::error::AnalysisError;
+use ancf_modal::model::ValidModel;
 use ancf_modal::System;
 use common::*;
 use serde_json::json;
 
 /// A slender cantilever of the blade's material along x, clamped at s = 0,
 /// with a dead tip load `force` [N] (global frame).
-fn loaded_cantilever(elements: usize, h: f64, force: [f64; 2]) -> ancf_modal::Model {
+fn loaded_cantilever(elements: usize, h: f64, force: [f64; 2]) -> ValidModel {
     model(json!({
         "name": "elastica",
         "beams": [{

@@ -6,6 +6,7 @@ use ancf_modal::analysis::sweep::{
     merge, Execution, Quantity, Shard, Sweep, SweepDocument, SweepSettings,
 };
 use ancf_modal::error::Source;
+use ancf_modal::model::ValidModel;
 use ancf_modal::Model;
 use assert_cmd::cargo::cargo_bin_cmd;
 use serde_json::{json, Value};
@@ -21,7 +22,7 @@ const RHO: f64 = 8940.0;
 /// Free-free βL of the first bending mode (Euler–Bernoulli).
 const BETA_L_FREE_1: f64 = 4.730040745;
 
-fn model(v: &Value) -> Model {
+fn model(v: &Value) -> ValidModel {
     Model::from_json(&v.to_string(), Source::BuiltIn).expect("valid model")
 }
 
@@ -51,7 +52,7 @@ fn cantilever_and_oscillator() -> Value {
             "stiffness": 1e4, "free_length": 0.01}]})
 }
 
-fn sweep(m: &Model, params: &[&str], quantity: &str, tracked: usize) -> Sweep {
+fn sweep(m: &ValidModel, params: &[&str], quantity: &str, tracked: usize) -> Sweep {
     let settings = SweepSettings {
         tracked_modes: tracked,
         ..SweepSettings::new(Quantity::parse(quantity).unwrap())

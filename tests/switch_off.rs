@@ -5,6 +5,7 @@
 
 mod common;
 use ancf_modal::analysis::switch_off::{run_switch_off, SwitchOffSettings};
+use ancf_modal::model::ValidModel;
 use ancf_modal::model::{Contact, Model};
 use ancf_modal::System;
 use assert_cmd::Command;
@@ -13,7 +14,7 @@ use serde_json::{json, Value};
 
 /// A beam hanging from a pin with a torsion spring, held turned by a tip
 /// load that is released at t = 0.
-fn pendulum(rigid: bool, young: f64) -> Model {
+fn pendulum(rigid: bool, young: f64) -> ValidModel {
     model(json!({
         "name": "pendulum",
         "beams": [{"id": "b", "start": [0.0, 0.0], "angle_deg": -90.0, "length": 0.05,
@@ -86,7 +87,7 @@ fn a_stiffening_flexible_release_converges_to_the_rigid_one() {
         }),
         ..SwitchOffSettings::default()
     };
-    let time = |m: &Model| {
+    let time = |m: &ValidModel| {
         run_switch_off(m, &settings)
             .unwrap()
             .flexible
@@ -224,7 +225,7 @@ fn bad_switch_off_settings_are_one_line_errors() {
 /// geometry with the spring's ground point moved by `dy`: the spring's
 /// tension k (L − L_f) along the line to the ground point, L_f from the
 /// preload at the reference length.
-fn spring_opening_moment(m: &Model, dy: f64) -> f64 {
+fn spring_opening_moment(m: &ValidModel, dy: f64) -> f64 {
     let blade = &m.beams[0];
     let spring = &m.springs[0];
     let s = spring.b.s.unwrap();
@@ -253,9 +254,10 @@ fn moving_the_spring_attachment_moves_the_switch_off_time_against_its_opening_mo
     let base = Model::switch_off_builtin();
     let mut runs = Vec::new();
     for dy in [-1e-3, 0.0, 1e-3] {
-        let mut m = base.clone();
+        let mut m = base.to_model();
         let g = m.springs[0].a.ground.as_mut().unwrap();
         g[1] += dy;
+        let m = m.validated().expect("a valid design");
         let t = run_switch_off(&m, &SwitchOffSettings::default())
             .unwrap()
             .flexible

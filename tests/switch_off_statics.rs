@@ -19,6 +19,7 @@ mod common;
 
 use ancf_modal::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf_modal::mechanics::spring::ForceElement;
+use ancf_modal::model::ValidModel;
 use ancf_modal::{Model, System};
 
 /// Paper, Table 4 [N].
@@ -26,7 +27,7 @@ const PAPER_F_C: f64 = 2.92;
 
 /// The pad force [N] in the ON equilibrium of `m` (0 when the pad is off
 /// the fixed contact).
-fn pad_force(m: &Model) -> f64 {
+fn pad_force(m: &ValidModel) -> f64 {
     let sys = System::new(m);
     let eq = solve_equilibrium(&sys, &StaticSettings::default())
         .unwrap_or_else(|e| panic!("{}: {e}", m.name));
@@ -41,11 +42,11 @@ fn pad_force(m: &Model) -> f64 {
     c.elastic_force(&eq.q)
 }
 
-fn variant(name: &str, edit: impl Fn(&mut Model)) -> Model {
-    let mut m = Model::switch_off_builtin();
+fn variant(name: &str, edit: impl Fn(&mut Model)) -> ValidModel {
+    let mut m = Model::switch_off_builtin().into_model();
     m.name = name.to_string();
     edit(&mut m);
-    m
+    m.validated().unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 fn contact_stiffness(m: &mut Model, k: f64) {
@@ -101,7 +102,7 @@ fn the_on_state_holds_over_the_design_space() {
 /// The built-in model with c_t, the spring's ground offset dy [m], the
 /// pre-stress factor s and the pad contact's K, each a fraction τ of the
 /// way from the built-in value (K and s geometrically).
-fn design(tau: f64, [ct, dy, s, k]: [f64; 4]) -> Model {
+fn design(tau: f64, [ct, dy, s, k]: [f64; 4]) -> ValidModel {
     let base = Model::switch_off_builtin();
     let ct0 = base.joints[0].torsion_stiffness.unwrap();
     let geo = |a: f64, b: f64| a * (b / a).powf(tau);
@@ -137,7 +138,8 @@ fn the_corners_of_the_design_space_are_found_or_have_no_closed_equilibrium() {
                 let mut forces = Vec::new();
                 for k in [1e8, 1e11] {
                     let p = [ct, dy, s, k];
-                    let r = equilibrium_along(|tau| System::new(&design(tau, p)), &path_settings());
+                    let r =
+                        equilibrium_along(|tau| Ok(System::new(&design(tau, p))), &path_settings());
                     let (eq, steps) = r.unwrap_or_else(|e| panic!("{p:?}: {e}"));
                     let sys = System::new(&design(1.0, p));
                     let f = fixed_contact_force(&sys, &eq.q);
@@ -175,9 +177,9 @@ fn the_corners_of_the_design_space_are_found_or_have_no_closed_equilibrium() {
     // path must report that no closed equilibrium exists.
     let raised = |to: f64| {
         move |tau: f64| {
-            System::new(&variant("spring raised", |m| {
+            Ok(System::new(&variant("spring raised", |m| {
                 *m.springs[0].preload.as_mut().unwrap() *= 1.0 + (to - 1.0) * tau;
-            }))
+            })))
         }
     };
     let pad = |sys: System, q: &[f64]| {
@@ -186,7 +188,7 @@ fn the_corners_of_the_design_space_are_found_or_have_no_closed_equilibrium() {
     };
     let (half, _) = equilibrium_along(raised(1.5), &path_settings()).unwrap();
     let f0 = pad_force(&Model::switch_off_builtin());
-    let f_half = pad(raised(1.5)(1.0), &half.q);
+    let f_half = pad(raised(1.5)(1.0).unwrap(), &half.q);
     let expected = f0 / (2.0 * (f0 - f_half));
     match equilibrium_along(raised(2.0), &path_settings()) {
         Err(DesignPathError::ContactOpens { contact, at }) => {

@@ -7,12 +7,13 @@ use ancf_modal::analysis::dispersion::GenAlpha;
 use ancf_modal::analysis::impulse::{run_impulse, ImpulseSettings};
 use ancf_modal::analysis::transient::{Integrator, TransientSettings};
 use ancf_modal::analysis::{modal_at_reference, ModalSettings, ModeKind};
+use ancf_modal::model::ValidModel;
 use ancf_modal::signal::spectrum::{amplitude_spectrum, dominant_peak_in, SpectrumSettings};
 use ancf_modal::{Model, System};
 use common::*;
 use std::f64::consts::PI;
 
-fn bare_beam() -> Model {
+fn bare_beam() -> ValidModel {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/models/beam_free_free.json");
     Model::from_file(std::path::Path::new(path)).unwrap()
 }

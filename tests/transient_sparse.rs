@@ -9,6 +9,7 @@ use ancf_modal::analysis::dispersion::GenAlpha;
 use ancf_modal::analysis::transient::{
     Integrator, LinearSolver, State, TransientSettings, SPARSE_THRESHOLD,
 };
+use ancf_modal::model::ValidModel;
 use ancf_modal::{Model, System};
 use common::*;
 use std::f64::consts::PI;
@@ -43,12 +44,14 @@ const ENERGY_TOLERANCE: f64 = 1e-7;
 
 /// `models/cantilever.json` (weld clamp at s = 0, beam along x) with more
 /// elements and without its tip load: free vibration.
-fn cantilever_model(elements: usize) -> Model {
+fn cantilever_model(elements: usize) -> ValidModel {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/models/cantilever.json");
-    let mut model = Model::from_file(std::path::Path::new(path)).unwrap();
+    let mut model = Model::from_file(std::path::Path::new(path))
+        .unwrap()
+        .into_model();
     model.beams[0].elements = elements;
     model.loads.clear();
-    model
+    model.validated().unwrap()
 }
 
 /// The beam bent into Euler–Bernoulli's first cantilever mode without

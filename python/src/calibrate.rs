@@ -11,7 +11,7 @@ use ancf::analysis::calibrate::{
     ModeSelection, ParameterSpec,
 };
 use ancf::analysis::ModeKind;
-use ancf::model::Model;
+use ancf::model::ValidModel;
 use ancf::results::provenance::sha256_hex;
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -155,7 +155,7 @@ fn keyword(e: &CalibrationError) -> Option<&'static str> {
 /// The result of `Model.calibrate`: the fitted parameters and model.
 #[pyclass(name = "CalibrationResult", module = "ancf_modal", frozen)]
 pub struct PyCalibrationResult {
-    model: Arc<Model>,
+    model: Arc<ValidModel>,
     source: ancf::error::Source,
     sha256: String,
     result: CalibrationResult,

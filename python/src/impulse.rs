@@ -6,7 +6,7 @@
 use crate::errors::{compute, Failure};
 use crate::model::PyModel;
 use ancf::analysis::impulse::{run_impulse, ImpulseError, ImpulseResult, ImpulseSettings};
-use ancf::model::Model;
+use ancf::model::ValidModel;
 use ancf::signal::Window;
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -73,7 +73,7 @@ impl Experiment<'_> {
 /// the peaks.
 #[pyclass(name = "ImpulseResult", module = "ancf_modal", frozen)]
 pub struct PyImpulseResult {
-    model: Arc<Model>,
+    model: Arc<ValidModel>,
     sha256: String,
     result: ImpulseResult,
 }

@@ -7,7 +7,7 @@ use crate::matrices;
 use ancf::analysis::statics::{solve_equilibrium, StaticSettings};
 use ancf::analysis::sweep::param;
 use ancf::error::{ModelError, Source};
-use ancf::model::Model;
+use ancf::model::{Model, ValidModel};
 use ancf::results::provenance::sha256_hex;
 use ancf::System;
 use pyo3::prelude::*;
@@ -19,7 +19,7 @@ use std::sync::Arc;
 /// joints, springs, loads and sensors (the JSON model file, SI units).
 #[pyclass(name = "Model", module = "ancf_modal", frozen)]
 pub struct PyModel {
-    pub model: Arc<Model>,
+    pub model: Arc<ValidModel>,
     /// Where it came from, for messages (`<built-in model>`, the path).
     pub source: Source,
     /// SHA-256 of the JSON text it was read from (`model_sha256`).

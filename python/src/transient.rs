@@ -44,7 +44,9 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request) -> PyResult<PyTransientR
     let sha256 = model.sha256.clone();
     compute(py, move || {
         let model = match r.rigid_beams {
-            true => shared.all_beams_rigid(),
+            true => shared.all_beams_rigid().validated().map_err(|e| {
+                Failure::Input(format!("{label}: the model with every beam rigid: {e}"))
+            })?,
             false => (*shared).clone(),
         };
         let settings = SimulationSettings {

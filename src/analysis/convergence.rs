@@ -132,7 +132,8 @@ pub fn mesh_convergence(
 }
 
 /// Study of `model_of_n(n)` for each n of `elements` (sorted and
-/// deduplicated here) against `reference`.
+/// deduplicated here) against `reference`. Each model is validated (an
+/// invalid one, e.g. at 0 elements, is [`AnalysisError::InvalidMesh`]).
 pub fn mesh_convergence_with(
     model_of_n: impl Fn(usize) -> Model,
     reference: Reference<'_>,
@@ -149,7 +150,12 @@ pub fn mesh_convergence_with(
     let mut coordinates = Vec::new();
     let mut frequencies_hz = vec![Vec::with_capacity(elements.len()); modes];
     for &n in &elements {
-        let model = model_of_n(n);
+        let model = model_of_n(n)
+            .validated()
+            .map_err(|source| AnalysisError::InvalidMesh {
+                elements: n,
+                source: Box::new(source),
+            })?;
         name.clone_from(&model.name);
         let system = System::new(&model);
         coordinates.push(system.ndof());

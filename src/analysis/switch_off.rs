@@ -30,7 +30,7 @@ use super::transient::contacts::ContactStats;
 use super::transient::TransientSettings;
 use crate::error::{Setting, SimulationError};
 use crate::mechanics::load::load_magnitudes;
-use crate::model::{Model, PointSpec};
+use crate::model::{Model, PointSpec, ValidModel};
 use crate::system::System;
 
 /// Rigid and flexible runs "depart" once their tracked points are this
@@ -243,18 +243,17 @@ fn tracked(model: &Model, settings: &SwitchOffSettings) -> Result<PointSpec, Sim
 /// One run of `model` from its ON state (continued from `base`'s, see
 /// [`on_state_equilibrium`]).
 fn run_one(
-    model: &Model,
-    base: &Model,
+    model: &ValidModel,
+    base: &ValidModel,
     point: &PointSpec,
     settings: &SwitchOffSettings,
     step: f64,
 ) -> Result<SwitchOffRun, SimulationError> {
-    let spec = model.rigid_point(point);
-    let system = |m: &Model| System::new(&m.with_rigid_beams());
-    let on = on_state_equilibrium(model, base, system, &StaticSettings::default())?;
-    let model = model.with_rigid_beams();
-    let point = model.resolve(&spec, "point").expect("resolved above");
-    let sys = System::new(&model);
+    let point = model
+        .resolve_point(point, "point")
+        .map_err(|e| SimulationError::InvalidPoint { why: e.to_string() })?;
+    let on = on_state_equilibrium(model, base, System::new, &StaticSettings::default())?;
+    let sys = System::new(model);
     let anchor = sys.anchor_of(&point);
     let mut sim_settings = settings.simulation(step);
     sim_settings.transient.damping = model.damping;
@@ -306,7 +305,7 @@ fn run_one(
 /// from the built-in model's when `model` is a design of that assembly
 /// (see [`run_switch_off_from`]).
 pub fn run_switch_off(
-    model: &Model,
+    model: &ValidModel,
     settings: &SwitchOffSettings,
 ) -> Result<SwitchOffResult, SimulationError> {
     run_switch_off_from(model, &Model::switch_off_builtin(), settings)
@@ -319,15 +318,22 @@ pub fn run_switch_off(
 /// where a contact lets go. Otherwise the ON state is solved from the
 /// reference.
 pub fn run_switch_off_from(
-    model: &Model,
-    base: &Model,
+    model: &ValidModel,
+    base: &ValidModel,
     settings: &SwitchOffSettings,
 ) -> Result<SwitchOffResult, SimulationError> {
     settings.validate()?;
     let point = tracked(model, settings)?;
     let flexible = run_one(model, base, &point, settings, settings.step)?;
     let rigid = if settings.compare_rigid {
-        let (rigid_model, rigid_base) = (model.all_beams_rigid(), base.all_beams_rigid());
+        // Valid as the models are (validation does not read `rigid`), and
+        // validated again all the same.
+        let rigid = |m: &Model| {
+            m.all_beams_rigid()
+                .validated()
+                .map_err(|e| SimulationError::RigidModel(Box::new(e)))
+        };
+        let (rigid_model, rigid_base) = (rigid(model)?, rigid(base)?);
         Some(run_one(
             &rigid_model,
             &rigid_base,

@@ -11,7 +11,7 @@ use ancf_modal::analysis::calibrate::{
 };
 use ancf_modal::analysis::ModeKind;
 use ancf_modal::model::path::{available_names, PathError};
-use ancf_modal::model::Model;
+use ancf_modal::model::{Model, ValidModel};
 use ancf_modal::output::calibrate_report::{calibrate_table, calibration_plot};
 use ancf_modal::output::plot::{
     calibration_figure, render, write_atomic, Figure, Format, PlotSize,
@@ -264,7 +264,7 @@ pub fn run(args: CalibrateArgs) -> Result<()> {
 /// eigenvalue curve (cheap); with --method impulse the iterates are the
 /// experiment's, which agree with it to ~1e-6.
 fn plot_data(
-    model: &Model,
+    model: &ValidModel,
     request: &CalibrationRequest,
     settings: &CalibrationSettings,
     result: &CalibrationResult,
@@ -291,7 +291,7 @@ fn plot_data(
 
 /// The first beam's height fitted so that the first bending frequency is
 /// `target_hz` (for `identify --calibrate`).
-pub fn equivalent_height(model: &Model, target_hz: f64) -> Result<CalibrationResult> {
+pub fn equivalent_height(model: &ValidModel, target_hz: f64) -> Result<CalibrationResult> {
     let beam = model
         .beams
         .first()

@@ -1,7 +1,7 @@
 //! Helpers every subcommand uses: loading the model, naming it in
 //! messages, warnings, writing output files.
 
-use ancf_modal::model::Model;
+use ancf_modal::model::{Model, ValidModel};
 use anyhow::Result;
 use std::path::Path;
 use std::sync::Mutex;
@@ -55,7 +55,7 @@ pub fn check_units(model: &Model, path: Option<&Path>) {
 
 /// The model file, or the built-in default when none is given; its unit
 /// warnings are given ([`check_units`]).
-pub fn load_model(path: Option<&Path>) -> Result<Model> {
+pub fn load_model(path: Option<&Path>) -> Result<ValidModel> {
     let model = match path {
         Some(p) => Model::from_file(p)?,
         None => Model::builtin(),

@@ -7,6 +7,7 @@ use super::output::Output;
 use ancf_modal::analysis::convergence::{mesh_convergence_with, with_elements, Reference};
 use ancf_modal::analysis::impulse::ImpulseResult;
 use ancf_modal::analysis::{ModalResult, ModalSettings};
+use ancf_modal::model::ValidModel;
 use ancf_modal::output::figures::{
     convergence_figure, response_figure, spectrum_figure, write_figure, write_mode_shapes,
 };
@@ -64,7 +65,7 @@ pub struct ComparisonArgs {
 
 /// What `identify` computed.
 pub struct Identified {
-    pub model: Model,
+    pub model: ValidModel,
     pub system: System,
     pub modal: ModalResult,
     pub impulse: ImpulseResult,

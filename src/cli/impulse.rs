@@ -2,7 +2,7 @@
 
 use super::common::{load_model, print_json, source_label, write_output};
 use ancf_modal::analysis::impulse::{run_impulse, ImpulseResult, ImpulseSettings};
-use ancf_modal::model::Model;
+use ancf_modal::model::ValidModel;
 use ancf_modal::output::figures::{response_path, write_impulse_figures};
 use ancf_modal::output::impulse_report::{impulse_table, signal_csv, spectrum_csv};
 use ancf_modal::output::plot::{Format, PlotSize};
@@ -70,7 +70,7 @@ pub struct ImpulseArgs {
 
 /// Run the experiment with a progress line on a terminal.
 pub fn experiment(
-    model: &Model,
+    model: &ValidModel,
     path: Option<&Path>,
     args: &ExperimentArgs,
 ) -> Result<ImpulseResult> {

@@ -11,7 +11,7 @@ use ancf_modal::analysis::impulse::excitation;
 use ancf_modal::analysis::statics::StaticSettings;
 use ancf_modal::analysis::switch_off::{run_switch_off, SwitchOffSettings};
 use ancf_modal::analysis::{ModalResult, ModalSettings};
-use ancf_modal::model::Model;
+use ancf_modal::model::ValidModel;
 use ancf_modal::output::frf_report::ResponseQuantity;
 use ancf_modal::output::report::sections::{
     calibration_section, comparison_section, has_release, impulse_section, measured_section,
@@ -130,7 +130,7 @@ pub fn write_report(
 
 /// What every report has.
 struct Parts<'a> {
-    model: &'a Model,
+    model: &'a ValidModel,
     system: &'a System,
     modal: &'a ModalResult,
     /// Each mode's damping ratio [–].

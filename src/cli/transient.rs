@@ -53,7 +53,10 @@ pub fn run(args: TransientArgs) -> Result<()> {
     }
     let mut model = load_model(args.model.as_deref())?;
     if args.rigid_beams {
-        model = model.all_beams_rigid();
+        model = model
+            .all_beams_rigid()
+            .validated()
+            .context("the model with every beam rigid")?;
     }
     let settings = SimulationSettings {
         transient: TransientSettings {

@@ -3,7 +3,7 @@
 //! provenance of every document and exported file).
 
 use crate::error::{ModelError, Source};
-use crate::model::{Model, DEFAULT_MODEL_JSON, SWITCH_OFF_MODEL_JSON};
+use crate::model::{Model, ValidModel, DEFAULT_MODEL_JSON, SWITCH_OFF_MODEL_JSON};
 use crate::results::provenance::sha256_hex;
 use std::path::Path;
 use std::sync::Arc;
@@ -13,7 +13,7 @@ use std::sync::Arc;
 #[derive(Debug, Clone)]
 pub struct ModelInput {
     /// The validated model.
-    pub model: Arc<Model>,
+    pub model: Arc<ValidModel>,
     /// Where it came from: a file, or the built-in model.
     pub source: Source,
     /// SHA-256 (lower-case hex) of the JSON text it was parsed from.

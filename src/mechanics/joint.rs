@@ -44,10 +44,6 @@ pub trait Constraint: std::fmt::Debug + Send + Sync {
     fn jacobian(&self, q: &[f64], out: &mut ConstraintJac);
     /// Adds Σᵢ λᵢ ∂²Cᵢ/∂q² (local) into `out`.
     fn hessian_dot(&self, q: &[f64], lambda: &[f64], out: &mut PairHess);
-    /// The force the joint exerts on its point b [SI: N] at (q, λ), when
-    /// its whole reaction is that force and its opposite on a (pins,
-    /// sliders); `None` when it also carries a moment (welds).
-    fn point_reaction(&self, q: &[f64], lambda: &[f64]) -> Option<Vector2<f64>>;
 }
 
 /// Revolute joint.
@@ -90,8 +86,13 @@ impl Constraint for Pin {
         self.pair
             .separation_hessian_dot(q, Vector2::new(lambda[0], lambda[1]), out);
     }
-    fn point_reaction(&self, _q: &[f64], lambda: &[f64]) -> Option<Vector2<f64>> {
-        Some(-Vector2::new(lambda[0], lambda[1]))
+}
+
+impl Pin {
+    /// The force the pin exerts on its point b [SI: N] at its multipliers
+    /// λ (its whole reaction: that force, and its opposite on a).
+    pub fn point_reaction(&self, lambda: &[f64]) -> Vector2<f64> {
+        -Vector2::new(lambda[0], lambda[1])
     }
 }
 
@@ -144,9 +145,6 @@ impl Constraint for Weld {
         self.pair
             .relative_angle_derivatives(q, &mut g, Some(&mut h));
         *out += h * lambda[2];
-    }
-    fn point_reaction(&self, _q: &[f64], _lambda: &[f64]) -> Option<Vector2<f64>> {
-        None
     }
 }
 
@@ -222,7 +220,12 @@ impl Constraint for Slider {
             * l;
         self.pair.separation_hessian_dot(q, n * l, out);
     }
-    fn point_reaction(&self, q: &[f64], lambda: &[f64]) -> Option<Vector2<f64>> {
-        Some(-self.normal(q) * lambda[0])
+}
+
+impl Slider {
+    /// The force the slider exerts on its point b [SI: N] at (q, λ) (its
+    /// whole reaction: that force, and its opposite on a).
+    pub fn point_reaction(&self, q: &[f64], lambda: &[f64]) -> Vector2<f64> {
+        -self.normal(q) * lambda[0]
     }
 }

@@ -19,6 +19,7 @@
 //! Optional `friction` μ: regularized Coulomb force μF v_t/√(v_t² + v_s²),
 //! v_s = `friction_velocity` [SI: m/s].
 
+use super::resolved::{ResolvedContact, ResolvedContactKind, ResolvedPoint};
 use super::types::PointSpec;
 use super::validate::{
     check_finite_pair, check_non_negative, check_positive, Failure, PointTarget,
@@ -279,7 +280,11 @@ impl Model {
         }
     }
 
-    pub(super) fn validate_contact(&self, c: &Contact, p: &str) -> Result<(), Failure> {
+    pub(super) fn validate_contact(
+        &self,
+        c: &Contact,
+        p: &str,
+    ) -> Result<ResolvedContact, Failure> {
         let seg = c.segment();
         let seg_path = match c {
             Contact::PinSlot { .. } => format!("{p}.slot"),
@@ -311,7 +316,7 @@ impl Model {
                 ));
             }
         }
-        match c {
+        let kind = match c {
             Contact::PinSlot {
                 pin_radius, slot, ..
             } => {
@@ -328,6 +333,9 @@ impl Model {
                             width,
                         },
                     ));
+                }
+                ResolvedContactKind::PinSlot {
+                    clearance: 0.5 * width - pin_radius,
                 }
             }
             Contact::PointLine {
@@ -358,13 +366,22 @@ impl Model {
                         ));
                     }
                 }
+                ResolvedContactKind::PointLine {
+                    radius: *radius,
+                    side: *side,
+                }
             }
-        }
+        };
         if let Some((mu, v)) = c.friction() {
             check_non_negative(mu, &format!("{p}.friction"))?;
             check_positive(v, &format!("{p}.friction_velocity"))?;
         }
-        self.validate_law(c.law(), &format!("{p}.law"))
+        self.validate_law(c.law(), &format!("{p}.law"))?;
+        Ok(ResolvedContact {
+            owner,
+            point: ResolvedPoint::from(&target),
+            kind,
+        })
     }
 
     fn validate_law(&self, law: &ContactLaw, p: &str) -> Result<(), Failure> {

@@ -1,6 +1,8 @@
 //! The model file: JSON input describing an assembly (see `DESIGN` in the
 //! README for the format). Parsing maps serde errors to the JSON path of the
 //! offending value; [`Model::validate`] then checks physics and references.
+//! Reading a model gives a [`ValidModel`], the only kind of model a
+//! [`crate::System`] is built from ([`valid`]).
 
 mod contact;
 mod interpolate;
@@ -8,20 +10,24 @@ pub mod number;
 pub mod path;
 mod placement;
 pub mod reference;
+pub mod resolved;
 mod rigid;
 pub mod sanity;
 mod section;
 mod types;
+pub mod valid;
 pub mod validate;
 
 pub use contact::*;
 pub use interpolate::DesignPath;
 pub use placement::Placement;
+pub use resolved::ResolvedPoint;
 pub use sanity::UnitWarning;
 pub use types::*;
+pub use valid::ValidModel;
 pub use validate::PointTarget;
 
-use crate::error::{ModelError, Source};
+use crate::error::{InvalidModel, ModelError, Source};
 use std::path::Path;
 
 /// The paper's free-free assembly, embedded in the binary.
@@ -33,7 +39,7 @@ pub const SWITCH_OFF_MODEL_JSON: &str = include_str!("../../models/rcbo_switch_o
 
 impl Model {
     /// Parse and validate a model from JSON text.
-    pub fn from_json(text: &str, source: Source) -> Result<Model, ModelError> {
+    pub fn from_json(text: &str, source: Source) -> Result<ValidModel, ModelError> {
         let de = &mut serde_json::Deserializer::from_str(text);
         let model: Model = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
             let path = e.path().to_string();
@@ -73,17 +79,16 @@ impl Model {
             message: strip_position(&e.to_string()),
         })?;
         model
-            .validate()
-            .map_err(|(path, problem)| ModelError::Invalid {
+            .validated()
+            .map_err(|InvalidModel { path, problem }| ModelError::Invalid {
                 source_name: source,
                 path,
                 problem,
-            })?;
-        Ok(model)
+            })
     }
 
     /// Read, parse and validate a model file.
-    pub fn from_file(path: &Path) -> Result<Model, ModelError> {
+    pub fn from_file(path: &Path) -> Result<ValidModel, ModelError> {
         let source = Source::File(path.to_path_buf());
         let text = std::fs::read_to_string(path).map_err(|io| ModelError::Read {
             source_name: source.clone(),
@@ -93,12 +98,12 @@ impl Model {
     }
 
     /// The built-in default: the paper's free-free rigid-flexible assembly.
-    pub fn builtin() -> Model {
+    pub fn builtin() -> ValidModel {
         Model::from_json(DEFAULT_MODEL_JSON, Source::BuiltIn).expect("the built-in model is valid")
     }
 
     /// The built-in switch-off assembly.
-    pub fn switch_off_builtin() -> Model {
+    pub fn switch_off_builtin() -> ValidModel {
         Model::from_json(SWITCH_OFF_MODEL_JSON, Source::BuiltIn)
             .expect("the built-in switch-off model is valid")
     }

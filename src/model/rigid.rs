@@ -26,6 +26,14 @@ impl Beam {
     }
 }
 
+impl Beam {
+    /// The point at arc length `s` in the body frame of the beam's rigid
+    /// stand-in: (s − L/2, 0) [SI: m].
+    pub fn rigid_local(&self, s: f64) -> [f64; 2] {
+        [s - 0.5 * self.length, 0.0]
+    }
+}
+
 fn rotate(angle_deg: f64, v: [f64; 2]) -> [f64; 2] {
     let (s, c) = angle_deg.to_radians().sin_cos();
     [c * v[0] - s * v[1], s * v[0] + c * v[1]]
@@ -40,10 +48,9 @@ impl Model {
         if !beam.rigid {
             return p.clone();
         }
-        let s = p.s.unwrap_or(0.0);
         PointSpec {
             body: Some(beam.id.clone()),
-            local: Some([s - 0.5 * beam.length, 0.0]),
+            local: Some(beam.rigid_local(p.s.unwrap_or(0.0))),
             ..PointSpec::default()
         }
     }

@@ -2,6 +2,10 @@
 //! geometry. The first problem found is reported with its JSON path
 //! (e.g. `joints[1].b.s`), so a user can go straight to the offending value.
 
+use super::resolved::{
+    Resolution, ResolvedJoint, ResolvedJointKind, ResolvedPoint, ResolvedSpring, SpringLength,
+    Torsion,
+};
 use super::types::*;
 use crate::error::{Ids, Problem};
 
@@ -221,14 +225,25 @@ impl Model {
         )
     }
 
-    /// Check everything; the first problem is returned.
+    /// Check everything; the first problem is returned. To keep what the
+    /// check found, and to build a [`crate::System`], use
+    /// [`Model::validated`].
     pub fn validate(&self) -> Result<(), Failure> {
+        self.resolution().map(|_| ())
+    }
+
+    /// Check everything and resolve every reference on the way (see
+    /// [`super::resolved`]); the first problem is returned.
+    pub(crate) fn resolution(&self) -> Result<Resolution, Failure> {
         if self.beams.is_empty() && self.rigid_bodies.is_empty() && self.point_masses.is_empty() {
             return Err((String::from("$"), Problem::NoBodies));
         }
         check_finite_pair(self.gravity, "gravity")?;
         self.validate_ids()?;
         let mut total_elements = 0usize;
+        // Read once: a model is validated again after every change
+        // (calibration steps, design paths), beam by beam.
+        let max_elements = available_memory().unwrap_or(usize::MAX) / BYTES_PER_ELEMENT;
         for (i, b) in self.beams.iter().enumerate() {
             let p = format!("beams[{i}]");
             check_finite_pair(b.start, &format!("{p}.start"))?;
@@ -240,7 +255,7 @@ impl Model {
             total_elements = total_elements.saturating_add(b.elements);
             // A model is limited by memory: refuse one that cannot fit
             // rather than abort on a failed allocation.
-            let max = available_memory().unwrap_or(usize::MAX) / BYTES_PER_ELEMENT;
+            let max = max_elements;
             if total_elements > max {
                 let problem = Problem::TooManyElements {
                     total: total_elements,
@@ -279,14 +294,24 @@ impl Model {
             check_positive(m.mass, &format!("{p}.mass"))?;
             check_finite_pair(m.position, &format!("{p}.position"))?;
         }
+        let mut resolution = Resolution {
+            joints: Vec::with_capacity(self.joints.len()),
+            springs: Vec::with_capacity(self.springs.len()),
+            loads: Vec::with_capacity(self.loads.len()),
+            sensors: Vec::with_capacity(self.sensors.len()),
+            contacts: Vec::with_capacity(self.contacts.len()),
+        };
         for (i, j) in self.joints.iter().enumerate() {
-            self.validate_joint(j, &format!("joints[{i}]"))?;
+            let joint = self.validate_joint(j, &format!("joints[{i}]"))?;
+            resolution.joints.push(joint);
         }
         for (i, s) in self.springs.iter().enumerate() {
-            self.validate_spring(s, &format!("springs[{i}]"))?;
+            let spring = self.validate_spring(s, &format!("springs[{i}]"))?;
+            resolution.springs.push(spring);
         }
         for (i, l) in self.loads.iter().enumerate() {
-            self.validate_load(l, &format!("loads[{i}]"))?;
+            let at = self.validate_load(l, &format!("loads[{i}]"))?;
+            resolution.loads.push(at);
         }
         for (i, s) in self.sensors.iter().enumerate() {
             let p = format!("sensors[{i}]");
@@ -302,9 +327,11 @@ impl Model {
                     },
                 ));
             }
+            resolution.sensors.push(ResolvedPoint::from(&at));
         }
         for (i, c) in self.contacts.iter().enumerate() {
-            self.validate_contact(c, &format!("contacts[{i}]"))?;
+            let contact = self.validate_contact(c, &format!("contacts[{i}]"))?;
+            resolution.contacts.push(contact);
         }
         if let Some(r) = &self.reference {
             check_positive(r.first_bending_hz, "reference.first_bending_hz")?;
@@ -313,7 +340,7 @@ impl Model {
             check_non_negative(d.alpha, "damping.alpha")?;
             check_non_negative(d.beta, "damping.beta")?;
         }
-        Ok(())
+        Ok(resolution)
     }
 
     fn validate_ids(&self) -> Result<(), Failure> {
@@ -367,7 +394,7 @@ impl Model {
         Ok(())
     }
 
-    fn validate_joint(&self, j: &Joint, p: &str) -> Result<(), Failure> {
+    fn validate_joint(&self, j: &Joint, p: &str) -> Result<ResolvedJoint, Failure> {
         let a = self.resolve(&j.a, &format!("{p}.a"))?;
         let b = self.resolve(&j.b, &format!("{p}.b"))?;
         if a.is_ground() && b.is_ground() {
@@ -431,11 +458,17 @@ impl Model {
                 ));
             }
         }
-        match (j.kind, j.axis) {
+        let kind = match (j.kind, j.axis) {
             (JointType::Slider, None) => {
                 return Err((p.to_string(), Problem::MissingKey { key: "axis" }))
             }
-            (JointType::Slider, Some(axis)) => check_direction(axis, &format!("{p}.axis"))?,
+            (JointType::Slider, Some(axis)) => {
+                check_direction(axis, &format!("{p}.axis"))?;
+                ResolvedJointKind::Slider {
+                    axis,
+                    release: j.release,
+                }
+            }
             (_, Some(_)) => {
                 let why = "only sliders have an axis";
                 return Err((
@@ -443,33 +476,46 @@ impl Model {
                     Problem::KeyNotAllowed { key: "axis", why },
                 ));
             }
-            (_, None) => {}
-        }
+            (JointType::Pin, None) => ResolvedJointKind::Pin {
+                torsion: (j.torsion_stiffness.is_some() || j.torsion_damping.is_some()).then(
+                    || Torsion {
+                        stiffness: j.torsion_stiffness.unwrap_or(0.0),
+                        damping: j.torsion_damping.unwrap_or(0.0),
+                    },
+                ),
+                release: j.release,
+            },
+            (JointType::Weld, None) => ResolvedJointKind::Weld,
+        };
         if let Some(release) = &j.release {
             validate_release(j, release, a.is_ground(), p)?;
         }
+        let resolved = ResolvedJoint {
+            a: ResolvedPoint::from(&a),
+            b: ResolvedPoint::from(&b),
+            kind,
+        };
         let (pa, pb) = match (a.explicit_position(), b.explicit_position()) {
             (Some(pa), Some(pb)) => (pa, pb),
             (None, None) => return Err((format!("{p}.b"), Problem::MissingKey { key: "local" })),
-            _ => return Ok(()),
+            _ => return Ok(resolved),
         };
-        if j.kind == JointType::Slider {
-            let axis = j.axis.expect("checked above");
+        if let ResolvedJointKind::Slider { axis, .. } = kind {
             let n = [-axis[1], axis[0]];
             let gap = ((pb[0] - pa[0]) * n[0] + (pb[1] - pa[1]) * n[1]) / n[0].hypot(n[1]);
             if gap.abs() > COINCIDENCE_TOLERANCE {
                 return Err((p.to_string(), Problem::OffAxis { gap: gap.abs() }));
             }
-            return Ok(());
+            return Ok(resolved);
         }
         let gap = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
         if gap > COINCIDENCE_TOLERANCE {
             return Err((p.to_string(), Problem::PointsApart { gap, a: pa, b: pb }));
         }
-        Ok(())
+        Ok(resolved)
     }
 
-    fn validate_spring(&self, s: &Spring, p: &str) -> Result<(), Failure> {
+    fn validate_spring(&self, s: &Spring, p: &str) -> Result<ResolvedSpring, Failure> {
         let a = self.resolve(&s.a, &format!("{p}.a"))?;
         let b = self.resolve(&s.b, &format!("{p}.b"))?;
         if a.is_ground() && b.is_ground() {
@@ -482,8 +528,11 @@ impl Model {
         if length <= COINCIDENCE_TOLERANCE {
             return Err((p.to_string(), Problem::ZeroLength));
         }
-        match (s.free_length, s.preload) {
-            (Some(l0), None) => check_positive(l0, &format!("{p}.free_length")),
+        let length = match (s.free_length, s.preload) {
+            (Some(l0), None) => {
+                check_positive(l0, &format!("{p}.free_length"))?;
+                SpringLength::Free(l0)
+            }
             (None, Some(f)) => {
                 check_finite(f, &format!("{p}.preload"))?;
                 let free_length = length - f / s.stiffness;
@@ -496,28 +545,35 @@ impl Model {
                     };
                     return Err((format!("{p}.preload"), problem));
                 }
-                Ok(())
+                SpringLength::Preload(f)
             }
-            (None, None) => Err((
-                p.to_string(),
-                Problem::MissingKey {
-                    key: "free_length` or `preload",
-                },
-            )),
+            (None, None) => {
+                return Err((
+                    p.to_string(),
+                    Problem::MissingKey {
+                        key: "free_length` or `preload",
+                    },
+                ))
+            }
             (Some(_), Some(_)) => {
                 let why = "give either `free_length` or `preload`";
-                Err((
+                return Err((
                     format!("{p}.preload"),
                     Problem::KeyNotAllowed {
                         key: "preload",
                         why,
                     },
-                ))
+                ));
             }
-        }
+        };
+        Ok(ResolvedSpring {
+            a: ResolvedPoint::from(&a),
+            b: ResolvedPoint::from(&b),
+            length,
+        })
     }
 
-    fn validate_load(&self, l: &Load, p: &str) -> Result<(), Failure> {
+    fn validate_load(&self, l: &Load, p: &str) -> Result<ResolvedPoint, Failure> {
         let at = self.resolve(&l.at, &format!("{p}.at"))?;
         check_finite_pair(l.force, &format!("{p}.force"))?;
         if l.frame == LoadFrame::Beam && !matches!(at, PointTarget::Beam { .. }) {
@@ -534,7 +590,8 @@ impl Model {
                 Problem::KeyNotAllowed { key: "ground", why },
             ));
         }
-        validate_time(&l.time, &format!("{p}.time"))
+        validate_time(&l.time, &format!("{p}.time"))?;
+        Ok(ResolvedPoint::from(&at))
     }
 }
 

@@ -8,7 +8,7 @@ use crate::analysis::calibrate::CalibrationResult;
 use crate::analysis::convergence::{ConvergenceData, ReferenceKind};
 use crate::measured::analysis::FrfAnalysis;
 use crate::measured::ResponseQuantity;
-use crate::model::{Model, RayleighDamping};
+use crate::model::{RayleighDamping, ValidModel};
 use crate::signal::fit::{DiagramPole, RejectReason};
 use crate::System;
 use schemars::JsonSchema;
@@ -179,7 +179,7 @@ impl ModelOverlay {
     /// modes with the model's Rayleigh damping, or ζ =
     /// [`OVERLAY_DAMPING_RATIO`] for every mode without it.
     pub fn new(
-        model: &Model,
+        model: &ValidModel,
         sensor: &str,
         q: ResponseQuantity,
         frequency_hz: &[f64],

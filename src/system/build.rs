@@ -1,6 +1,10 @@
-//! Construction of a [`System`] from a validated [`Model`].
+//! Construction of a [`System`] from a [`ValidModel`]: its assembled
+//! model, read with the references validation resolved
+//! ([`crate::model::valid`]).
 
-use super::{BeamMesh, PointMassDofs, ReleasedSupport, RigidDofs, SensorPoint, System};
+use super::{
+    BeamMesh, PointMassDofs, ReleasedJoint, ReleasedSupport, RigidDofs, SensorPoint, System,
+};
 use crate::mechanics::anchor::{perp, Anchor};
 use crate::mechanics::contact::law::NormalLaw;
 use crate::mechanics::contact::{ContactElement, ContactKind};
@@ -9,9 +13,9 @@ use crate::mechanics::joint::{Constraint, Pin, Slider, Weld};
 use crate::mechanics::load::PointLoad;
 use crate::mechanics::pair::Pair;
 use crate::mechanics::spring::{LinearSpring, TorsionSpring};
-use crate::model::{
-    Contact, JointType, LoadFrame, Model, Placement, PointSpec, PointTarget, SegmentOwner, Side,
-};
+use crate::model::resolved::{ResolvedContactKind, ResolvedJointKind, ResolvedPoint, SpringLength};
+use crate::model::valid::Assembly;
+use crate::model::{LoadFrame, Model, PointSpec, SegmentOwner, Side, ValidModel};
 use nalgebra::Vector2;
 
 /// Relative distance below which an attachment node merges with a mesh node.
@@ -58,21 +62,15 @@ impl System {
     /// The system is assembled relative to the model's centre of mass
     /// ([`Model::centre_of_mass`], kept as [`System::origin`]): inside,
     /// positions are O(the assembly's size) wherever the model sits.
-    pub fn new(model: &Model) -> System {
-        if model.beams.iter().any(|b| b.rigid) {
-            return System::centred(&model.with_rigid_beams());
-        }
-        System::centred(model)
-    }
-
-    fn centred(model: &Model) -> System {
-        let c = model.centre_of_mass();
-        let mut sys = System::assemble(&model.placed(&Placement::translation([-c[0], -c[1]])));
-        sys.origin = v2(c);
+    pub fn new(model: &ValidModel) -> System {
+        let assembly = model.assembly();
+        let mut sys = System::assemble(assembly);
+        sys.origin = v2(assembly.origin);
         sys
     }
 
-    fn assemble(model: &Model) -> System {
+    fn assemble(assembly: &Assembly) -> System {
+        let model = &assembly.model;
         let mut dof = 0;
         let mut q0 = Vec::new();
         let mut beams = Vec::new();
@@ -140,17 +138,18 @@ impl System {
             nrows: 0,
             mass: std::sync::OnceLock::new(),
         };
-        sys.add_joints(model);
-        sys.add_springs(model);
-        sys.add_loads_and_sensors(model);
-        sys.add_contacts(model);
+        sys.add_joints(assembly);
+        sys.add_springs(assembly);
+        sys.add_loads_and_sensors(assembly);
+        sys.add_contacts(assembly);
         sys
     }
 
-    fn add_contacts(&mut self, model: &Model) {
-        for c in &model.contacts {
+    fn add_contacts(&mut self, assembly: &Assembly) {
+        let model = &assembly.model;
+        for (c, r) in model.contacts.iter().zip(&assembly.resolution.contacts) {
             let seg = c.segment();
-            let owner = model.segment_owner(seg, "").expect("validated");
+            let owner = r.owner;
             let end = |local: [f64; 2]| match owner {
                 SegmentOwner::Ground => Anchor::Ground {
                     position: v2(local),
@@ -163,15 +162,10 @@ impl System {
                     }
                 }
             };
-            let target = model.resolve(c.point(), "point").expect("validated");
-            let point = self.anchor(&target, None);
-            let kind = match c {
-                Contact::PinSlot {
-                    pin_radius, slot, ..
-                } => ContactKind::PinSlot {
-                    clearance: 0.5 * slot.width.expect("validated") - pin_radius,
-                },
-                Contact::PointLine { radius, side, .. } => {
+            let point = self.anchor(&r.point);
+            let kind = match r.kind {
+                ResolvedContactKind::PinSlot { clearance } => ContactKind::PinSlot { clearance },
+                ResolvedContactKind::PointLine { radius, side } => {
                     let side = match side {
                         Some(Side::Left) => 1.0,
                         Some(Side::Right) => -1.0,
@@ -184,10 +178,7 @@ impl System {
                             h.signum()
                         }
                     };
-                    ContactKind::PointLine {
-                        radius: *radius,
-                        side,
-                    }
+                    ContactKind::PointLine { radius, side }
                 }
             };
             self.contacts.push(ContactElement::new(
@@ -202,122 +193,141 @@ impl System {
         }
     }
 
-    /// Anchor of a resolved point (a rigid body's centre for `{"body": id}`
-    /// without `local`).
-    pub fn anchor_of(&self, target: &PointTarget) -> Anchor {
-        self.anchor(target, None)
+    /// Anchor of a point resolved in this system's model
+    /// ([`ValidModel::resolve_point`]; a rigid body's centre for
+    /// `{"body": id}` without `local`).
+    pub fn anchor_of(&self, target: &ResolvedPoint) -> Anchor {
+        self.anchor(target)
     }
 
-    /// Anchor of a resolved point; `partner` is the other point's initial
-    /// position for `{"body": id}` without `local` inside a joint.
-    fn anchor(&self, target: &PointTarget, partner: Option<[f64; 2]>) -> Anchor {
+    /// Anchor of a point resolved in this system's model: `index` of its
+    /// body's kind (its mesh, its coordinates), a rigid body's centre
+    /// without `local`.
+    fn anchor(&self, target: &ResolvedPoint) -> Anchor {
         match *target {
-            PointTarget::Beam { index, s, .. } => self.beams[index].anchor_at(s),
-            PointTarget::Rigid { body, index, local } => {
+            ResolvedPoint::Beam { index, s } => self.beams[index].anchor_at(s),
+            ResolvedPoint::Rigid { index, local } => {
                 let dof0 = self.rigid_bodies[index].dof0;
-                let local = match (local, partner) {
-                    (Some(l), _) => v2(l),
-                    (None, Some(p)) => {
-                        let (s, c) = body.angle_deg.to_radians().sin_cos();
-                        let d = v2(p) - v2(body.position);
-                        Vector2::new(c * d.x + s * d.y, -s * d.x + c * d.y)
-                    }
-                    (None, None) => Vector2::zeros(),
-                };
                 Anchor::Rigid {
                     dofs: [dof0, dof0 + 1, dof0 + 2],
-                    local,
+                    local: local.map_or_else(Vector2::zeros, v2),
                 }
             }
-            PointTarget::PointMass { index, .. } => {
+            ResolvedPoint::PointMass { index } => {
                 let dof0 = self.point_masses[index].dof0;
                 Anchor::PointMass {
                     dofs: [dof0, dof0 + 1],
                 }
             }
-            PointTarget::Ground { position } => Anchor::Ground {
+            ResolvedPoint::Ground { position } => Anchor::Ground {
                 position: v2(position),
             },
         }
     }
 
-    fn resolve_pair(&self, model: &Model, a: &PointSpec, b: &PointSpec, joint: bool) -> Pair {
-        let ta = model.resolve(a, "a").expect("validated");
-        let tb = model.resolve(b, "b").expect("validated");
-        let (pa, pb) = if joint {
-            (tb.explicit_position(), ta.explicit_position())
+    /// The anchors of a joint's or a spring's two points. In a joint, a
+    /// rigid-body point without `local` is where the other point starts.
+    fn pair(&self, model: &Model, a: &ResolvedPoint, b: &ResolvedPoint, joint: bool) -> Pair {
+        let (a, b) = if joint {
+            let (pa, pb) = (b.explicit_position(model), a.explicit_position(model));
+            (at_partner(model, *a, pa), at_partner(model, *b, pb))
         } else {
-            (None, None)
+            (*a, *b)
         };
         Pair {
-            a: self.anchor(&ta, pa),
-            b: self.anchor(&tb, pb),
+            a: self.anchor(&a),
+            b: self.anchor(&b),
         }
     }
 
-    fn add_joints(&mut self, model: &Model) {
-        for (i, j) in model.joints.iter().enumerate() {
+    fn add_joints(&mut self, assembly: &Assembly) {
+        let model = &assembly.model;
+        for (i, (j, r)) in model
+            .joints
+            .iter()
+            .zip(&assembly.resolution.joints)
+            .enumerate()
+        {
             let label = j.id.clone().unwrap_or_else(|| format!("joints[{i}]"));
-            let pair = self.resolve_pair(model, &j.a, &j.b, true);
+            let pair = self.pair(model, &r.a, &r.b, true);
             let angle_a = if pair.a.has_angle() {
                 pair.a.angle(&self.q0)
             } else {
                 0.0
             };
-            let c: Box<dyn Constraint> = match j.kind {
-                JointType::Pin => Box::new(Pin {
-                    label: label.clone(),
-                    pair: pair.clone(),
-                }),
-                JointType::Weld => {
+            let constraint = self.constraints.len();
+            let (c, torsion): (Box<dyn Constraint>, _) = match r.kind {
+                ResolvedJointKind::Pin { torsion, release } => {
+                    let pin = Pin {
+                        label: label.clone(),
+                        pair: pair.clone(),
+                    };
+                    if let Some(time) = release {
+                        self.released.push(ReleasedSupport {
+                            constraint,
+                            time,
+                            joint: ReleasedJoint::Pin(pin.clone()),
+                        });
+                    }
+                    (Box::new(pin), torsion)
+                }
+                ResolvedJointKind::Weld => {
                     let offset = pair.b.angle(&self.q0) - angle_a;
-                    Box::new(Weld {
+                    let weld = Weld {
                         label: label.clone(),
                         pair: pair.clone(),
                         offset,
-                    })
+                    };
+                    (Box::new(weld), None)
                 }
-                JointType::Slider => {
-                    let axis = v2(j.axis.expect("validated")).normalize();
+                ResolvedJointKind::Slider { axis, release } => {
+                    let axis = v2(axis).normalize();
                     let normal0 = Vector2::new(-axis.y, axis.x);
-                    Box::new(Slider {
+                    let slider = Slider {
                         label: label.clone(),
                         pair: pair.clone(),
                         normal0,
                         angle0: angle_a,
-                    })
+                    };
+                    if let Some(time) = release {
+                        self.released.push(ReleasedSupport {
+                            constraint,
+                            time,
+                            joint: ReleasedJoint::Slider(slider.clone()),
+                        });
+                    }
+                    (Box::new(slider), None)
                 }
             };
-            if let Some(time) = j.release {
-                self.released.push(ReleasedSupport {
-                    constraint: self.constraints.len(),
-                    time,
-                });
-            }
             self.constraint_rows.push(self.nrows);
             self.nrows += c.rows();
             self.constraints.push(c);
-            if j.torsion_stiffness.is_some() || j.torsion_damping.is_some() {
+            if let Some(t) = torsion {
                 let offset = pair.b.angle(&self.q0) - angle_a;
                 self.force_elements.push(Box::new(TorsionSpring {
                     label: format!("{label} torsion"),
                     pair,
-                    stiffness: j.torsion_stiffness.unwrap_or(0.0),
-                    damping: j.torsion_damping.unwrap_or(0.0),
+                    stiffness: t.stiffness,
+                    damping: t.damping,
                     offset,
                 }));
             }
         }
     }
 
-    fn add_springs(&mut self, model: &Model) {
-        for (i, s) in model.springs.iter().enumerate() {
-            let pair = self.resolve_pair(model, &s.a, &s.b, false);
+    fn add_springs(&mut self, assembly: &Assembly) {
+        let model = &assembly.model;
+        for (i, (s, r)) in model
+            .springs
+            .iter()
+            .zip(&assembly.resolution.springs)
+            .enumerate()
+        {
+            let pair = self.pair(model, &r.a, &r.b, false);
             let length = pair.separation(&self.q0).norm();
-            let free_length = match (s.free_length, s.preload) {
-                (Some(l0), _) => l0,
-                (None, Some(f)) => length - f / s.stiffness,
-                (None, None) => unreachable!("validated"),
+            let free_length = match r.length {
+                SpringLength::Free(l0) => l0,
+                SpringLength::Preload(f) => length - f / s.stiffness,
             };
             self.force_elements.push(Box::new(LinearSpring {
                 label: s.id.clone().unwrap_or_else(|| format!("springs[{i}]")),
@@ -329,13 +339,18 @@ impl System {
         }
     }
 
-    fn add_loads_and_sensors(&mut self, model: &Model) {
-        for (i, l) in model.loads.iter().enumerate() {
-            let target = model.resolve(&l.at, "at").expect("validated");
-            let anchor = self.anchor(&target, None);
+    fn add_loads_and_sensors(&mut self, assembly: &Assembly) {
+        let model = &assembly.model;
+        for (i, (l, target)) in model
+            .loads
+            .iter()
+            .zip(&assembly.resolution.loads)
+            .enumerate()
+        {
+            let anchor = self.anchor(target);
             let f = v2(l.force);
-            let force = match (l.frame, &target) {
-                (LoadFrame::Beam, PointTarget::Beam { index, .. }) => {
+            let force = match (l.frame, target) {
+                (LoadFrame::Beam, ResolvedPoint::Beam { index, .. }) => {
                     let t = self.beams[*index].tangent;
                     t * f.x + Vector2::new(-t.y, t.x) * f.y
                 }
@@ -349,15 +364,14 @@ impl System {
                 time: l.time,
             });
         }
-        for s in &model.sensors {
-            let target = model.resolve(&s.at, "at").expect("validated");
-            let (beam, arc) = match target {
-                PointTarget::Beam { index, s, .. } => (Some(index), Some(s)),
+        for (s, target) in model.sensors.iter().zip(&assembly.resolution.sensors) {
+            let (beam, arc) = match *target {
+                ResolvedPoint::Beam { index, s } => (Some(index), Some(s)),
                 _ => (None, None),
             };
             self.sensors.push(SensorPoint {
                 id: s.id.clone(),
-                anchor: self.anchor(&target, None),
+                anchor: self.anchor(target),
                 beam,
                 quantity: s.quantity,
                 frame: s.frame,
@@ -365,5 +379,23 @@ impl System {
                 s: arc,
             });
         }
+    }
+}
+
+/// A joint's point, with a rigid-body point without `local` placed where
+/// the other point starts (`partner`, its initial global position), in the
+/// body frame of its body in `model`.
+fn at_partner(model: &Model, p: ResolvedPoint, partner: Option<[f64; 2]>) -> ResolvedPoint {
+    match (p, partner) {
+        (ResolvedPoint::Rigid { index, local: None }, Some(partner)) => {
+            let body = &model.rigid_bodies[index];
+            let (s, c) = body.angle_deg.to_radians().sin_cos();
+            let d = v2(partner) - v2(body.position);
+            ResolvedPoint::Rigid {
+                index,
+                local: Some([c * d.x + s * d.y, -s * d.x + c * d.y]),
+            }
+        }
+        _ => p,
     }
 }

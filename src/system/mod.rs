@@ -20,7 +20,7 @@ mod transfer;
 
 pub use assemble::{EnergyBreakdown, Linearization};
 pub use mass::MassMatrix;
-pub use release::ReleasedSupport;
+pub use release::{ReleasedJoint, ReleasedSupport};
 pub use rigid_motion::{RigidMotions, SparseColumn};
 pub use transfer::TransferError;
 

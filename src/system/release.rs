@@ -13,16 +13,55 @@
 //! are those of the holding system: only constraints and loads change.
 
 use super::System;
+use crate::mechanics::joint::{Pin, Slider};
 use crate::mechanics::load::PointLoad;
+use crate::mechanics::pair::Pair;
 use crate::model::TimeFunction;
+use nalgebra::Vector2;
 
 /// A joint that holds until a transient releases it.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct ReleasedSupport {
     /// Index of its constraint in [`System::constraints`].
     pub constraint: usize,
     /// How its hold falls after t = 0.
     pub time: TimeFunction,
+    /// The joint (the constraint's own copy): one whose whole reaction is
+    /// a force on its points, so the loads that replace it are forces.
+    pub joint: ReleasedJoint,
+}
+
+/// The kinds of joint a model may release (validation refuses a released
+/// weld: its reaction includes a moment).
+#[derive(Debug, Clone)]
+pub enum ReleasedJoint {
+    Pin(Pin),
+    Slider(Slider),
+}
+
+impl ReleasedJoint {
+    /// The force the joint exerts on its point b [SI: N] at (q, λ), λ its
+    /// own multipliers.
+    pub fn point_reaction(&self, q: &[f64], lambda: &[f64]) -> Vector2<f64> {
+        match self {
+            ReleasedJoint::Pin(p) => p.point_reaction(lambda),
+            ReleasedJoint::Slider(s) => s.point_reaction(q, lambda),
+        }
+    }
+
+    pub fn label(&self) -> &str {
+        match self {
+            ReleasedJoint::Pin(p) => &p.label,
+            ReleasedJoint::Slider(s) => &s.label,
+        }
+    }
+
+    pub fn pair(&self) -> &Pair {
+        match self {
+            ReleasedJoint::Pin(p) => &p.pair,
+            ReleasedJoint::Slider(s) => &s.pair,
+        }
+    }
 }
 
 impl System {
@@ -34,16 +73,14 @@ impl System {
         for r in released.iter().rev() {
             let c = self.constraints.remove(r.constraint);
             let row = self.constraint_rows[r.constraint];
-            let force = c
-                .point_reaction(q, &lambda[row..row + c.rows()])
-                .expect("validated: only pins and sliders are released");
-            let pair = c.pair();
+            let force = r.joint.point_reaction(q, &lambda[row..row + c.rows()]);
+            let pair = r.joint.pair();
             for (side, anchor, f) in [("b", &pair.b, force), ("a", &pair.a, -force)] {
                 if anchor.dofs().is_empty() {
                     continue;
                 }
                 self.loads.push(PointLoad {
-                    label: format!("{} (released, on {side})", c.label()),
+                    label: format!("{} (released, on {side})", r.joint.label()),
                     anchor: anchor.clone(),
                     force: f,
                     time: r.time,

@@ -116,8 +116,9 @@ mod tests {
     #[test]
     fn reference_carries_to_reference_across_layouts() {
         let a = Model::switch_off_builtin();
-        let mut b = a.clone();
+        let mut b = a.to_model();
         b.springs[0].b.s = Some(0.023);
+        let b = b.validated().expect("a valid design");
         let (sa, sb) = (System::new(&a), System::new(&b));
         assert_ne!(
             sa.beams[0].node_s, sb.beams[0].node_s,

@@ -4,6 +4,7 @@
 
 use ancf_modal::analysis::{modal_at_reference, ModalResult, ModalSettings, ModeKind};
 use ancf_modal::error::Source;
+use ancf_modal::model::ValidModel;
 use ancf_modal::{Model, System};
 use serde_json::{json, Value};
 use std::f64::consts::PI;
@@ -42,19 +43,19 @@ pub fn blade(elements: usize) -> Value {
     })
 }
 
-pub fn model(v: Value) -> Model {
+pub fn model(v: Value) -> ValidModel {
     Model::from_json(&v.to_string(), Source::BuiltIn).expect("test model is valid")
 }
 
-pub fn modal_all(m: &Model) -> ModalResult {
+pub fn modal_all(m: &ValidModel) -> ModalResult {
     modal_at_reference(&System::new(m), &ModalSettings::default()).expect("modal analysis succeeds")
 }
 
-pub fn free_beam(elements: usize) -> Model {
+pub fn free_beam(elements: usize) -> ValidModel {
     model(json!({"name": "free", "beams": [blade(elements)]}))
 }
 
-pub fn cantilever(elements: usize) -> Model {
+pub fn cantilever(elements: usize) -> ValidModel {
     model(json!({
         "name": "cantilever", "beams": [blade(elements)],
         "joints": [{"type": "weld", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "blade", "s": 0.0}}]

@@ -2,7 +2,7 @@
 
 use crate::analysis::impulse::ImpulseError;
 use crate::analysis::ModeKind;
-use crate::error::AnalysisError;
+use crate::error::{AnalysisError, InvalidModel};
 use crate::model::path::PathError;
 
 /// "mode at 6819.3 Hz: ∂f/∂ln(blade.height) = 6819.3 Hz, …; relative
@@ -111,6 +111,13 @@ pub enum CalibrationError {
         "the `{method}` method has no sensitivities; it fits one parameter to one target only"
     )]
     NeedsSensitivities { method: &'static str },
+    /// The parameter values make the model invalid (e.g. a joint
+    /// coordinate that moves one point of a joint only).
+    #[error("the model is not valid at {at}")]
+    InvalidModel {
+        at: String,
+        source: Box<InvalidModel>,
+    },
     #[error("analysis failed at {at}")]
     Analysis { at: String, source: AnalysisError },
     #[error("the impulse experiment failed at {at}")]

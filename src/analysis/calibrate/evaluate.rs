@@ -17,7 +17,7 @@ use super::sensitivity::eigenvalue_sensitivities;
 use crate::analysis::impulse::{run_impulse, ImpulseSettings};
 use crate::analysis::{modal_at_reference, ModalResult, ModalSettings, ModeKind};
 use crate::linalg::vector::dot;
-use crate::model::Model;
+use crate::model::{Model, ValidModel};
 use crate::system::System;
 use faer::Mat;
 use std::f64::consts::PI;
@@ -61,11 +61,15 @@ pub trait FrequencyModel {
     fn method(&self) -> &'static str;
 
     /// Frequencies [SI: Hz] of the tracked modes of `model`, in target order.
-    fn frequencies(&self, model: &Model) -> Result<Vec<f64>, CalibrationError>;
+    fn frequencies(&self, model: &ValidModel) -> Result<Vec<f64>, CalibrationError>;
 
     /// Frequencies with ∂f/∂p for the parameters of `set`. The default has
     /// no derivatives.
-    fn evaluate(&self, model: &Model, set: &ParameterSet) -> Result<Evaluation, CalibrationError> {
+    fn evaluate(
+        &self,
+        model: &ValidModel,
+        set: &ParameterSet,
+    ) -> Result<Evaluation, CalibrationError> {
         let _ = set;
         Ok(Evaluation {
             frequencies_hz: self.frequencies(model)?,
@@ -96,7 +100,7 @@ impl EigenFrequencies {
     /// Select the modes on the starting `model`: `targets` modes of
     /// `selection.kind`, numbered by `selection.numbers` (default 1, 2, …).
     pub fn new(
-        model: &Model,
+        model: &ValidModel,
         selection: &ModeSelection,
         targets: usize,
         settings: ModalSettings,
@@ -146,7 +150,7 @@ impl EigenFrequencies {
     /// Full evaluation: frequencies, tracked modes and (with `set`) ∂f/∂p.
     fn run(
         &self,
-        model: &Model,
+        model: &ValidModel,
         set: Option<&ParameterSet>,
     ) -> Result<Evaluation, CalibrationError> {
         let system = System::new(model);
@@ -193,11 +197,15 @@ impl FrequencyModel for EigenFrequencies {
         "eigen"
     }
 
-    fn frequencies(&self, model: &Model) -> Result<Vec<f64>, CalibrationError> {
+    fn frequencies(&self, model: &ValidModel) -> Result<Vec<f64>, CalibrationError> {
         Ok(self.run(model, None)?.frequencies_hz)
     }
 
-    fn evaluate(&self, model: &Model, set: &ParameterSet) -> Result<Evaluation, CalibrationError> {
+    fn evaluate(
+        &self,
+        model: &ValidModel,
+        set: &ParameterSet,
+    ) -> Result<Evaluation, CalibrationError> {
         self.run(model, Some(set))
     }
 
@@ -206,7 +214,7 @@ impl FrequencyModel for EigenFrequencies {
     }
 }
 
-fn solve(model: &Model, settings: &ModalSettings) -> Result<ModalResult, CalibrationError> {
+fn solve(model: &ValidModel, settings: &ModalSettings) -> Result<ModalResult, CalibrationError> {
     modal_at_reference(&System::new(model), settings).map_err(|source| CalibrationError::Analysis {
         at: describe(model, None),
         source,
@@ -284,7 +292,7 @@ pub struct SingleFrequency<F> {
 
 impl<F> SingleFrequency<F>
 where
-    F: Fn(&Model) -> Result<f64, CalibrationError>,
+    F: Fn(&ValidModel) -> Result<f64, CalibrationError>,
 {
     /// `method` names the evaluator in reports; `f` gives the frequency [Hz].
     pub fn new(method: &'static str, f: F) -> Self {
@@ -294,13 +302,13 @@ where
 
 impl<F> FrequencyModel for SingleFrequency<F>
 where
-    F: Fn(&Model) -> Result<f64, CalibrationError>,
+    F: Fn(&ValidModel) -> Result<f64, CalibrationError>,
 {
     fn method(&self) -> &'static str {
         self.method
     }
 
-    fn frequencies(&self, model: &Model) -> Result<Vec<f64>, CalibrationError> {
+    fn frequencies(&self, model: &ValidModel) -> Result<Vec<f64>, CalibrationError> {
         Ok(vec![(self.f)(model)?])
     }
 }
@@ -331,7 +339,7 @@ impl ImpulseFrequency {
         Ok(ImpulseFrequency { settings })
     }
 
-    fn run(&self, model: &Model, set: Option<&ParameterSet>) -> Result<f64, CalibrationError> {
+    fn run(&self, model: &ValidModel, set: Option<&ParameterSet>) -> Result<f64, CalibrationError> {
         let result = run_impulse(model, &self.settings, &mut |_| {}).map_err(|source| {
             CalibrationError::Impulse {
                 at: describe(model, set),
@@ -351,11 +359,15 @@ impl FrequencyModel for ImpulseFrequency {
         "impulse"
     }
 
-    fn frequencies(&self, model: &Model) -> Result<Vec<f64>, CalibrationError> {
+    fn frequencies(&self, model: &ValidModel) -> Result<Vec<f64>, CalibrationError> {
         Ok(vec![self.run(model, None)?])
     }
 
-    fn evaluate(&self, model: &Model, set: &ParameterSet) -> Result<Evaluation, CalibrationError> {
+    fn evaluate(
+        &self,
+        model: &ValidModel,
+        set: &ParameterSet,
+    ) -> Result<Evaluation, CalibrationError> {
         Ok(Evaluation {
             frequencies_hz: vec![self.run(model, Some(set))?],
             sensitivities: None,

@@ -34,7 +34,7 @@ pub use evaluate::{
 pub use params::{ParamTarget, Parameter, ParameterSet, ParameterSpec};
 
 use crate::analysis::{ModalSettings, ModeKind};
-use crate::model::Model;
+use crate::model::{Model, ValidModel};
 use crate::signal::lm;
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
@@ -170,12 +170,12 @@ pub struct CalibrationResult {
     pub conditioning: Option<Conditioning>,
     /// The calibrated model (a valid model file).
     #[serde(skip)]
-    pub fitted_model: Model,
+    pub fitted_model: ValidModel,
 }
 
 /// Calibrate with the eigenproblem as evaluator.
 pub fn calibrate(
-    model: &Model,
+    model: &ValidModel,
     request: &CalibrationRequest,
     settings: &CalibrationSettings,
 ) -> Result<CalibrationResult, CalibrationError> {
@@ -205,7 +205,7 @@ fn check_targets(targets: &[f64]) -> Result<(), CalibrationError> {
 
 /// Calibrate with any evaluator; `mode_numbers` is reported as given.
 pub fn calibrate_with(
-    model: &Model,
+    model: &ValidModel,
     request: &CalibrationRequest,
     settings: &CalibrationSettings,
     evaluator: &dyn FrequencyModel,
@@ -240,7 +240,7 @@ pub fn calibrate_with(
         .find(|(p, _)| *p == p_fit)
         .map(|(_, e)| e.clone())
         .expect("the fitted point was evaluated");
-    let fitted_model = fitted_model(&set, &p_fit, targets, evaluator.method());
+    let fitted_model = fitted_model(&set, &p_fit, targets, evaluator.method())?;
     let fitted_params = set
         .params
         .iter()
@@ -303,7 +303,7 @@ pub fn sweep(
     for &v in values {
         let mut p = at.to_vec();
         p[index] = v;
-        if let Ok(f) = evaluator.frequencies(&set.apply(&p)) {
+        if let Ok(f) = set.apply(&p).and_then(|m| evaluator.frequencies(&m)) {
             xs.push(v);
             fs.push(f[0]);
         }
@@ -321,7 +321,7 @@ struct Run<'a> {
 
 impl Run<'_> {
     fn eval(&mut self, p: &[f64]) -> Result<Evaluation, CalibrationError> {
-        let e = self.evaluator.evaluate(&self.set.apply(p), self.set)?;
+        let e = self.evaluator.evaluate(&self.set.apply(p)?, self.set)?;
         self.history.push(HistoryEntry {
             parameters: p.to_vec(),
             frequencies_hz: e.frequencies_hz.clone(),
@@ -615,8 +615,13 @@ fn derived(set: &ParameterSet, fitted: &Model) -> Vec<FittedParameter> {
 }
 
 /// The calibrated model: renamed, with the calibration in its description.
-fn fitted_model(set: &ParameterSet, p: &[f64], targets: &[f64], method: &str) -> Model {
-    let mut m = set.apply(p);
+fn fitted_model(
+    set: &ParameterSet,
+    p: &[f64],
+    targets: &[f64],
+    method: &str,
+) -> Result<ValidModel, CalibrationError> {
+    let mut m = set.model_at(p);
     let changes: Vec<String> = set
         .params
         .iter()
@@ -642,5 +647,9 @@ fn fitted_model(set: &ParameterSet, p: &[f64], targets: &[f64], method: &str) ->
     if !m.name.ends_with("_calibrated") {
         m.name.push_str("_calibrated");
     }
-    m
+    m.validated()
+        .map_err(|source| CalibrationError::InvalidModel {
+            at: set.describe(p),
+            source: Box::new(source),
+        })
 }

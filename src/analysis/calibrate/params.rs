@@ -9,7 +9,7 @@
 
 use super::error::CalibrationError;
 use crate::model::path::resolve_short;
-use crate::model::Model;
+use crate::model::{Model, ValidModel};
 
 /// What a parameter changes: a short name's target (get, set, unit and
 /// JSON path are the model layer's).
@@ -128,8 +128,30 @@ impl ParameterSet {
             .collect()
     }
 
-    /// A new model with the parameters at `values` (the base stays untouched).
-    pub fn apply(&self, values: &[f64]) -> Model {
+    /// A new model with the parameters at `values` (the base stays
+    /// untouched), validated: the first problem of a model the values
+    /// make invalid.
+    pub fn apply(&self, values: &[f64]) -> Result<ValidModel, CalibrationError> {
+        self.model_at(values)
+            .validated()
+            .map_err(|source| CalibrationError::InvalidModel {
+                at: self.describe(values),
+                source: Box::new(source),
+            })
+    }
+
+    /// "blade.height = 1.1e-3, …": the parameters at `values`, for messages.
+    pub fn describe(&self, values: &[f64]) -> String {
+        self.params
+            .iter()
+            .zip(values)
+            .map(|(p, v)| format!("{} = {v:e}", p.name))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    /// The model with the parameters at `values`, not yet validated.
+    pub(super) fn model_at(&self, values: &[f64]) -> Model {
         let mut m = self.base.clone();
         for (p, &v) in self.params.iter().zip(values) {
             p.target.set(&mut m, v);
@@ -165,7 +187,7 @@ mod tests {
             true,
         )
         .unwrap();
-        let f = set.apply(&[0.9e-3, 6.0e-3]);
+        let f = set.apply(&[0.9e-3, 6.0e-3]).unwrap();
         let b0 = &m.beams[0];
         let b = &f.beams[0];
         let m0 = b0.material.density * b0.section.height * b0.section.width;

@@ -31,8 +31,8 @@ pub mod sensor;
 use super::modal::{modal_at_reference, ModalResult, ModalSettings};
 use super::transient::dispersion::{DispersionError, GenAlpha};
 use super::transient::{Integrator, RunStats, State, TransientSettings};
-use crate::error::{AnalysisError, TransientError};
-use crate::model::{Model, SensorQuantity, TimeFunction};
+use crate::error::{AnalysisError, InvalidModel, TransientError};
+use crate::model::{Model, SensorQuantity, TimeFunction, ValidModel};
 use crate::signal::frf::{frf_h1, Frf};
 use crate::signal::resample::{pre_trigger, resample_from_rest, AntiAlias};
 use crate::signal::spectrum::{
@@ -77,6 +77,10 @@ pub enum ImpulseError {
         "the pulse lasts {duration} s, shorter than two steps of {step} s: it cannot be resolved"
     )]
     PulseTooShort { duration: f64, step: f64 },
+    /// The model with the pulse amplitude and duration of the settings
+    /// fails validation.
+    #[error("the model with the pulse overrides")]
+    Overrides(#[source] Box<InvalidModel>),
 }
 
 /// Which loads excite the experiment (module doc).
@@ -264,13 +268,21 @@ fn check_settings(model: &Model, s: &ImpulseSettings) -> Result<(), ImpulseError
 
 /// Run the experiment; `progress` receives the fraction of steps done.
 pub fn run_impulse(
-    model: &Model,
+    model: &ValidModel,
     settings: &ImpulseSettings,
     progress: &mut dyn FnMut(f64),
 ) -> Result<ImpulseResult, ImpulseError> {
-    let model = with_overrides(model, settings)?;
-    check_settings(&model, settings)?;
-    let system = System::new(&model);
+    let changed = with_overrides(model, settings)?;
+    check_settings(&changed, settings)?;
+    // Validated again only when the overrides changed it.
+    let overridden;
+    let model = if changed == **model {
+        model
+    } else {
+        overridden = (changed.validated()).map_err(|e| ImpulseError::Overrides(Box::new(e)))?;
+        &overridden
+    };
+    let system = System::new(model);
     let point = match &settings.sensor {
         Some(id) => system.sensors.iter().find(|s| &s.id == id).ok_or_else(|| {
             ImpulseError::UnknownSensor {
@@ -299,7 +311,7 @@ pub fn run_impulse(
             progress(done as f64 / total as f64);
         }
     })?;
-    let (kind, excitation_loads) = excitation(&model)?;
+    let (kind, excitation_loads) = excitation(model)?;
     let (time, signal, force) = recorder.finish(|t| pulse_magnitude(&system, kind, t));
     let sample_rate_hz = settings.sample_rate.unwrap_or(1.0 / h);
     let spectrum = spectrum::amplitude_spectrum(&signal, sample_rate_hz, &settings.spectrum)?;

@@ -39,10 +39,10 @@ use super::balance::{unbalanced_force, BALANCE_TOLERANCE};
 use super::{
     continue_equilibrium, solve_equilibrium, Branch, Equilibrium, LoadPath, StaticSettings,
 };
-use crate::error::AnalysisError;
 pub use crate::error::DesignPathError;
+use crate::error::{AnalysisError, InvalidModel};
 use crate::mechanics::spring::ForceElement;
-use crate::model::Model;
+use crate::model::ValidModel;
 use crate::system::System;
 
 /// Smallest step in τ before the path gives up.
@@ -56,12 +56,19 @@ const FADED: f64 = 0.05;
 const FIRST_STEP: f64 = 0.25;
 
 /// The equilibrium at τ = 1 of the systems `build(τ)`, by continuation from
-/// τ = 0 (see the module doc); also the number of path steps taken.
+/// τ = 0 (see the module doc); also the number of path steps taken. A
+/// design `build` refuses (an invalid model) ends the path there.
 pub fn equilibrium_along(
-    build: impl Fn(f64) -> System,
+    build: impl Fn(f64) -> Result<System, InvalidModel>,
     settings: &StaticSettings,
 ) -> Result<(Equilibrium, usize), DesignPathError> {
-    let mut prev = build(0.0);
+    let invalid = |at: f64| {
+        move |invalid| DesignPathError::InvalidDesign {
+            at,
+            invalid: Box::new(invalid),
+        }
+    };
+    let mut prev = build(0.0).map_err(invalid(0.0))?;
     let mut eq = solve_equilibrium(&prev, settings).map_err(DesignPathError::Start)?;
     let closed: Vec<usize> = (0..prev.contacts.len())
         .filter(|&i| prev.contacts[i].elastic_force(&eq.q) > 0.0)
@@ -73,7 +80,7 @@ pub fn equilibrium_along(
     let (mut tau, mut step, mut steps) = (0.0f64, FIRST_STEP, 0usize);
     while tau < 1.0 {
         let next = (tau + step).min(1.0);
-        let sys = build(next);
+        let sys = build(next).map_err(invalid(next))?;
         let q = sys
             .transfer_from(&prev, &eq.q)
             .map_err(|source| DesignPathError::Transfer { at: next, source })?;
@@ -138,15 +145,15 @@ pub fn equilibrium_along(
 /// found, or when the continuation does not reach the design (then
 /// [`Equilibrium::branch`] says why). An error only when no way finds it.
 pub fn on_state_equilibrium(
-    model: &Model,
-    base: &Model,
-    system: impl Fn(&Model) -> System,
+    model: &ValidModel,
+    base: &ValidModel,
+    system: impl Fn(&ValidModel) -> System,
     settings: &StaticSettings,
 ) -> Result<Equilibrium, AnalysisError> {
     let Some(path) = base.path_to(model) else {
         return solve_equilibrium(&system(model), settings);
     };
-    match equilibrium_along(|tau| system(&path.at(tau)), settings) {
+    match equilibrium_along(|tau| path.at(tau).map(|m| system(&m)), settings) {
         Ok((eq, steps)) => Ok(Equilibrium {
             branch: Branch::continued(&base.name, steps),
             ..eq

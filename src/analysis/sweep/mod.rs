@@ -35,7 +35,7 @@ pub use param::Parameter;
 pub use quantity::{evaluate, EvalSettings, Evaluation, Quantity, RawMode, Trace};
 
 use crate::analysis::EigenMethod;
-use crate::model::Model;
+use crate::model::{Model, ValidModel};
 use rayon::prelude::*;
 
 /// How a sweep is computed.
@@ -82,7 +82,7 @@ pub struct Sweep {
     /// The model's JSON form, into which each point writes its values.
     base: serde_json::Value,
     /// The swept model itself.
-    model: Model,
+    model: ValidModel,
     pub parameters: Vec<Parameter>,
     pub grid: Grid,
     pub settings: SweepSettings,
@@ -99,14 +99,14 @@ pub enum Execution {
 impl Sweep {
     /// Resolves the `NAME=LO:HI:N[:log]` specifications against `model`.
     pub fn new(
-        model: &Model,
+        model: &ValidModel,
         specs: &[String],
         settings: SweepSettings,
     ) -> Result<Sweep, SweepError> {
         if specs.is_empty() {
             return Err(SweepError::NoParameters);
         }
-        let base = serde_json::to_value(model).expect("models serialize");
+        let base = serde_json::to_value(&**model).expect("models serialize");
         let mut parameters: Vec<Parameter> = Vec::with_capacity(specs.len());
         for spec in specs {
             param::add_distinct(&mut parameters, Parameter::parse(model, &base, spec)?)?;
@@ -163,7 +163,7 @@ impl Sweep {
     }
 
     /// The model at parameter values `values` (validated).
-    pub fn model_at(&self, values: &[f64]) -> Result<Model, PointError> {
+    pub fn model_at(&self, values: &[f64]) -> Result<ValidModel, PointError> {
         param::apply(&self.base, &self.parameters, values)
     }
 

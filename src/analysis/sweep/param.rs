@@ -22,8 +22,9 @@
 
 use super::error::{PointError, SweepError};
 use super::grid::Axis;
+use crate::error::InvalidModel;
 use crate::model::path::{NumberPath, PathError, Step};
-use crate::model::Model;
+use crate::model::{Model, ValidModel};
 use serde_json::{Number, Value};
 
 /// What a value does to one number of the model.
@@ -222,7 +223,7 @@ pub fn at_values(
 
 /// The model with each parameter at its value: written into a copy of the
 /// JSON form `base`, then parsed and validated as a model file is.
-pub fn apply(base: &Value, params: &[Parameter], values: &[f64]) -> Result<Model, PointError> {
+pub fn apply(base: &Value, params: &[Parameter], values: &[f64]) -> Result<ValidModel, PointError> {
     let mut json = base.clone();
     for (p, &v) in params.iter().zip(values) {
         p.write(&mut json, v);
@@ -231,9 +232,8 @@ pub fn apply(base: &Value, params: &[Parameter], values: &[f64]) -> Result<Model
         message: e.to_string(),
     })?;
     model
-        .validate()
-        .map_err(|(path, problem)| PointError::Invalid { path, problem })?;
-    Ok(model)
+        .validated()
+        .map_err(|InvalidModel { path, problem }| PointError::Invalid { path, problem })
 }
 
 /// A JSON number; whole values where the model holds an integer.

@@ -32,7 +32,7 @@ use crate::analysis::statics::{solve_equilibrium, StaticSettings};
 use crate::analysis::switch_off::{run_switch_off_from, SwitchOffSettings};
 use crate::analysis::transient::TransientSettings;
 use crate::analysis::EigenMethod;
-use crate::model::Model;
+use crate::model::ValidModel;
 use crate::system::System;
 use serde::{Deserialize, Serialize};
 
@@ -184,8 +184,8 @@ pub struct EvalSettings {
 /// [`crate::analysis::switch_off::run_switch_off_from`]).
 pub fn evaluate(
     quantity: &Quantity,
-    model: &Model,
-    base: &Model,
+    model: &ValidModel,
+    base: &ValidModel,
     settings: &EvalSettings,
 ) -> Result<Evaluation, PointError> {
     let system = System::new(model);

@@ -81,7 +81,7 @@ impl ModalOutcome {
 #[derive(Debug)]
 pub struct ModalRun {
     /// The model the modes belong to.
-    pub model: std::sync::Arc<crate::Model>,
+    pub model: std::sync::Arc<crate::model::ValidModel>,
     /// Its assembled system (for drawings and exports).
     pub system: System,
     /// The modes.

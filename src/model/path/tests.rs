@@ -8,8 +8,11 @@ use crate::error::Source;
 /// The built-in models and every model file of `models/`.
 fn models() -> Vec<(String, Model)> {
     let mut out = vec![
-        (String::from("builtin"), Model::builtin()),
-        (String::from("switch_off"), Model::switch_off_builtin()),
+        (String::from("builtin"), Model::builtin().into_model()),
+        (
+            String::from("switch_off"),
+            Model::switch_off_builtin().into_model(),
+        ),
     ];
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models");
     let mut files: Vec<_> = std::fs::read_dir(dir)
@@ -20,7 +23,9 @@ fn models() -> Vec<(String, Model)> {
     files.sort();
     for f in files {
         let text = std::fs::read_to_string(&f).unwrap();
-        let m = Model::from_json(&text, Source::File(f.clone())).unwrap();
+        let m = Model::from_json(&text, Source::File(f.clone()))
+            .unwrap()
+            .into_model();
         out.push((f.display().to_string(), m));
     }
     assert!(out.len() > 3, "the shipped models are found");
