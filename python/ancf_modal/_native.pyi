@@ -124,11 +124,24 @@ class Model:
         keep_mass: bool = False,
         tolerance: Optional[float] = None,
         max_evaluations: int = 60,
+        method: Literal["eigen", "impulse"] = "eigen",
+        amplitude: Optional[float] = None,
+        duration: Optional[float] = None,
+        end_time: float = 0.1,
+        step: float = 1e-6,
+        spectral_radius: float = 0.9,
+        sample_rate: float = 51200.0,
+        sensor: Optional[str] = None,
+        window: str = "hann",
     ) -> "CalibrationResult":
         """Fits ``params`` (default "height"; names as ``calibrate --param``,
         bounds [SI]) so that the modes ``mode`` of ``mode_kind`` reach
         ``target_hz`` [Hz] (default: the model's reference frequency);
-        ``tolerance`` [Hz]."""
+        ``tolerance`` [Hz] (default 1e-10 × target, 1e-3 Hz by the impulse
+        method). Each candidate is evaluated by ``method``: "eigen" (the
+        eigenproblem) or "impulse" (``calibrate --method impulse``: the
+        experiment of ``impulse`` with ``amplitude`` [N] to ``window``, its
+        first bending peak; one parameter, one target)."""
     def switch_off(
         self,
         end_time: float = 3e-3,
@@ -256,6 +269,15 @@ class ImpulseResult:
         """(raw_hz, corrected_hz, eigen_hz) [Hz] of the first bending peak."""
     def to_dict(self) -> Dict[str, Any]:
         """The library's JSON document of the result (``impulse --json``)."""
+    def write_csv(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes the records (time [s], sensor, force [N]) to ``path`` and
+        the spectrum beside it as the stem + ``.spectrum.csv``
+        (``impulse --csv``)."""
+    def write_uff(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes the force and sensor records as UFF 58 (``impulse --uff``)."""
+    def plot(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Draws the spectrum to ``path`` (.svg, .png) and the response beside
+        it as the stem + ``.response.<ext>`` (``impulse --plot``)."""
 
 @final
 class StaticResult:
@@ -300,6 +322,8 @@ class CalibrationResult:
         """The calibrated model."""
     def to_dict(self) -> Dict[str, Any]:
         """The library's JSON document (``calibrate --json``)."""
+    def plot(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Draws the fit to ``path`` (.svg, .png) (``calibrate --plot``)."""
 
 @final
 class ConvergenceResult:
@@ -412,9 +436,15 @@ class SwitchOffResult:
         """The time to the distance at half the step [s]."""
     @property
     def warnings(self) -> List[str]:
-        """Things the reader must know."""
+        """Things the reader must know (also raised as ``RuntimeWarning``)."""
     def to_dict(self) -> Dict[str, Any]:
         """The library's JSON document (``switch-off --json``)."""
+    def write_csv(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes the tracked point's samples as CSV (``switch-off --csv``)."""
+    def plot(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Draws the travel to ``path`` (.svg, .png) and the trajectory
+        beside it as the stem + ``.trajectory.<ext>`` (``switch-off
+        --plot``)."""
 
 @final
 class TransientResult:
@@ -428,6 +458,14 @@ class TransientResult:
         """Each sensor's samples [m, m/s or m/s²] by id."""
     def to_dict(self) -> Dict[str, Any]:
         """The library's JSON document (``transient --json``)."""
+    def write_csv(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes the samples as CSV (``transient --csv``)."""
+    def write_uff(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes the loads' and sensors' records as UFF 58 (``transient
+        --uff``; needs a sample rate above 0)."""
+    def plot(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Draws each sensor against time to ``path`` (.svg, .png)
+        (``transient --plot``)."""
 
 def sweep(
     model: Model,

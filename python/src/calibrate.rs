@@ -1,27 +1,30 @@
-//! `Model.calibrate(...)` (the command line's `calibrate`, eigenvalue
-//! method) and its result, `ancf_modal.CalibrationResult`.
+//! `Model.calibrate(...)` (the command line's `calibrate`, by the
+//! eigenvalue or the impulse method) and its result,
+//! `ancf_modal.CalibrationResult`.
 //!
-//! [`PyCalibrationResult::document`] is the one place that builds
-//! `to_dict()`.
+//! A front end over [`ancf::commands::calibrate`]: keyword arguments →
+//! request → `run` → wrap; `to_dict()` is the run's document.
 
-use crate::errors::{compute, Failure};
+use crate::errors::{compute, one_line, Failure};
+use crate::impulse::Experiment;
 use crate::model::{choice, PyModel};
-use ancf::analysis::calibrate::{
-    calibrate, CalibrationError, CalibrationRequest, CalibrationResult, CalibrationSettings,
-    ModeSelection, ParameterSpec,
+use ancf::analysis::calibrate::{CalibrationError, ParameterSpec};
+use ancf::commands::calibrate::{
+    run as calibrate, CalibrateRequest, CalibrateRun, Method, TargetKind,
 };
-use ancf::analysis::ModeKind;
-use ancf::model::ValidModel;
+use ancf::commands::CommandError;
 use ancf::results::provenance::sha256_hex;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
+use std::path::PathBuf;
 use std::sync::Arc;
 
-/// `params`: a name, a list of names, or {name: (lower, upper) or None}.
+/// `params`: a name, a list of names, or {name: (lower, upper) or None};
+/// none: the command's default.
 fn parameter_specs(params: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<ParameterSpec>> {
     let Some(params) = params else {
-        return Ok(vec![ParameterSpec::named("height")]);
+        return Ok(Vec::new());
     };
     if let Ok(name) = params.cast::<PyString>() {
         return Ok(vec![ParameterSpec::named(name.to_cow()?.into_owned())]);
@@ -41,13 +44,14 @@ fn parameter_specs(params: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<ParameterS
     Ok(names.into_iter().map(ParameterSpec::named).collect())
 }
 
-/// `target_hz`: one frequency or a sequence of them.
-fn targets(target_hz: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Vec<f64>>> {
+/// `target_hz`: one frequency or a sequence of them; none: the model's
+/// reference.
+fn targets(target_hz: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<f64>> {
     match target_hz {
-        None => Ok(None),
+        None => Ok(Vec::new()),
         Some(t) => match t.extract::<f64>() {
-            Ok(f) => Ok(Some(vec![f])),
-            Err(_) => Ok(Some(t.extract::<Vec<f64>>()?)),
+            Ok(f) => Ok(vec![f]),
+            Err(_) => t.extract::<Vec<f64>>(),
         },
     }
 }
@@ -61,85 +65,68 @@ pub struct Request<'py, 'a> {
     pub keep_mass: bool,
     pub tolerance: Option<f64>,
     pub max_evaluations: i64,
+    pub method: &'a str,
+    pub experiment: Experiment<'a>,
 }
 
 /// Fits the model's parameters to measured frequencies.
 pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_, '_>) -> PyResult<PyCalibrationResult> {
-    let kind = match choice("mode_kind", r.mode_kind, &["bending", "axial", "spring"])? {
-        "axial" => ModeKind::Axial,
-        "spring" => ModeKind::Spring,
-        _ => ModeKind::Bending,
+    let mode_kind = match choice("mode_kind", r.mode_kind, &["bending", "axial", "spring"])? {
+        "axial" => TargetKind::Axial,
+        "spring" => TargetKind::Spring,
+        _ => TargetKind::Bending,
     };
-    let mut numbers = Vec::new();
+    let method = match choice("method", r.method, &["eigen", "impulse"])? {
+        "impulse" => Method::Impulse,
+        _ => Method::Eigen,
+    };
+    let mut modes = Vec::new();
     for n in r.mode.unwrap_or_default() {
-        if n < 1 {
-            return Err(Failure::argument("mode", n, "must be a whole number ≥ 1").into());
-        }
-        numbers.push(n as usize);
-    }
-    if let Some(t) = r.tolerance {
-        if !(t.is_finite() && t > 0.0) {
-            return Err(Failure::argument("tolerance", t, "must be a number > 0").into());
+        match usize::try_from(n) {
+            Ok(n) if n >= 1 => modes.push(n),
+            _ => return Err(Failure::argument("mode", n, "must be a whole number ≥ 1").into()),
         }
     }
-    if !(2..=10_000).contains(&r.max_evaluations) {
-        return Err(Failure::argument(
+    let max_evaluations = usize::try_from(r.max_evaluations).map_err(|_| {
+        Failure::argument(
             "max_evaluations",
             r.max_evaluations,
             "must be a whole number from 2 to 10000",
         )
-        .into());
-    }
-    let parameters = parameter_specs(r.params)?;
-    let targets_hz = match targets(r.target_hz)? {
-        Some(t) => t,
-        None => match &model.model.reference {
-            Some(reference) => vec![reference.first_bending_hz],
-            None => {
-                return Err(
-                    Failure::Input(crate::errors::one_line(&CalibrationError::NoTargets)).into(),
-                )
-            }
-        },
-    };
-    let request = CalibrationRequest {
-        parameters,
-        targets_hz,
-        modes: ModeSelection { kind, numbers },
-        keep_mass: r.keep_mass,
-    };
-    let settings = CalibrationSettings {
-        tolerance_hz: r.tolerance,
-        max_evaluations: r.max_evaluations as usize,
-        ..CalibrationSettings::default()
-    };
-    let shared = Arc::clone(&model.model);
-    let label = model.label();
-    let result = compute(py, move || {
-        calibrate(&shared, &request, &settings).map_err(|e| match e {
-            CalibrationError::Analysis { .. }
-            | CalibrationError::Impulse { .. }
-            | CalibrationError::NotConverged { .. } => Failure::analysis(&label, &e),
-            _ => match keyword(&e) {
-                Some(k) => Failure::Input(format!("{k}: {}", crate::errors::one_line(&e))),
-                None => Failure::input(&e),
-            },
-        })
     })?;
+    let request = CalibrateRequest {
+        targets_hz: targets(r.target_hz)?,
+        params: parameter_specs(r.params)?,
+        keep_mass: r.keep_mass,
+        mode_kind,
+        modes,
+        method,
+        tolerance: r.tolerance,
+        max_evaluations,
+        experiment: r.experiment.request()?,
+    };
+    let input = model.input();
+    let run = compute(py, move || calibrate(&input, &request).map_err(failure))?;
+    crate::warn_runtime(py, run.document.own_warnings())?;
     Ok(PyCalibrationResult {
-        model: Arc::clone(&model.model),
         source: model.source.clone(),
-        sha256: model.sha256.clone(),
-        result,
+        run,
     })
 }
 
-/// The keyword argument a calibration error concerns, named in front of
-/// the message as the command line names its flag (`--param: …`); the
-/// library names quantities, not arguments.
-fn keyword(e: &CalibrationError) -> Option<&'static str> {
+/// A calibration's error: a failed analysis after the model's name, an
+/// input error after the keyword argument it concerns, as the command
+/// line names its flag (`--param: …`); the library names quantities, not
+/// arguments.
+fn failure(e: CommandError) -> Failure {
     use CalibrationError as E;
-    Some(match e {
+    let CommandError::Calibration { model, source } = e else {
+        return Failure::from(e);
+    };
+    let keyword = match &source {
+        E::Analysis { .. } | E::Impulse { .. } | E::NotConverged { .. } => {
+            return Failure::analysis(&model, &source)
+        }
         E::NoParameters
         | E::Parameter(_)
         | E::DuplicateParameter { .. }
@@ -148,30 +135,17 @@ fn keyword(e: &CalibrationError) -> Option<&'static str> {
         E::NoTargets | E::TargetNotPositive { .. } => "target_hz",
         E::DensityWithKeepMass { .. } => "keep_mass",
         E::ModeCount { .. } | E::ModeNotFound { .. } => "mode",
-        _ => return None,
-    })
+        E::ImpulseMode { .. } | E::NeedsSensitivities { .. } => "method",
+        _ => return Failure::input(&source),
+    };
+    Failure::Input(format!("{keyword}: {}", one_line(&source)))
 }
 
 /// The result of `Model.calibrate`: the fitted parameters and model.
 #[pyclass(name = "CalibrationResult", module = "ancf_modal", frozen)]
 pub struct PyCalibrationResult {
-    model: Arc<ValidModel>,
     source: ancf::error::Source,
-    sha256: String,
-    result: CalibrationResult,
-}
-
-impl PyCalibrationResult {
-    /// The document `calibrate --json` prints: the typed result
-    /// ([`ancf::results::CalibrationOutput`]) with the provenance block.
-    fn document(&self) -> serde_json::Value {
-        let label = self.source.to_string();
-        crate::document(
-            &ancf::results::CalibrationOutput::new(&self.model.name, &self.result),
-            Some((&self.model, &label)),
-            Some(&self.sha256),
-        )
-    }
+    run: CalibrateRun,
 }
 
 #[pymethods]
@@ -180,7 +154,7 @@ impl PyCalibrationResult {
     #[getter]
     fn parameters<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        for p in &self.result.parameters {
+        for p in &self.run.result.parameters {
             d.set_item(&p.name, p.fitted)?;
         }
         Ok(d)
@@ -189,31 +163,31 @@ impl PyCalibrationResult {
     /// The targets [Hz].
     #[getter]
     fn targets_hz<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.result.targets_hz)
+        PyArray1::from_slice(py, &self.run.result.targets_hz)
     }
 
     /// The tracked modes' frequencies before the fit [Hz].
     #[getter]
     fn initial_hz<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.result.initial_hz)
+        PyArray1::from_slice(py, &self.run.result.initial_hz)
     }
 
     /// The tracked modes' frequencies of the fitted model [Hz].
     #[getter]
     fn achieved_hz<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.result.achieved_hz)
+        PyArray1::from_slice(py, &self.run.result.achieved_hz)
     }
 
     /// Model evaluations, the start included.
     #[getter]
     fn evaluations(&self) -> usize {
-        self.result.evaluations
+        self.run.result.evaluations
     }
 
     /// The calibrated model (what `calibrate --out` writes).
     #[getter]
     fn fitted_model(&self) -> PyModel {
-        let model = self.result.fitted_model.clone();
+        let model = self.run.result.fitted_model.clone();
         PyModel {
             sha256: sha256_hex(model.to_json().as_bytes()),
             model: Arc::new(model),
@@ -223,10 +197,17 @@ impl PyCalibrationResult {
 
     /// The result as the library's JSON document (`calibrate --json`).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        crate::json_to_python(py, &self.document())
+        crate::json_to_python(py, &self.run.document.document())
+    }
+
+    /// Draws the fit to `path` (.svg or .png): the first target's
+    /// frequency over the first parameter, the evaluations and the fit, as
+    /// `calibrate --plot`.
+    fn plot(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        compute(py, || self.run.write_plot(&path).map_err(Failure::from))
     }
 
     fn __repr__(&self) -> String {
-        ancf::output::calibrate_report::calibrate_table(&self.model.name, &self.result)
+        self.run.text()
     }
 }

@@ -50,6 +50,10 @@ impl From<ancf::commands::CommandError> for Failure {
     /// A command's error: bad input as `ModelError`, a failed analysis as
     /// `AnalysisError`, with the command line's one-line message.
     fn from(e: ancf::commands::CommandError) -> Self {
+        // A simulation's setting names its keyword argument (`step: …`).
+        if let ancf::commands::CommandError::Simulation { model, source } = &e {
+            return simulation(model, source);
+        }
         if e.is_input() {
             Failure::Input(one_line(&e))
         } else {

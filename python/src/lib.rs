@@ -20,39 +20,6 @@ mod transient;
 
 use pyo3::prelude::*;
 
-/// A JSON document as Python objects (dicts, lists, floats …): what every
-/// result's `to_dict()` returns.
-/// A result's document as the command line's `--json` prints it: the
-/// typed result ([`ancf::results`]) with the provenance block; the
-/// warnings are the model's unit warnings, named by its source as the
-/// command line names them.
-pub(crate) fn document(
-    result: &impl serde::Serialize,
-    model: Option<(&ancf::model::Model, &str)>,
-    sha256: Option<&str>,
-) -> serde_json::Value {
-    document_with(result, model, sha256, Vec::new())
-}
-
-/// [`document`] with the analysis's own `warnings` (without the source)
-/// after the model's.
-pub(crate) fn document_with(
-    result: &impl serde::Serialize,
-    model: Option<(&ancf::model::Model, &str)>,
-    sha256: Option<&str>,
-    extra: Vec<String>,
-) -> serde_json::Value {
-    let warnings: Vec<String> = model.map_or_else(Vec::new, |(m, label)| {
-        m.unit_warnings()
-            .iter()
-            .map(|w| w.to_string())
-            .chain(extra)
-            .map(|w| format!("{label}: {w}"))
-            .collect()
-    });
-    ancf::results::document(result, sha256, &warnings).expect("results serialize")
-}
-
 /// Raises each of `texts` as a Python `UserWarning` (the command line's
 /// `warning:` lines about the model).
 pub(crate) fn warn_all(py: Python<'_>, texts: &[String]) -> PyResult<()> {
@@ -84,6 +51,8 @@ fn warn_as(
     Ok(())
 }
 
+/// A JSON document as Python objects (dicts, lists, floats …): what every
+/// result's `to_dict()` returns.
 pub(crate) fn json_to_python<'py>(
     py: Python<'py>,
     doc: &serde_json::Value,

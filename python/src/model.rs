@@ -354,14 +354,18 @@ impl PyModel {
     }
 
     /// Fits parameters to measured frequencies (the command line's
-    /// `calibrate`, eigenvalue method): `target_hz` [Hz] one frequency or
-    /// several (default: the model's `reference.first_bending_hz`),
-    /// `params` a name, names, or {name: (lower, upper) [SI] or None}
-    /// (default "height"; names as `calibrate --param`), the targets'
-    /// modes `mode` (1-based among `mode_kind`: bending, axial, spring;
-    /// default 1, 2, …), `keep_mass` (density follows the section),
-    /// `tolerance` [Hz] (default 1e-10 × target), `max_evaluations`.
-    #[pyo3(signature = (target_hz = None, params = None, mode_kind = "bending", mode = None, keep_mass = false, tolerance = None, max_evaluations = 60))]
+    /// `calibrate`): `target_hz` [Hz] one frequency or several (default:
+    /// the model's `reference.first_bending_hz`), `params` a name, names,
+    /// or {name: (lower, upper) [SI] or None} (default "height"; names as
+    /// `calibrate --param`), the targets' modes `mode` (1-based among
+    /// `mode_kind`: bending, axial, spring; default 1, 2, …), `keep_mass`
+    /// (density follows the section), `tolerance` [Hz] (default 1e-10 ×
+    /// target, 1e-3 Hz by the impulse method), `max_evaluations`. Each
+    /// candidate is evaluated by `method` "eigen" (the eigenproblem) or
+    /// "impulse" (the experiment of `Model.impulse` with the keyword
+    /// arguments from `amplitude` to `window`, its first bending peak; one
+    /// parameter, one target).
+    #[pyo3(signature = (target_hz = None, params = None, mode_kind = "bending", mode = None, keep_mass = false, tolerance = None, max_evaluations = 60, method = "eigen", amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann"))]
     #[allow(clippy::too_many_arguments)]
     fn calibrate(
         &self,
@@ -373,7 +377,26 @@ impl PyModel {
         keep_mass: bool,
         tolerance: Option<f64>,
         max_evaluations: i64,
+        method: &str,
+        amplitude: Option<f64>,
+        duration: Option<f64>,
+        end_time: f64,
+        step: f64,
+        spectral_radius: f64,
+        sample_rate: f64,
+        sensor: Option<&str>,
+        window: &str,
     ) -> PyResult<crate::calibrate::PyCalibrationResult> {
+        let experiment = crate::impulse::Experiment {
+            amplitude,
+            duration,
+            end_time,
+            step,
+            spectral_radius,
+            sample_rate,
+            sensor,
+            window,
+        };
         let r = crate::calibrate::Request {
             target_hz,
             params,
@@ -382,6 +405,8 @@ impl PyModel {
             keep_mass,
             tolerance,
             max_evaluations,
+            method,
+            experiment,
         };
         crate::calibrate::run(self, py, r)
     }
@@ -439,7 +464,7 @@ impl PyModel {
         sample_rate: f64,
         rigid_beams: bool,
     ) -> PyResult<crate::transient::PyTransientResult> {
-        let r = crate::transient::Request {
+        let r = ancf::commands::transient::TransientRequest {
             end_time,
             step,
             spectral_radius,

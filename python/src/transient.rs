@@ -1,94 +1,36 @@
 //! `Model.transient(...)` (the command line's `transient`) and its result,
 //! `ancf_modal.TransientResult`.
 //!
-//! The document and the table are built once, where the run ends
-//! ([`run`]): the one place for `to_dict()`.
+//! A front end over [`ancf::commands::transient`]: keyword arguments →
+//! request → `run` → wrap; `to_dict()` is the run's document.
 
 use crate::errors::{compute, Failure};
 use crate::model::PyModel;
-use ancf::analysis::simulate::{simulate, SimulationSettings};
-use ancf::analysis::transient::TransientSettings;
-use ancf::System;
+use ancf::commands::transient::{run as transient, TransientRequest, TransientRun};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-
-/// The integration's keyword arguments.
-pub struct Request {
-    pub end_time: f64,
-    pub step: f64,
-    pub spectral_radius: f64,
-    pub from_equilibrium: bool,
-    pub sample_rate: f64,
-    pub rigid_beams: bool,
-}
+use std::path::PathBuf;
 
 /// The transient of `model`.
-pub fn run(model: &PyModel, py: Python<'_>, r: Request) -> PyResult<PyTransientResult> {
-    for (name, v) in [("end_time", r.end_time), ("step", r.step)] {
-        if !(v.is_finite() && v > 0.0) {
-            return Err(Failure::argument(name, v, "must be a number > 0").into());
-        }
-    }
-    let rho = r.spectral_radius;
-    if !(0.0..=1.0).contains(&rho) {
-        return Err(
-            Failure::argument("spectral_radius", rho, "must be a number from 0 to 1").into(),
-        );
-    }
-    if !(r.sample_rate.is_finite() && r.sample_rate >= 0.0) {
-        return Err(Failure::argument("sample_rate", r.sample_rate, "must be a number ≥ 0").into());
-    }
-    let shared = model.model.clone();
-    let label = model.label();
-    let sha256 = model.sha256.clone();
-    compute(py, move || {
-        let model = match r.rigid_beams {
-            true => shared.all_beams_rigid().validated().map_err(|e| {
-                Failure::Input(format!("{label}: the model with every beam rigid: {e}"))
-            })?,
-            false => (*shared).clone(),
-        };
-        let settings = SimulationSettings {
-            transient: TransientSettings {
-                step: r.step,
-                end_time: r.end_time,
-                spectral_radius: rho,
-                damping: model.damping,
-                ..TransientSettings::default()
-            },
-            from_equilibrium: r.from_equilibrium,
-            sample_rate: r.sample_rate,
-            keep_partial: false,
-        };
-        settings
-            .transient
-            .validate()
-            .map_err(|e| Failure::Input(crate::errors::one_line(&e)))?;
-        let sim = simulate(System::new(&model), &[], &settings)
-            .map_err(|e| crate::errors::simulation(&label, &e))?;
-        let document = crate::document(
-            &ancf::results::TransientOutput::new(&model.name, &settings, &sim),
-            None,
-            Some(&sha256),
-        );
-        Ok(PyTransientResult {
-            table: ancf::output::transient_report::transient_table(&model.name, &settings, &sim),
-            document,
-            time: sim.time,
-            sensors: sim.sensors,
-        })
-    })
+pub fn run(
+    model: &PyModel,
+    py: Python<'_>,
+    request: TransientRequest,
+) -> PyResult<PyTransientResult> {
+    let input = model.input();
+    let run = compute(py, move || {
+        transient(&input, &request).map_err(Failure::from)
+    })?;
+    crate::warn_runtime(py, run.document.own_warnings())?;
+    Ok(PyTransientResult { run })
 }
 
 /// The result of `Model.transient`: the sensors' records, the contacts and
 /// the energy balance.
 #[pyclass(name = "TransientResult", module = "ancf_modal", frozen)]
 pub struct PyTransientResult {
-    time: Vec<f64>,
-    sensors: Vec<(String, Vec<f64>)>,
-    document: serde_json::Value,
-    table: String,
+    run: TransientRun,
 }
 
 #[pymethods]
@@ -96,14 +38,14 @@ impl PyTransientResult {
     /// Sample times [s].
     #[getter]
     fn time<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.time)
+        PyArray1::from_slice(py, &self.run.simulation.time)
     }
 
     /// Each sensor's samples by id [m, m/s or m/s², as the sensor measures].
     #[getter]
     fn sensors<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        for (id, v) in &self.sensors {
+        for (id, v) in &self.run.simulation.sensors {
             d.set_item(id, PyArray1::from_slice(py, v))?;
         }
         Ok(d)
@@ -111,10 +53,36 @@ impl PyTransientResult {
 
     /// The result as the library's JSON document (`transient --json`).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        crate::json_to_python(py, &self.document)
+        crate::json_to_python(py, &self.run.document.document())
+    }
+
+    /// Writes the samples (time [s], each sensor, each contact's force
+    /// [N]) as CSV to `path`, as `transient --csv`.
+    fn write_csv(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        compute(py, || {
+            ancf::output::files::write_atomic(&path, self.run.csv().as_bytes())
+                .map_err(|e| Failure::input(&e))
+        })
+    }
+
+    /// Writes the loads' and sensors' records as UFF 58 to `path`, as
+    /// `transient --uff` (a run with `sample_rate` above 0: UFF 58 time
+    /// data are evenly sampled).
+    fn write_uff(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        compute(py, || {
+            let text = self.run.uff().map_err(Failure::from)?;
+            ancf::output::files::write_atomic(&path, text.as_bytes())
+                .map_err(|e| Failure::input(&e))
+        })
+    }
+
+    /// Draws each sensor against time to `path` (.svg or .png), as
+    /// `transient --plot`.
+    fn plot(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        compute(py, || self.run.write_plot(&path).map_err(Failure::from))
     }
 
     fn __repr__(&self) -> String {
-        self.table.clone()
+        self.run.text()
     }
 }

@@ -1,22 +1,15 @@
-//! `ancf-modal calibrate`: fit model parameters to measured frequencies
-//! (the paper's "equivalent geometry").
+//! `ancf-modal calibrate`: maps the flags to
+//! [`ancf_modal::commands::calibrate`] and renders its output: model
+//! parameters fitted to measured frequencies (the paper's "equivalent
+//! geometry").
 
-use super::common::{load_model, print_json, write_output};
+use super::common::{command_error, print_document, write_output, Warnings};
 use super::impulse::ExperimentArgs;
 use super::output::Output;
-use ancf_modal::analysis::calibrate::{
-    calibrate, calibrate_with, sweep, CalibrationError, CalibrationRequest, CalibrationResult,
-    CalibrationSettings, EigenFrequencies, ImpulseFrequency, ModeSelection, ParameterSet,
-    ParameterSpec,
-};
-use ancf_modal::analysis::ModeKind;
-use ancf_modal::model::path::{available_names, PathError};
-use ancf_modal::model::{Model, ValidModel};
-use ancf_modal::output::calibrate_report::{calibrate_table, calibration_plot};
-use ancf_modal::output::plot::{
-    calibration_figure, render, write_atomic, Figure, Format, PlotSize,
-};
-use ancf_modal::results::CalibrationOutput;
+use ancf_modal::analysis::calibrate::{CalibrationError, ParameterSpec};
+use ancf_modal::commands::calibrate::{run as calibrate, CalibrateRequest, Method, TargetKind};
+use ancf_modal::commands::{CommandError, ModelInput};
+use ancf_modal::output::plot::{write_atomic, Format};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
@@ -29,12 +22,22 @@ pub enum KindArg {
     Spring,
 }
 
-impl From<KindArg> for ModeKind {
+impl From<KindArg> for TargetKind {
     fn from(k: KindArg) -> Self {
         match k {
-            KindArg::Bending => ModeKind::Bending,
-            KindArg::Axial => ModeKind::Axial,
-            KindArg::Spring => ModeKind::Spring,
+            KindArg::Bending => TargetKind::Bending,
+            KindArg::Axial => TargetKind::Axial,
+            KindArg::Spring => TargetKind::Spring,
+        }
+    }
+}
+
+impl From<TargetKind> for KindArg {
+    fn from(k: TargetKind) -> Self {
+        match k {
+            TargetKind::Bending => KindArg::Bending,
+            TargetKind::Axial => KindArg::Axial,
+            TargetKind::Spring => KindArg::Spring,
         }
     }
 }
@@ -47,6 +50,24 @@ pub enum MethodArg {
     /// The impulse experiment and its FFT for each candidate (first
     /// bending, one parameter; about a second per evaluation).
     Impulse,
+}
+
+impl From<MethodArg> for Method {
+    fn from(m: MethodArg) -> Self {
+        match m {
+            MethodArg::Eigen => Method::Eigen,
+            MethodArg::Impulse => Method::Impulse,
+        }
+    }
+}
+
+impl From<Method> for MethodArg {
+    fn from(m: Method) -> Self {
+        match m {
+            Method::Eigen => MethodArg::Eigen,
+            Method::Impulse => MethodArg::Impulse,
+        }
+    }
 }
 
 #[derive(Debug, Args)]
@@ -78,7 +99,7 @@ pub struct CalibrateArgs {
     #[arg(long)]
     pub keep_mass: bool,
     /// Kind of the modes the targets refer to.
-    #[arg(long, value_enum, default_value_t = KindArg::Bending)]
+    #[arg(long, value_enum, default_value_t = KindArg::from(CalibrateRequest::default().mode_kind))]
     pub mode_kind: KindArg,
     /// Mode numbers (1-based, among the modes of --mode-kind), one per
     /// target; default 1, 2, ….
@@ -86,14 +107,14 @@ pub struct CalibrateArgs {
           allow_hyphen_values = true, value_parser = super::values::at_least_one)]
     pub mode: Vec<u64>,
     /// How each candidate is evaluated.
-    #[arg(long, value_enum, default_value_t = MethodArg::Eigen)]
+    #[arg(long, value_enum, default_value_t = MethodArg::from(CalibrateRequest::default().method))]
     pub method: MethodArg,
     /// Stop when every frequency is this close to its target [Hz]
     /// (default 1e-10 × target; 1e-3 Hz with --method impulse).
     #[arg(long, value_name = "HZ", allow_hyphen_values = true, value_parser = super::values::positive)]
     pub tolerance: Option<f64>,
     /// Most model evaluations.
-    #[arg(long, default_value_t = 60, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 2, Some(10_000)))]
+    #[arg(long, default_value_t = CalibrateRequest::default().max_evaluations as u64, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 2, Some(10_000)))]
     pub max_evaluations: u64,
     /// Write the calibrated model (a valid model file) here.
     #[arg(long, value_name = "FITTED.json")]
@@ -102,11 +123,6 @@ pub struct CalibrateArgs {
     #[command(flatten, next_help_heading = "Impulse method (--method impulse)")]
     pub experiment: ExperimentArgs,
 }
-
-/// Default stopping tolerance of the impulse method [Hz]: well inside the
-/// 0.01 Hz acceptance, and above the resolution of the FFT peak
-/// interpolation so the bracketing does not chase its noise.
-const IMPULSE_TOLERANCE_HZ: f64 = 1e-3;
 
 /// `NAME` or `NAME=LO:HI`.
 fn parse_param(s: &str) -> Result<ParameterSpec, String> {
@@ -176,35 +192,26 @@ fn targets_from(path: &std::path::Path, count: usize) -> Result<Vec<f64>> {
     Ok(f)
 }
 
-/// The request from the flags and the model.
-pub fn request(args: &CalibrateArgs, model: &Model) -> Result<CalibrationRequest> {
-    let targets_hz = if let Some(path) = &args.target_from {
-        targets_from(path, args.mode.len())?
-    } else if args.target.is_empty() {
-        match &model.reference {
-            Some(r) => vec![r.first_bending_hz],
-            None => return Err(flagged(CalibrationError::NoTargets)),
-        }
-    } else {
-        args.target.clone()
+/// The request from the flags.
+pub fn request(args: &CalibrateArgs) -> Result<CalibrateRequest> {
+    let targets_hz = match &args.target_from {
+        Some(path) => targets_from(path, args.mode.len())?,
+        None => args.target.clone(),
     };
-    let parameters = if args.params.is_empty() {
-        vec![ParameterSpec::named("height")]
-    } else {
-        args.params.clone()
-    };
-    Ok(CalibrationRequest {
-        parameters,
+    Ok(CalibrateRequest {
         targets_hz,
-        modes: ModeSelection {
-            kind: args.mode_kind.into(),
-            numbers: args.mode.iter().map(|&n| n as usize).collect(),
-        },
+        params: args.params.clone(),
         keep_mass: args.keep_mass,
+        mode_kind: args.mode_kind.into(),
+        modes: args.mode.iter().map(|&n| n as usize).collect(),
+        method: args.method.into(),
+        tolerance: args.tolerance,
+        max_evaluations: args.max_evaluations as usize,
+        experiment: args.experiment.request(),
     })
 }
 
-pub fn run(args: CalibrateArgs) -> Result<()> {
+pub fn run(args: CalibrateArgs) -> Result<Warnings> {
     args.output
         .only("calibrate", &[Output::Json, Output::Plot])?;
     let plot_format = args
@@ -213,100 +220,28 @@ pub fn run(args: CalibrateArgs) -> Result<()> {
         .as_deref()
         .map(Format::from_path)
         .transpose()?;
-    let model = load_model(args.model.as_deref())?;
-    let request = request(&args, &model)?;
-    let impulse = args.method == MethodArg::Impulse;
-    let settings = CalibrationSettings {
-        tolerance_hz: args.tolerance.or(impulse.then_some(IMPULSE_TOLERANCE_HZ)),
-        max_evaluations: args.max_evaluations as usize,
-        ..CalibrationSettings::default()
-    };
-    let result = match args.method {
-        MethodArg::Eigen => calibrate(&model, &request, &settings).map_err(flagged)?,
-        MethodArg::Impulse => {
-            let experiment = args.experiment.settings();
-            experiment.transient.validate()?;
-            let eval = ImpulseFrequency::new(&request.modes, experiment).map_err(flagged)?;
-            calibrate_with(&model, &request, &settings, &eval, &[1]).map_err(flagged)?
-        }
-    };
+    let input = ModelInput::load(args.model.as_deref())?;
+    let run = calibrate(&input, &request(&args)?).map_err(|e| match e {
+        CommandError::Calibration { source, .. } => flagged(source),
+        e => command_error(e),
+    })?;
     // Everything is computed before any file is written.
-    let plot_bytes = match (&args.output.plot, plot_format) {
-        (Some(_), Some(format)) => {
-            let data = plot_data(&model, &request, &settings, &result)?;
-            let figure = calibration_figure(&calibration_plot(&model.name, &result, data));
-            Some(render(&Figure::from(figure), format, PlotSize::default())?)
-        }
-        _ => None,
-    };
+    let plot_bytes = plot_format.map(|f| run.plot(f)).transpose()?;
     if let Some(path) = &args.out {
-        write_output(path, &(result.fitted_model.to_json() + "\n"))?;
+        write_output(path, &run.fitted_json())?;
     }
     if let (Some(path), Some(bytes)) = (&args.output.plot, plot_bytes) {
         write_atomic(path, &bytes)?;
     }
     if args.output.json {
-        print_json(
-            CalibrationOutput::new(&model.name, &result),
-            args.model.as_deref(),
-        )?;
+        print_document(&run.document)?;
     } else {
-        out!("{}", calibrate_table(&model.name, &result));
+        out!("{}", run.text());
         if let Some(path) = &args.out {
             outln!("calibrated model written to {}", path.display());
         }
     }
-    Ok(())
-}
-
-/// A sweep of the first parameter over the span of the iterates (padded),
-/// the other parameters at their fitted values. The sweep is always the
-/// eigenvalue curve (cheap); with --method impulse the iterates are the
-/// experiment's, which agree with it to ~1e-6.
-fn plot_data(
-    model: &ValidModel,
-    request: &CalibrationRequest,
-    settings: &CalibrationSettings,
-    result: &CalibrationResult,
-) -> Result<(Vec<f64>, Vec<f64>)> {
-    let set = ParameterSet::resolve(model, &request.parameters, request.keep_mass)?;
-    let eval = EigenFrequencies::new(
-        model,
-        &request.modes,
-        request.targets_hz.len(),
-        settings.modal,
-    )?;
-    let fitted: Vec<f64> = result.parameters.iter().map(|p| p.fitted).collect();
-    let xs = result.history.iter().map(|h| h.parameters[0]);
-    let (lo, hi) = xs.fold((fitted[0], fitted[0]), |(a, b), x| (a.min(x), b.max(x)));
-    let p = &set.params[0];
-    let pad = 0.15 * (hi - lo).max(0.02 * fitted[0]);
-    let (lo, hi) = ((lo - pad).max(p.lower), (hi + pad).min(p.upper));
-    const POINTS: usize = 25;
-    let values: Vec<f64> = (0..POINTS)
-        .map(|k| lo + (hi - lo) * k as f64 / (POINTS - 1) as f64)
-        .collect();
-    Ok(sweep(&set, &eval, &fitted, 0, &values))
-}
-
-/// The first beam's height fitted so that the first bending frequency is
-/// `target_hz` (for `identify --calibrate`).
-pub fn equivalent_height(model: &ValidModel, target_hz: f64) -> Result<CalibrationResult> {
-    let beam = model
-        .beams
-        .first()
-        .ok_or(PathError::UnknownShortName {
-            name: String::from("height"),
-            available: available_names(model),
-        })
-        .map_err(CalibrationError::from)?;
-    let request = CalibrationRequest {
-        parameters: vec![ParameterSpec::named(format!("{}.height", beam.id))],
-        targets_hz: vec![target_hz],
-        modes: ModeSelection::default(),
-        keep_mass: false,
-    };
-    Ok(calibrate(model, &request, &CalibrationSettings::default())?)
+    Ok(run.document.warnings)
 }
 
 /// A calibration error with the flag it concerns in front (`--param: …`);

@@ -119,6 +119,17 @@ pub fn emit(text: &str) -> Result<()> {
     }
 }
 
+/// A command's error as the command line prints it: a simulation's
+/// setting or tracked point names its flag after the model (`<model>:
+/// --step: …`, [`simulation_error`]); the rest as the library words it.
+pub fn command_error(e: ancf_modal::commands::CommandError) -> anyhow::Error {
+    use ancf_modal::commands::CommandError;
+    match e {
+        CommandError::Simulation { model, source } => simulation_error(source).context(model),
+        e => anyhow::Error::new(e),
+    }
+}
+
 /// A simulation error with the flag it concerns in front (`--point: …`,
 /// `--step: …`); the library names settings, not flags.
 pub fn simulation_error(e: ancf_modal::error::SimulationError) -> anyhow::Error {

@@ -137,7 +137,7 @@ pub fn compute(args: &IdentifyArgs) -> Result<Identified> {
     let (experiment, paper) =
         choose_experiment(&model, modal_output.first_bending_hz, measured.as_ref());
     let calibration = match (c.calibrate, &experiment) {
-        (true, Some(e)) => Some(super::calibrate::equivalent_height(&model, e.frequency_hz)?),
+        (true, Some(e)) => Some(ancf_modal::commands::calibrate::equivalent_height(&model, e.frequency_hz)?),
         (true, None) => anyhow::bail!(
             "--calibrate needs an experiment: the model has no `reference` and no --measured records were given"
         ),

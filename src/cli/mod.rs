@@ -94,15 +94,15 @@ pub fn run(cli: Cli) -> Result<common::Warnings> {
     match cli.command {
         Command::Identify(a) => global(identify::run(a)),
         Command::Report(a) => global(report::run(a)),
-        Command::Impulse(a) => global(impulse::run(a)),
+        Command::Impulse(a) => impulse::run(a),
         Command::Modal(a) => modal::run(a),
-        Command::Calibrate(a) => global(calibrate::run(a)),
+        Command::Calibrate(a) => calibrate::run(a),
         Command::Convergence(a) => convergence::run(a),
         Command::Static(a) => statics::run(a),
         Command::Sweep(a) => global(sweep::run(a)),
         Command::SweepMerge(a) => global(sweep_merge::run(a)),
-        Command::Transient(a) => global(transient::run(a)),
-        Command::SwitchOff(a) => global(switch_off::run(a)),
+        Command::Transient(a) => transient::run(a),
+        Command::SwitchOff(a) => switch_off::run(a),
         Command::Schema(a) => {
             let schema = match &a.output {
                 Some(command) => ancf_modal::results::output_schema(command)

@@ -1,15 +1,15 @@
-//! `ancf-modal switch-off`: the paper's switch-off experiment (Figs. 7–9)
-//! on a model, by default the built-in `models/rcbo_switch_off.json`.
+//! `ancf-modal switch-off`: maps the flags to
+//! [`ancf_modal::commands::switch_off`] and renders its output: the paper's
+//! switch-off experiment (Figs. 7–9) on a model, by default the built-in
+//! `models/rcbo_switch_off.json`.
 
-use super::common::{source_label, write_output};
+use super::common::{command_error, print_document, write_output, Warnings};
 use super::output::Output;
-use ancf_modal::analysis::switch_off::{run_switch_off, SwitchOffSettings};
-use ancf_modal::model::{Model, PointSpec};
-use ancf_modal::output::figures::switch_off::write_switch_off_figures;
-use ancf_modal::output::plot::{Format, PlotSize};
-use ancf_modal::output::switch_off_report::{switch_off_csv, switch_off_table};
-use ancf_modal::results::SwitchOffOutput;
-use anyhow::{Context, Result};
+use ancf_modal::commands::switch_off::{parse_point, run as switch_off, SwitchOffRequest};
+use ancf_modal::commands::ModelInput;
+use ancf_modal::model::PointSpec;
+use ancf_modal::output::plot::Format;
+use anyhow::Result;
 use clap::Args;
 use std::path::PathBuf;
 
@@ -20,22 +20,22 @@ pub struct SwitchOffArgs {
     #[command(flatten)]
     pub output: super::output::OutputArgs,
     /// End time [s].
-    #[arg(long, value_name = "S", default_value_t = 3e-3, allow_hyphen_values = true, value_parser = super::values::positive)]
+    #[arg(long, value_name = "S", default_value_t = SwitchOffRequest::default().end_time, allow_hyphen_values = true, value_parser = super::values::positive)]
     pub end_time: f64,
     /// Time step [s].
-    #[arg(long, value_name = "S", default_value_t = 1e-6, allow_hyphen_values = true, value_parser = super::values::positive)]
+    #[arg(long, value_name = "S", default_value_t = SwitchOffRequest::default().step, allow_hyphen_values = true, value_parser = super::values::positive)]
     pub step: f64,
     /// Travel distance of the tracked point [m].
-    #[arg(long, value_name = "M", default_value_t = 2e-3, allow_hyphen_values = true, value_parser = super::values::positive)]
+    #[arg(long, value_name = "M", default_value_t = SwitchOffRequest::default().distance, allow_hyphen_values = true, value_parser = super::values::positive)]
     pub distance: f64,
     /// Travel direction `DX,DY` (global).
-    #[arg(long, value_name = "DX,DY", default_value = "1,0", value_parser = parse_pair, allow_hyphen_values = true)]
-    pub direction: [f64; 2],
+    #[arg(long, value_name = "DX,DY", default_value_t = Pair(SwitchOffRequest::default().direction), value_parser = parse_pair, allow_hyphen_values = true)]
+    pub direction: Pair,
     /// Tracked point: `BEAM:S` (arc length in m) or `BODY` (default: node 0 of the first beam).
     #[arg(long, value_name = "POINT", value_parser = parse_point)]
     pub point: Option<PointSpec>,
     /// Output sample rate [Hz] (the paper's camera: 67.2 kHz).
-    #[arg(long, value_name = "HZ", default_value_t = 67_200.0, allow_hyphen_values = true, value_parser = super::values::non_negative)]
+    #[arg(long, value_name = "HZ", default_value_t = SwitchOffRequest::default().sample_rate, allow_hyphen_values = true, value_parser = super::values::non_negative)]
     pub sample_rate: f64,
     /// Also run the model with every beam rigid (the paper's rigid model).
     #[arg(long)]
@@ -45,7 +45,17 @@ pub struct SwitchOffArgs {
     pub no_step_check: bool,
 }
 
-fn parse_pair(s: &str) -> Result<[f64; 2], String> {
+/// Two numbers written `A,B`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pair(pub [f64; 2]);
+
+impl std::fmt::Display for Pair {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{},{}", self.0[0], self.0[1])
+    }
+}
+
+fn parse_pair(s: &str) -> Result<Pair, String> {
     let parts: Vec<&str> = s.split(',').collect();
     let [a, b] = parts[..] else {
         return Err(format!("`{s}` is not DX,DY"));
@@ -57,69 +67,37 @@ fn parse_pair(s: &str) -> Result<[f64; 2], String> {
             .filter(|v| v.is_finite())
             .ok_or_else(|| format!("`{t}` is not a finite number"))
     };
-    Ok([num(a)?, num(b)?])
+    Ok(Pair([num(a)?, num(b)?]))
 }
 
-fn parse_point(s: &str) -> Result<PointSpec, String> {
-    match s.split_once(':') {
-        Some((beam, arc)) => {
-            let s_val: f64 = arc
-                .parse()
-                .ok()
-                .filter(|v: &f64| v.is_finite())
-                .ok_or_else(|| format!("`{arc}` is not an arc length in m"))?;
-            Ok(PointSpec {
-                beam: Some(beam.to_string()),
-                s: Some(s_val),
-                ..PointSpec::default()
-            })
-        }
-        None => Ok(PointSpec {
-            body: Some(s.to_string()),
-            ..PointSpec::default()
-        }),
-    }
-}
-
-pub fn run(args: SwitchOffArgs) -> Result<()> {
+pub fn run(args: SwitchOffArgs) -> Result<Warnings> {
     args.output
         .only("switch-off", &[Output::Json, Output::Csv, Output::Plot])?;
     if let Some(path) = &args.output.plot {
         Format::from_path(path)?;
     }
-    let model = match &args.model {
-        Some(p) => Model::from_file(p)?,
-        None => Model::switch_off_builtin(),
-    };
-    super::common::check_units(&model, args.model.as_deref());
-    let settings = SwitchOffSettings {
-        step: args.step,
+    let input = ModelInput::load_switch_off(args.model.as_deref())?;
+    let request = SwitchOffRequest {
         end_time: args.end_time,
-        sample_rate: args.sample_rate,
+        step: args.step,
         distance: args.distance,
-        direction: args.direction,
+        direction: args.direction.0,
         point: args.point.clone(),
+        sample_rate: args.sample_rate,
         compare_rigid: args.compare_rigid,
-        halve_step: !args.no_step_check,
-        ..SwitchOffSettings::default()
+        no_step_check: args.no_step_check,
     };
-    let result = run_switch_off(&model, &settings)
-        .map_err(super::common::simulation_error)
-        .with_context(|| source_label(args.model.as_deref()))?;
+    let run = switch_off(&input, &request).map_err(command_error)?;
     if let Some(path) = &args.output.csv {
-        write_output(path, &switch_off_csv(&result))?;
+        write_output(path, &run.csv())?;
     }
     if let Some(path) = &args.output.plot {
-        write_switch_off_figures(&result, path, PlotSize::default())?;
+        run.write_plot(path)?;
     }
     if args.output.json {
-        let sha = super::common::model_sha256_or(
-            args.model.as_deref(),
-            ancf_modal::model::SWITCH_OFF_MODEL_JSON,
-        )?;
-        super::common::print_json_sha(SwitchOffOutput::new(&result), &sha)?;
+        print_document(&run.document)?;
     } else {
-        out!("{}", switch_off_table(&result));
+        out!("{}", run.text());
     }
-    Ok(())
+    Ok(run.document.warnings)
 }

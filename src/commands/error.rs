@@ -3,7 +3,9 @@
 //! fields (`modes`), never a front end's flags or keywords; a front end
 //! that wants its own name in front maps [`CommandError::Argument`].
 
-use crate::error::{AnalysisError, ModelError, SimulationError};
+use crate::analysis::calibrate::CalibrationError;
+use crate::analysis::impulse::ImpulseError;
+use crate::error::{AnalysisError, ModelError, SimulationError, TransientError};
 use crate::measured::error::MeasuredError;
 use crate::output::files::WriteError;
 use crate::output::plot::PlotError;
@@ -43,12 +45,42 @@ pub enum CommandError {
     /// Another mode set does not fit this model's (`other` is its file).
     #[error("{}: {why}", other.display())]
     OtherModes { other: PathBuf, why: String },
+    /// The model with every beam made rigid is not a valid model.
+    #[error("{model}: the model with every beam rigid")]
+    RigidBeams {
+        model: String,
+        #[source]
+        source: crate::error::InvalidModel,
+    },
     /// An output file could not be written.
     #[error(transparent)]
     Write(#[from] WriteError),
     /// A figure could not be drawn or written.
     #[error(transparent)]
     Plot(#[from] PlotError),
+    // --- impulse, transient, switch-off, calibrate ---
+    /// The time integration's settings do not fit together (an end time
+    /// within one step).
+    #[error(transparent)]
+    Integration(#[from] TransientError),
+    /// The impulse experiment on the model named `model` failed, or the
+    /// model cannot run it (no sensor, no hammer, a pulse too short for
+    /// the step).
+    #[error("{model}")]
+    Impulse {
+        model: String,
+        #[source]
+        source: ImpulseError,
+    },
+    /// The calibration of the model named `model` failed, or what it asks
+    /// for is not there (a parameter, a mode, a target).
+    #[error("{model}")]
+    Calibration {
+        model: String,
+        #[source]
+        source: CalibrationError,
+    },
+    // --- end impulse, transient, switch-off, calibrate ---
 }
 
 impl CommandError {
@@ -59,6 +91,32 @@ impl CommandError {
             source: e,
         }
     }
+
+    // --- impulse, transient, switch-off, calibrate ---
+    /// `e`, a simulation error of the model named `model`.
+    pub fn simulation(model: impl Into<String>, e: SimulationError) -> Self {
+        CommandError::Simulation {
+            model: model.into(),
+            source: e,
+        }
+    }
+
+    /// `e`, an impulse experiment's error on the model named `model`.
+    pub fn impulse(model: impl Into<String>, e: ImpulseError) -> Self {
+        CommandError::Impulse {
+            model: model.into(),
+            source: e,
+        }
+    }
+
+    /// `e`, a calibration error of the model named `model`.
+    pub fn calibration(model: impl Into<String>, e: CalibrationError) -> Self {
+        CommandError::Calibration {
+            model: model.into(),
+            source: e,
+        }
+    }
+    // --- end impulse, transient, switch-off, calibrate ---
 
     /// A request field out of range.
     pub fn argument(
@@ -83,6 +141,7 @@ impl CommandError {
             | CommandError::Measured(_)
             | CommandError::OtherModes { .. }
             | CommandError::Write(_)
+            | CommandError::RigidBeams { .. }
             | CommandError::Plot(_) => true,
             CommandError::Simulation { source, .. } => matches!(
                 source,
@@ -91,6 +150,16 @@ impl CommandError {
                     | SimulationError::ReleaseNeedsEquilibrium { .. }
             ),
             CommandError::Analysis { .. } => false,
+            // --- impulse, transient, switch-off, calibrate ---
+            CommandError::Integration(_) => true,
+            CommandError::Impulse { source, .. } => super::impulse::is_input(source),
+            CommandError::Calibration { source, .. } => !matches!(
+                source,
+                CalibrationError::Analysis { .. }
+                    | CalibrationError::Impulse { .. }
+                    | CalibrationError::NotConverged { .. }
+            ),
+            // --- end impulse, transient, switch-off, calibrate ---
         }
     }
 }

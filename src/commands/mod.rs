@@ -15,12 +15,21 @@
 //! | `modal` | [`modal::ModalRequest`] | [`modal::ModalRun`] |
 //! | `static` | [`statics::StaticRequest`] | [`statics::StaticRun`] |
 //! | `convergence` | [`convergence::ConvergenceRequest`] | [`convergence::ConvergenceRun`] |
+//! | `impulse` | [`impulse::ImpulseRequest`] | [`impulse::ImpulseRun`] |
+//! | `transient` | [`transient::TransientRequest`] | [`transient::TransientRun`] |
+//! | `switch-off` | [`switch_off::SwitchOffRequest`] | [`switch_off::SwitchOffRun`] |
+//! | `calibrate` | [`calibrate::CalibrateRequest`] | [`calibrate::CalibrateRun`] |
 
 pub mod convergence;
 pub mod error;
 pub mod input;
 pub mod modal;
 pub mod statics;
+// impulse, transient, switch-off, calibrate
+pub mod calibrate;
+pub mod impulse;
+pub mod switch_off;
+pub mod transient;
 
 pub use error::CommandError;
 pub use input::ModelInput;

@@ -135,6 +135,10 @@ pub fn excitation(model: &Model) -> Result<(Excitation, Vec<String>), ImpulseErr
     }
 }
 
+/// The paper's acquisition rate [SI: Hz]: the sensor's default sampling
+/// rate here and `transient`'s default output rate.
+pub const ACQUISITION_RATE_HZ: f64 = 51_200.0;
+
 /// Settings of the impulse experiment.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ImpulseSettings {
@@ -157,7 +161,7 @@ impl Default for ImpulseSettings {
             transient: TransientSettings::default(),
             amplitude: None,
             duration: None,
-            sample_rate: Some(51_200.0),
+            sample_rate: Some(ACQUISITION_RATE_HZ),
             sensor: None,
             spectrum: SpectrumSettings::default(),
             peaks: PeakSettings {

@@ -1,0 +1,160 @@
+//! `transient`: a general time integration of the model by generalized-α
+//! (spectral radius ρ∞ [–]) over `end_time` [s] in steps of `step` [s],
+//! shortened at contact onsets; from rest at the reference configuration
+//! or from the static equilibrium under the loads at t = 0 (released
+//! supports let go). The sensors [m, m/s or m/s²] are resampled at
+//! `sample_rate` [Hz]; the contacts' forces [N] and the energy balance [J]
+//! come with them ([`crate::analysis::simulate`]).
+
+use super::{CommandError, ModelInput, Run};
+use crate::analysis::impulse::ACQUISITION_RATE_HZ;
+use crate::analysis::simulate::{simulate, Simulation, SimulationSettings};
+use crate::analysis::transient::TransientSettings;
+use crate::output::figures::write_figure;
+use crate::output::plot::PlotSize;
+use crate::output::transient_report::{
+    transient_csv, transient_figure, transient_table, transient_uff,
+};
+use crate::results::TransientOutput;
+use crate::System;
+use std::path::Path;
+
+/// What `transient` computes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TransientRequest {
+    /// End time [s] (> 0, longer than one step).
+    pub end_time: f64,
+    /// Time step [s] (> 0; shortened at contact onsets).
+    pub step: f64,
+    /// Spectral radius at infinity of generalized-α [–] (0 to 1).
+    pub spectral_radius: f64,
+    /// Start from the static equilibrium under the loads at t = 0 (else at
+    /// rest in the reference configuration).
+    pub from_equilibrium: bool,
+    /// Output sample rate [Hz] (≥ 0); 0 keeps every step.
+    pub sample_rate: f64,
+    /// Model every beam as a rigid body.
+    pub rigid_beams: bool,
+}
+
+impl Default for TransientRequest {
+    fn default() -> Self {
+        let t = TransientSettings::default();
+        TransientRequest {
+            end_time: 0.01,
+            step: t.step,
+            spectral_radius: t.spectral_radius,
+            from_equilibrium: false,
+            sample_rate: ACQUISITION_RATE_HZ,
+            rigid_beams: false,
+        }
+    }
+}
+
+/// `transient`'s output: the recorded run and the document.
+#[derive(Debug)]
+pub struct TransientRun {
+    /// The integrated model's name (its beams rigid with `rigid_beams`).
+    pub model_name: String,
+    /// The settings it ran with.
+    pub settings: SimulationSettings,
+    /// The sensors' records, the contacts and the energy balance.
+    pub simulation: Simulation,
+    /// The document with the run's warnings.
+    pub document: Run<TransientOutput>,
+}
+
+/// Runs `transient` on `input`.
+pub fn run(input: &ModelInput, request: &TransientRequest) -> Result<TransientRun, CommandError> {
+    for (name, v) in [("end_time", request.end_time), ("step", request.step)] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(CommandError::argument(name, v, "must be a number > 0"));
+        }
+    }
+    let rho = request.spectral_radius;
+    if !(0.0..=1.0).contains(&rho) {
+        return Err(CommandError::argument(
+            "spectral_radius",
+            rho,
+            "must be a number from 0 to 1",
+        ));
+    }
+    let rate = request.sample_rate;
+    if !(rate.is_finite() && rate >= 0.0) {
+        return Err(CommandError::argument(
+            "sample_rate",
+            rate,
+            "must be a number ≥ 0",
+        ));
+    }
+    let model = match request.rigid_beams {
+        true => input
+            .model
+            .all_beams_rigid()
+            .validated()
+            .map_err(|source| CommandError::RigidBeams {
+                model: input.label(),
+                source,
+            })?,
+        false => (*input.model).clone(),
+    };
+    let settings = SimulationSettings {
+        transient: TransientSettings {
+            step: request.step,
+            end_time: request.end_time,
+            spectral_radius: rho,
+            damping: model.damping,
+            ..TransientSettings::default()
+        },
+        from_equilibrium: request.from_equilibrium,
+        sample_rate: rate,
+        keep_partial: false,
+    };
+    settings.transient.validate()?;
+    let simulation = simulate(System::new(&model), &[], &settings)
+        .map_err(|e| CommandError::simulation(input.label(), e))?;
+    let output = TransientOutput::new(&model.name, &settings, &simulation);
+    Ok(TransientRun {
+        model_name: model.name.clone(),
+        settings,
+        simulation,
+        document: Run::of(input, output),
+    })
+}
+
+impl TransientRun {
+    /// The command line's report.
+    pub fn text(&self) -> String {
+        transient_table(&self.model_name, &self.settings, &self.simulation)
+    }
+
+    /// The samples as CSV (`--csv`): time [s], each sensor, each contact's
+    /// force [N].
+    pub fn csv(&self) -> String {
+        transient_csv(&self.simulation)
+    }
+
+    /// The loads' and sensors' records as UFF 58 (`--uff`), stamped with
+    /// the model's hash; UFF 58 time data are evenly sampled, so the run
+    /// needs a sample rate above 0.
+    pub fn uff(&self) -> Result<String, CommandError> {
+        if self.settings.sample_rate <= 0.0 {
+            return Err(CommandError::argument(
+                "sample_rate",
+                self.settings.sample_rate,
+                "must be above 0 for UFF 58 (evenly sampled time data)",
+            ));
+        }
+        let sha = self.document.model_sha256.as_deref().unwrap_or_default();
+        let provenance = crate::results::provenance::header_lines(sha);
+        Ok(transient_uff(&self.simulation, &provenance))
+    }
+
+    /// Draws each sensor against time to `path` (.svg or .png), as
+    /// `--plot`.
+    pub fn write_plot(&self, path: &Path) -> Result<(), CommandError> {
+        let figure = transient_figure(&self.model_name, &self.simulation);
+        write_figure(&figure.into(), path, PlotSize::default())?;
+        Ok(())
+    }
+}
