@@ -10,7 +10,6 @@ use ancf_modal::analysis::calibrate::{
     ParameterSpec,
 };
 use ancf_modal::analysis::ModeKind;
-use ancf_modal::model::path::{available_names, PathError};
 use ancf_modal::model::Model;
 use ancf_modal::output::calibrate_report::{calibrate_table, calibration_plot};
 use ancf_modal::output::plot::{
@@ -287,26 +286,6 @@ fn plot_data(
         .map(|k| lo + (hi - lo) * k as f64 / (POINTS - 1) as f64)
         .collect();
     Ok(sweep(&set, &eval, &fitted, 0, &values))
-}
-
-/// The first beam's height fitted so that the first bending frequency is
-/// `target_hz` (for `identify --calibrate`).
-pub fn equivalent_height(model: &Model, target_hz: f64) -> Result<CalibrationResult> {
-    let beam = model
-        .beams
-        .first()
-        .ok_or(PathError::UnknownShortName {
-            name: String::from("height"),
-            available: available_names(model),
-        })
-        .map_err(CalibrationError::from)?;
-    let request = CalibrationRequest {
-        parameters: vec![ParameterSpec::named(format!("{}.height", beam.id))],
-        targets_hz: vec![target_hz],
-        modes: ModeSelection::default(),
-        keep_mass: false,
-    };
-    Ok(calibrate(model, &request, &CalibrationSettings::default())?)
 }
 
 /// A calibration error with the flag it concerns in front (`--param: …`);

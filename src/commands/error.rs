@@ -8,6 +8,11 @@ use crate::measured::error::MeasuredError;
 use crate::output::files::WriteError;
 use crate::output::plot::PlotError;
 use std::path::PathBuf;
+// --- `frf` and `identify` ---
+use crate::analysis::calibrate::CalibrationError;
+use crate::analysis::impulse::ImpulseError;
+use crate::error::TransientError;
+use crate::results::fit::OverlayError;
 
 /// A command's error.
 #[derive(Debug, thiserror::Error)]
@@ -49,6 +54,38 @@ pub enum CommandError {
     /// A figure could not be drawn or written.
     #[error(transparent)]
     Plot(#[from] PlotError),
+    // --- `frf` and `identify` ---
+    /// The model's FRF beside the measured one could not be computed
+    /// (`model` names the model).
+    #[error("{model}")]
+    Overlay {
+        model: String,
+        #[source]
+        source: OverlayError,
+    },
+    /// The time-integration settings are bad, or the integration failed.
+    #[error(transparent)]
+    Transient(#[from] TransientError),
+    /// The impulse experiment on the model named `model` failed.
+    #[error("{model}")]
+    Impulse {
+        model: String,
+        #[source]
+        source: ImpulseError,
+    },
+    /// A calibration failed.
+    #[error(transparent)]
+    Calibration(#[from] CalibrationError),
+    /// `calibrate` was asked for without an experiment to fit to.
+    #[error("calibrate needs an experiment: the model has no `reference` and no measured records were given")]
+    NoExperiment,
+    /// The output directory could not be created.
+    #[error("{}: cannot create the output directory", dir.display())]
+    OutputDir {
+        dir: PathBuf,
+        #[source]
+        io: std::io::Error,
+    },
 }
 
 impl CommandError {
@@ -91,6 +128,35 @@ impl CommandError {
                     | SimulationError::ReleaseNeedsEquilibrium { .. }
             ),
             CommandError::Analysis { .. } => false,
+            // --- `frf` and `identify` ---
+            CommandError::Overlay { source, .. } => matches!(source, OverlayError::Frf(_)),
+            CommandError::Transient(e) => transient_input(e),
+            CommandError::Impulse { source, .. } => match source {
+                ImpulseError::Transient(e) => transient_input(e),
+                ImpulseError::Analysis(_)
+                | ImpulseError::Spectrum(_)
+                | ImpulseError::Dispersion(_) => false,
+                _ => true,
+            },
+            CommandError::Calibration(e) => !matches!(
+                e,
+                CalibrationError::Analysis { .. }
+                    | CalibrationError::Impulse { .. }
+                    | CalibrationError::NotConverged { .. }
+            ),
+            CommandError::NoExperiment | CommandError::OutputDir { .. } => true,
         }
     }
+}
+
+// --- `frf` and `identify` ---
+/// Whether a time integration's error is its settings' (bad input) rather
+/// than a failed run.
+fn transient_input(e: &TransientError) -> bool {
+    matches!(
+        e,
+        TransientError::InvalidStep { .. }
+            | TransientError::InvalidEndTime { .. }
+            | TransientError::InvalidSpectralRadius { .. }
+    )
 }

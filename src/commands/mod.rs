@@ -14,8 +14,12 @@
 //! |---|---|---|
 //! | `modal` | [`modal::ModalRequest`] | [`modal::ModalRun`] |
 //! | `static` | [`statics::StaticRequest`] | [`statics::StaticRun`] |
+//! | `frf` | [`frf::FrfRequest`] | [`frf::FrfRun`] |
+//! | `identify` | [`identify::IdentifyRequest`] | [`identify::IdentifyRun`] |
 
 pub mod error;
+pub mod frf;
+pub mod identify;
 pub mod input;
 pub mod modal;
 pub mod statics;
