@@ -14,6 +14,7 @@ __all__ = [
     "CalibrationResult",
     "ConvergenceResult",
     "FrfResult",
+    "IdentifyResult",
     "ImpulseResult",
     "ModalResult",
     "Model",
@@ -174,6 +175,28 @@ class Model:
         (``ancf-modal convergence``): beams meshed with 2, 4, 8, … elements
         up to ``max_elements``; errors against Euler–Bernoulli for a single
         free beam, else against the finest mesh."""
+    def identify(
+        self,
+        amplitude: Optional[float] = None,
+        duration: Optional[float] = None,
+        end_time: float = 0.1,
+        step: float = 1e-6,
+        spectral_radius: float = 0.9,
+        sample_rate: float = 51200.0,
+        sensor: Optional[str] = None,
+        window: str = "hann",
+        calibrate: bool = False,
+        measured: Optional[Sequence[Union[str, "os.PathLike[str]"]]] = None,
+        measured_window: str = "rect",
+        measured_band: Optional[Tuple[float, float]] = None,
+    ) -> "IdentifyResult":
+        """The main job (``ancf-modal identify``): the modal analysis, the
+        impulse experiment (keyword arguments as ``impulse``'s) and their
+        first bending frequencies beside the experiment's: the fitted mode
+        of the ``measured`` hammer records (``measured_window``, fit band
+        ``measured_band`` (LO, HI) [Hz]) nearest it, else the model's
+        ``reference``; ``calibrate`` fits the first beam's equivalent
+        height to it."""
     def static(self, load_scale: float = 1.0) -> "StaticResult":
         """The static equilibrium under the loads × load_scale [–] and
         gravity (``ancf-modal static``)."""
@@ -367,6 +390,10 @@ class FrfResult:
     def coherence(self) -> Optional[npt.NDArray[np.float64]]:
         """γ² [–]; None for a measured FRF without one."""
     @property
+    def model_frf(self) -> Optional[npt.NDArray[np.complex128]]:
+        """The model's FRF at its sensor ``at`` on ``freq`` [response unit
+        per N]; None without ``model``."""
+    @property
     def band(self) -> Tuple[float, float]:
         """The fit band [Hz]."""
     @property
@@ -383,6 +410,39 @@ class FrfResult:
         """The stabilization diagram's poles."""
     def to_dict(self) -> Dict[str, Any]:
         """The library's JSON document of the result (``frf --json``)."""
+    def write_uff(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes H1 and the coherence as UFF 58 to ``path`` (``frf --uff``)."""
+    def write_csv(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes the spectra and the fit as CSV to ``path`` (``frf --csv``)."""
+    def plot(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Draws the FRF, the coherence and the stabilization diagram to
+        ``path`` (.svg, .png) (``frf --plot``)."""
+
+@final
+class IdentifyResult:
+    """The result of ``Model.identify``; ``repr`` is the command line's
+    report."""
+
+    @property
+    def experiment_hz(self) -> Optional[float]:
+        """The experiment's first bending frequency [Hz]; None without one."""
+    @property
+    def table(self) -> List[Dict[str, Any]]:
+        """The comparison: source, first_bending_hz [Hz], error_percent and
+        paper_error_percent [%] per row."""
+    @property
+    def paper(self) -> bool:
+        """Whether the comparison is the paper's Table 3."""
+    @property
+    def frequencies_hz(self) -> npt.NDArray[np.float64]:
+        """Natural frequencies of the modes at the reference [Hz]."""
+    @property
+    def calibrated_model(self) -> Optional[Model]:
+        """The model with the fitted equivalent height (``calibrate=True``)."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's JSON document (``identify --json``, summary.json)."""
+    def write_out_dir(self, out_dir: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes the files of ``identify --out-dir`` into ``out_dir``."""
 
 @final
 class SweepResult:
@@ -495,11 +555,14 @@ def frf(
     band: Optional[Tuple[float, float]] = None,
     max_order: int = 40,
     response_quantity: Literal["displacement", "velocity", "acceleration"] = "velocity",
+    model: Optional[Model] = None,
+    at: Optional[str] = None,
 ) -> FrfResult:
     """H1/H2, coherence and the modal fit of hammer hits: ``force`` [N] and
     ``response`` [m, m/s or m/s²], 1-D (one hit) or 2-D (one hit per row),
     sampled at ``fs`` [Hz]; ``window`` rect, hann, force:P, exponential:P;
-    ``band`` (LO, HI) [Hz] of the fit."""
+    ``band`` (LO, HI) [Hz] of the fit; ``model`` and its sensor ``at``: the
+    model's FRF beside the measured one."""
 
 def frf_files(
     paths: Sequence[Union[str, "os.PathLike[str]"]],
@@ -510,9 +573,12 @@ def frf_files(
     band: Optional[Tuple[float, float]] = None,
     max_order: int = 40,
     response_quantity: Literal["displacement", "velocity", "acceleration"] = "velocity",
+    model: Optional[Model] = None,
+    at: Optional[str] = None,
 ) -> FrfResult:
     """``frf`` on measurement files (CSV or UFF 58), as ``ancf-modal frf``;
-    ``force``/``response`` a column name or 1-based index."""
+    ``force``/``response`` a column name or 1-based index; ``model`` and
+    its sensor ``at`` as for ``frf``."""
 
 def _panic(message: str) -> None:
     """Panics inside the library's call wrapper (for the test suite: raises

@@ -9,6 +9,7 @@ mod calibrate;
 mod convergence;
 mod errors;
 mod frf;
+mod identify;
 mod impulse;
 mod matrices;
 mod modal;
@@ -85,6 +86,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<sweep::PySweepResult>()?;
     m.add_class::<switch_off::PySwitchOffResult>()?;
     m.add_class::<transient::PyTransientResult>()?;
+    m.add_class::<identify::PyIdentifyResult>()?;
     m.add_function(wrap_pyfunction!(sweep::sweep_function, m)?)?;
     m.add_function(wrap_pyfunction!(frf::frf, m)?)?;
     m.add_function(wrap_pyfunction!(_panic, m)?)?;

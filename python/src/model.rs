@@ -326,6 +326,52 @@ impl PyModel {
         crate::impulse::run(self, py, e)
     }
 
+    /// The main job (the command line's `identify`): the modal analysis,
+    /// the impulse experiment (its keyword arguments as `impulse`'s:
+    /// `amplitude` [N], `duration` [s], `end_time` [s], `step` [s],
+    /// `spectral_radius` [–], `sample_rate` [Hz], `sensor`, `window`) and
+    /// their first bending frequencies beside the experiment's (the
+    /// paper's Table 3 for the paper's model). The experiment is the fitted
+    /// mode of the `measured` hammer records (files as for `frf_files`,
+    /// with `measured_window` and the fit band `measured_band` (LO, HI)
+    /// [Hz]) nearest the first bending frequency, else the model's
+    /// `reference`; `calibrate` fits the first beam's equivalent height to
+    /// it.
+    #[pyo3(signature = (amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann", calibrate = false, measured = None, measured_window = "rect", measured_band = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn identify(
+        &self,
+        py: Python<'_>,
+        amplitude: Option<f64>,
+        duration: Option<f64>,
+        end_time: f64,
+        step: f64,
+        spectral_radius: f64,
+        sample_rate: f64,
+        sensor: Option<String>,
+        window: &str,
+        calibrate: bool,
+        measured: Option<Vec<PathBuf>>,
+        measured_window: &str,
+        measured_band: Option<(f64, f64)>,
+    ) -> PyResult<crate::identify::PyIdentifyResult> {
+        let r = crate::identify::Request {
+            amplitude,
+            duration,
+            end_time,
+            step,
+            spectral_radius,
+            sample_rate,
+            sensor,
+            window,
+            calibrate,
+            measured,
+            measured_window,
+            measured_band,
+        };
+        crate::identify::run(self, py, r)
+    }
+
     /// The static equilibrium under the loads × load_scale [–] (their values
     /// at t = 0) and gravity (the command line's `static`). Raises
     /// AnalysisError when there is none (no support, a mechanism, a loss of

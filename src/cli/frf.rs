@@ -1,12 +1,14 @@
-//! `ancf-modal frf`: measured hammer records (CSV or UFF 58) or a measured
-//! FRF in, H1/H2/coherence and the identified modes out.
+//! `ancf-modal frf`: maps the flags to [`ancf_modal::commands::frf`] and
+//! renders its output: measured hammer records (CSV or UFF 58) or a
+//! measured FRF in, H1/H2/coherence and the identified modes out.
 
-use super::common::write_output;
-use ancf_modal::measured::analysis::{analyse, AnalysisSettings, Estimator, FrfAnalysis};
-use ancf_modal::measured::{read_measurement_noted, Channel, Channels};
-use ancf_modal::output::frf_report::{frf_csv, frf_figure, frf_table, frf_uff, ResponseQuantity};
-use ancf_modal::output::plot::{render, Figure, Format, PlotSize};
-use ancf_modal::results::fit::{FrfOutput, ModelOverlay};
+use super::common::{print_document, write_output, Warnings};
+use ancf_modal::commands::frf::{run as frf, FrfRecords, FrfRequest};
+use ancf_modal::commands::ModelInput;
+use ancf_modal::measured::analysis::Estimator;
+use ancf_modal::measured::Channel;
+use ancf_modal::output::frf_report::ResponseQuantity;
+use ancf_modal::output::plot::Format;
 use ancf_modal::signal::Window;
 use anyhow::Result;
 use clap::Args;
@@ -20,43 +22,6 @@ pub struct FrfArgs {
     pub files: Vec<PathBuf>,
     #[command(flatten)]
     pub output: super::output::OutputArgs,
-    #[command(flatten)]
-    pub measured: MeasuredArgs,
-    /// Overlay this model's FRF (modal superposition, its Rayleigh damping
-    /// or 0.5 % if it has none) at the sensor --at, per newton of its first
-    /// load.
-    #[arg(long, value_name = "MODEL.json", requires = "at")]
-    pub model: Option<PathBuf>,
-    /// The model's sensor for --model.
-    #[arg(long, value_name = "SENSOR", requires = "model")]
-    pub at: Option<String>,
-}
-
-/// The model's FRF on the measured frequencies (the library's defaults:
-/// [`ancf_modal::results::fit::OVERLAY_MODES`] modes, its Rayleigh damping
-/// or [`ancf_modal::results::fit::OVERLAY_DAMPING_RATIO`]), its values and
-/// the model file's SHA-256.
-fn model_overlay(
-    path: &std::path::Path,
-    sensor: &str,
-    q: ResponseQuantity,
-    f: &[f64],
-) -> Result<(ModelOverlay, Vec<realfft::num_complex::Complex64>, String)> {
-    use anyhow::Context;
-    let bytes =
-        std::fs::read(path).with_context(|| format!("{}: cannot read the file", path.display()))?;
-    let sha = ancf_modal::results::provenance::sha256_hex(&bytes);
-    let model = ancf_modal::Model::from_file(path)?;
-    super::common::check_units(&model, Some(path));
-    let (overlay, h) =
-        ModelOverlay::new(&model, sensor, q, f).with_context(|| path.display().to_string())?;
-    Ok((overlay, h, sha))
-}
-
-/// How measurement files are read and analysed (shared with `identify
-/// --measured`).
-#[derive(Debug, Args, Clone)]
-pub struct MeasuredArgs {
     /// Force channel: CSV column name or 1-based index (default the one
     /// column whose name holds `force`, else 2), UFF record label or index (default
     /// the force record).
@@ -67,23 +32,31 @@ pub struct MeasuredArgs {
     #[arg(long, value_name = "COL")]
     pub response: Option<Channel>,
     /// What the response measures (the FRF's unit).
-    #[arg(long, value_enum, default_value_t = Quantity::Velocity)]
+    #[arg(long, value_enum, default_value_t = FrfRequest::default().response_quantity.into())]
     pub response_quantity: Quantity,
     /// rect, hann, flattop, blackman, force:P (keep the first fraction P of
     /// the force record), exponential:P (decay to P at the end; its damping
     /// is removed).
-    #[arg(long, default_value = "rect")]
+    #[arg(long, default_value_t = FrfRequest::default().window)]
     pub window: Window,
     /// FRF estimator the modal fit uses.
-    #[arg(long, value_enum, default_value_t = EstimatorArg::H1)]
+    #[arg(long, value_enum, default_value_t = FrfRequest::default().estimator.into())]
     pub estimator: EstimatorArg,
     /// Fit band LO:HI in Hz (default: where the hammer excited the
     /// structure, up to 0.8 × Nyquist).
     #[arg(long, value_name = "LO:HI", allow_hyphen_values = true, value_parser = parse_band)]
     pub band: Option<(f64, f64)>,
     /// Highest model order of the stabilization diagram.
-    #[arg(long, default_value_t = 40, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 2, Some(200)))]
+    #[arg(long, default_value_t = FrfRequest::default().max_order as u64, allow_hyphen_values = true, value_parser = |s: &str| super::values::whole(s, 2, Some(200)))]
     pub max_order: u64,
+    /// Overlay this model's FRF (modal superposition, its Rayleigh damping
+    /// or 0.5 % if it has none) at the sensor --at, per newton of its first
+    /// load.
+    #[arg(long, value_name = "MODEL.json", requires = "at")]
+    pub model: Option<PathBuf>,
+    /// The model's sensor for --model.
+    #[arg(long, value_name = "SENSOR", requires = "model")]
+    pub at: Option<String>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -103,12 +76,41 @@ impl From<Quantity> for ResponseQuantity {
     }
 }
 
+impl From<ResponseQuantity> for Quantity {
+    fn from(q: ResponseQuantity) -> Self {
+        match q {
+            ResponseQuantity::Displacement => Quantity::Displacement,
+            ResponseQuantity::Velocity => Quantity::Velocity,
+            ResponseQuantity::Acceleration => Quantity::Acceleration,
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum EstimatorArg {
     H1,
     H2,
 }
 
+impl From<EstimatorArg> for Estimator {
+    fn from(e: EstimatorArg) -> Self {
+        match e {
+            EstimatorArg::H1 => Estimator::H1,
+            EstimatorArg::H2 => Estimator::H2,
+        }
+    }
+}
+
+impl From<Estimator> for EstimatorArg {
+    fn from(e: Estimator) -> Self {
+        match e {
+            Estimator::H1 => EstimatorArg::H1,
+            Estimator::H2 => EstimatorArg::H2,
+        }
+    }
+}
+
+/// `LO:HI` [Hz] with 0 ≤ LO < HI.
 pub fn parse_band(s: &str) -> Result<(f64, f64), String> {
     let (a, b) = s
         .split_once(':')
@@ -122,75 +124,31 @@ pub fn parse_band(s: &str) -> Result<(f64, f64), String> {
     }
 }
 
-impl MeasuredArgs {
-    /// Reads the files and runs the analysis.
-    pub fn analyse(&self, files: &[PathBuf]) -> Result<FrfAnalysis> {
-        let channels = Channels {
-            force: self.force.clone(),
-            response: self.response.clone(),
-        };
-        let read = files
-            .iter()
-            .map(|f| read_measurement_noted(f, &channels))
-            .collect::<Result<Vec<_>, _>>()?;
-        // The UFF datasets skipped: a warning line and `warnings` in JSON.
-        let measurements = read
-            .into_iter()
-            .map(|(m, notes)| {
-                notes.into_iter().for_each(super::common::warn);
-                m
-            })
-            .collect();
-        let analysis = analyse(
-            measurements,
-            AnalysisSettings {
-                window: self.window,
-                estimator: match self.estimator {
-                    EstimatorArg::H1 => Estimator::H1,
-                    EstimatorArg::H2 => Estimator::H2,
-                },
-                band: self.band,
-                max_order: self.max_order as usize,
-            },
-        )?;
-        analysis
-            .warnings()
-            .into_iter()
-            .for_each(super::common::warn);
-        Ok(analysis)
-    }
-}
-
-pub fn run(args: FrfArgs) -> Result<()> {
-    let a = args.measured.analyse(&args.files)?;
-    let q: ResponseQuantity = args.measured.response_quantity.into();
-    let overlay = match (&args.model, &args.at) {
-        (Some(m), Some(at)) => Some(model_overlay(m, at, q, &a.frequency_hz)?),
-        _ => None,
+pub fn run(args: FrfArgs) -> Result<Warnings> {
+    let model = match &args.model {
+        Some(path) => Some(ModelInput::from_file(path)?),
+        None => None,
     };
-    let sha = overlay.as_ref().map(|o| o.2.as_str());
-    let label = overlay.as_ref().map(|o| o.0.label());
+    let request = FrfRequest {
+        records: FrfRecords::Files(args.files),
+        force: args.force,
+        response: args.response,
+        response_quantity: args.response_quantity.into(),
+        window: args.window,
+        estimator: args.estimator.into(),
+        band: args.band,
+        max_order: args.max_order as usize,
+        at: args.at,
+    };
+    let run = frf(model.as_ref(), &request)?;
     // Everything is rendered before anything is written: an error leaves
     // no output file behind.
     let plot = match &args.output.plot {
-        Some(p) => {
-            let ov = overlay
-                .as_ref()
-                .zip(label.as_ref())
-                .map(|((_, h, _), label)| {
-                    (label.as_str(), a.frequency_hz.as_slice(), h.as_slice())
-                });
-            let fig: Figure = frf_figure(&a, q, ov).into();
-            let size = PlotSize {
-                height: 1100,
-                ..PlotSize::default()
-            };
-            Some((p, render(&fig, Format::from_path(p)?, size)?))
-        }
+        Some(p) => Some((p, run.plot(Format::from_path(p)?)?)),
         None => None,
     };
-    let csv = args.output.csv.as_ref().map(|p| (p, frf_csv(&a)));
-    let uff = args.output.uff.as_ref().map(|p| (p, frf_uff(&a, q, sha)));
+    let csv = args.output.csv.as_ref().map(|p| (p, run.csv()));
+    let uff = args.output.uff.as_ref().map(|p| (p, run.uff()));
     if let Some((p, bytes)) = plot {
         ancf_modal::output::files::write_atomic(p, &bytes)?;
     }
@@ -201,12 +159,9 @@ pub fn run(args: FrfArgs) -> Result<()> {
         write_output(p, &text)?;
     }
     if args.output.json {
-        let sha = sha.map(str::to_string);
-        let doc = FrfOutput::new(&a, q, overlay.map(|o| o.0));
-        let doc = ancf_modal::results::document(&doc, sha.as_deref(), &super::common::warnings())?;
-        outln!("{}", serde_json::to_string_pretty(&doc)?);
+        print_document(&run.document)?;
     } else {
-        out!("{}", frf_table(&a, q));
+        out!("{}", run.text());
     }
-    Ok(())
+    Ok(run.document.warnings)
 }

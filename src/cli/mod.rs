@@ -92,7 +92,7 @@ pub struct SchemaArgs {
 pub fn run(cli: Cli) -> Result<common::Warnings> {
     let global = |r: Result<()>| r.map(|()| common::warnings());
     match cli.command {
-        Command::Identify(a) => global(identify::run(a)),
+        Command::Identify(a) => identify::run(a),
         Command::Report(a) => global(report::run(a)),
         Command::Impulse(a) => impulse::run(a),
         Command::Modal(a) => modal::run(a),
@@ -112,6 +112,6 @@ pub fn run(cli: Cli) -> Result<common::Warnings> {
             outln!("{}", serde_json::to_string_pretty(&schema)?);
             Ok(Vec::new())
         }
-        Command::Frf(a) => global(frf::run(a)),
+        Command::Frf(a) => frf::run(a),
     }
 }

@@ -5,7 +5,7 @@
 //! the switch-off when the model releases something.
 
 use super::common::{load_model, source_label, write_output};
-use super::identify::{compute, ComparisonArgs, Identified, IdentifyArgs};
+use super::identify::{compute, request, ComparisonArgs};
 use super::impulse::ExperimentArgs;
 use ancf_modal::analysis::impulse::excitation;
 use ancf_modal::analysis::statics::StaticSettings;
@@ -49,14 +49,12 @@ pub fn run(args: ReportArgs) -> Result<()> {
     let prestress = args.prestress;
     let model = load_model(path.as_deref())?;
     if excitation(&model).is_ok() {
-        let id = compute(&IdentifyArgs {
-            model: args.model,
-            output: Default::default(),
-            out_dir: None,
-            experiment: args.experiment,
-            comparison: args.comparison,
-            html: None,
-        })?;
+        let input = ancf_modal::commands::ModelInput::load(path.as_deref())?;
+        let id = compute(&input, &request(&args.experiment, &args.comparison))?;
+        // The model's unit warnings were given when it was loaded above.
+        for w in id.document.own_warnings() {
+            super::common::warn(w.clone());
+        }
         write_report(&out, &id, path.as_deref(), prestress)?;
     } else {
         if args.comparison.calibrate || !args.comparison.measured.is_empty() {
@@ -88,15 +86,15 @@ pub fn run(args: ReportArgs) -> Result<()> {
 /// The report of what `identify` computed (`identify --html`, `report`).
 pub fn write_report(
     out: &Path,
-    id: &Identified,
+    id: &ancf_modal::commands::identify::IdentifyRun,
     path: Option<&Path>,
     prestress: bool,
 ) -> Result<()> {
     let mut sections = vec![
-        comparison_section(&id.output, id.paper),
+        comparison_section(&id.document.output, id.paper),
         impulse_section(&id.model, &id.impulse),
     ];
-    if let Some(c) = &id.output.calibration {
+    if let Some(c) = &id.document.output.calibration {
         sections.push(calibration_section(c));
     }
     if let Some(a) = &id.measured {
@@ -117,6 +115,7 @@ pub fn write_report(
         system: &id.system,
         modal: &id.modal,
         damping_ratio: id
+            .document
             .output
             .modal
             .modes

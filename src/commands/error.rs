@@ -10,6 +10,8 @@ use crate::measured::error::MeasuredError;
 use crate::output::files::WriteError;
 use crate::output::plot::PlotError;
 use std::path::PathBuf;
+// --- `frf` and `identify` ---
+use crate::results::fit::OverlayError;
 
 /// A command's error.
 #[derive(Debug, thiserror::Error)]
@@ -60,7 +62,7 @@ pub enum CommandError {
     Plot(#[from] PlotError),
     // --- impulse, transient, switch-off, calibrate ---
     /// The time integration's settings do not fit together (an end time
-    /// within one step).
+    /// within one step), or the integration failed.
     #[error(transparent)]
     Integration(#[from] TransientError),
     /// The impulse experiment on the model named `model` failed, or the
@@ -80,7 +82,25 @@ pub enum CommandError {
         #[source]
         source: CalibrationError,
     },
-    // --- end impulse, transient, switch-off, calibrate ---
+    // --- `frf` and `identify` ---
+    /// The model's FRF beside the measured one could not be computed
+    /// (`model` names the model).
+    #[error("{model}")]
+    Overlay {
+        model: String,
+        #[source]
+        source: OverlayError,
+    },
+    /// `calibrate` was asked for without an experiment to fit to.
+    #[error("calibrate needs an experiment: the model has no `reference` and no measured records were given")]
+    NoExperiment,
+    /// The output directory could not be created.
+    #[error("{}: cannot create the output directory", dir.display())]
+    OutputDir {
+        dir: PathBuf,
+        #[source]
+        io: std::io::Error,
+    },
 }
 
 impl CommandError {
@@ -151,7 +171,7 @@ impl CommandError {
             ),
             CommandError::Analysis { .. } => false,
             // --- impulse, transient, switch-off, calibrate ---
-            CommandError::Integration(_) => true,
+            CommandError::Integration(e) => transient_input(e),
             CommandError::Impulse { source, .. } => super::impulse::is_input(source),
             CommandError::Calibration { source, .. } => !matches!(
                 source,
@@ -159,7 +179,21 @@ impl CommandError {
                     | CalibrationError::Impulse { .. }
                     | CalibrationError::NotConverged { .. }
             ),
-            // --- end impulse, transient, switch-off, calibrate ---
+            // --- `frf` and `identify` ---
+            CommandError::Overlay { source, .. } => matches!(source, OverlayError::Frf(_)),
+            CommandError::NoExperiment | CommandError::OutputDir { .. } => true,
         }
     }
+}
+
+// --- `frf` and `identify` ---
+/// Whether a time integration's error is its settings' (bad input) rather
+/// than a failed run.
+fn transient_input(e: &TransientError) -> bool {
+    matches!(
+        e,
+        TransientError::InvalidStep { .. }
+            | TransientError::InvalidEndTime { .. }
+            | TransientError::InvalidSpectralRadius { .. }
+    )
 }

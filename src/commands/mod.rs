@@ -19,9 +19,13 @@
 //! | `transient` | [`transient::TransientRequest`] | [`transient::TransientRun`] |
 //! | `switch-off` | [`switch_off::SwitchOffRequest`] | [`switch_off::SwitchOffRun`] |
 //! | `calibrate` | [`calibrate::CalibrateRequest`] | [`calibrate::CalibrateRun`] |
+//! | `frf` | [`frf::FrfRequest`] | [`frf::FrfRun`] |
+//! | `identify` | [`identify::IdentifyRequest`] | [`identify::IdentifyRun`] |
 
 pub mod convergence;
 pub mod error;
+pub mod frf;
+pub mod identify;
 pub mod input;
 pub mod modal;
 pub mod statics;

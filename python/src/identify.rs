@@ -1,0 +1,147 @@
+//! `Model.identify(...)` (the command line's `identify`, the main job) and
+//! its result, `ancf_modal.IdentifyResult`.
+//!
+//! A front end over [`ancf::commands::identify`]: keyword arguments →
+//! request → `run` → wrap; `to_dict()` is the run's document and
+//! `write_out_dir` writes the files of `identify --out-dir`.
+
+use crate::errors::{compute, Failure};
+use crate::model::PyModel;
+use ancf::commands::identify::{run as identify, IdentifyRequest, IdentifyRun};
+use ancf::results::provenance::sha256_hex;
+use ancf::signal::Window;
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// `identify`'s keyword arguments (SI units).
+pub struct Request<'a> {
+    pub amplitude: Option<f64>,
+    pub duration: Option<f64>,
+    pub end_time: f64,
+    pub step: f64,
+    pub spectral_radius: f64,
+    pub sample_rate: f64,
+    pub sensor: Option<String>,
+    pub window: &'a str,
+    pub calibrate: bool,
+    pub measured: Option<Vec<PathBuf>>,
+    pub measured_window: &'a str,
+    pub measured_band: Option<(f64, f64)>,
+}
+
+/// A window's text, named `name` in the error.
+fn window(name: &str, text: &str) -> Result<Window, Failure> {
+    text.parse()
+        .map_err(|why: ancf::signal::window::WindowError| {
+            Failure::argument(name, text, &why.to_string())
+        })
+}
+
+/// `identify` on `model`.
+pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_>) -> PyResult<PyIdentifyResult> {
+    let request = IdentifyRequest {
+        amplitude: r.amplitude,
+        duration: r.duration,
+        end_time: r.end_time,
+        step: r.step,
+        spectral_radius: r.spectral_radius,
+        sample_rate: r.sample_rate,
+        sensor: r.sensor,
+        window: window("window", r.window)?,
+        calibrate: r.calibrate,
+        measured: r.measured.unwrap_or_default(),
+        measured_window: window("measured_window", r.measured_window)?,
+        measured_band: r.measured_band,
+    };
+    let input = model.input();
+    let run = compute(py, move || {
+        identify(&input, &request).map_err(Failure::from)
+    })?;
+    // The measured records' notes (the model's warnings were raised when
+    // it was read), as `frf_files` raises them.
+    crate::warn_all(py, run.document.own_warnings())?;
+    Ok(PyIdentifyResult {
+        source: model.source.clone(),
+        run,
+    })
+}
+
+/// The result of `Model.identify`: the comparison of first bending
+/// frequencies, the modes, the impulse experiment, the measured records
+/// and the calibration.
+#[pyclass(name = "IdentifyResult", module = "ancf_modal", frozen)]
+pub struct PyIdentifyResult {
+    source: ancf::error::Source,
+    run: IdentifyRun,
+}
+
+#[pymethods]
+impl PyIdentifyResult {
+    /// The experiment's first bending frequency [Hz] (measured records, or
+    /// the model's reference); None without one.
+    #[getter]
+    fn experiment_hz(&self) -> Option<f64> {
+        self.run.document.output.experiment_hz
+    }
+
+    /// The comparison, one dict per row: source, first_bending_hz [Hz],
+    /// error_percent and paper_error_percent [%] (None where undefined).
+    #[getter]
+    fn table<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        crate::json_to_python(py, &self.run.document.document()["table"])
+    }
+
+    /// Whether the comparison is the paper's Table 3.
+    #[getter]
+    fn paper(&self) -> bool {
+        self.run.paper
+    }
+
+    /// Natural frequencies of the modes at the reference [Hz].
+    #[getter]
+    fn frequencies_hz<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let f: Vec<f64> = self
+            .run
+            .modal
+            .modes
+            .iter()
+            .map(|m| m.frequency_hz)
+            .collect();
+        PyArray1::from_vec(py, f)
+    }
+
+    /// The model with the fitted equivalent height (`calibrate=True`, what
+    /// `--out-dir` writes as calibrated.json); else None.
+    #[getter]
+    fn calibrated_model(&self) -> Option<PyModel> {
+        let c = self.run.document.output.calibration.as_ref()?;
+        let model = c.result.fitted_model.clone();
+        Some(PyModel {
+            sha256: sha256_hex(model.to_json().as_bytes()),
+            model: Arc::new(model),
+            source: self.source.clone(),
+        })
+    }
+
+    /// The result as the library's JSON document (`identify --json`, the
+    /// output directory's summary.json) as a dict.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        crate::json_to_python(py, &self.run.document.document())
+    }
+
+    /// Writes what `identify --out-dir` writes into `out_dir` (created if
+    /// missing): summary.json, modes.csv, signal.csv, spectrum.csv,
+    /// calibrated.json (with `calibrate=True`) and the figures modes,
+    /// response, spectrum and convergence as .svg and .png.
+    fn write_out_dir(&self, py: Python<'_>, out_dir: PathBuf) -> PyResult<()> {
+        compute(py, || {
+            self.run.write_out_dir(&out_dir).map_err(Failure::from)
+        })
+    }
+
+    fn __repr__(&self) -> String {
+        self.run.text(None)
+    }
+}

@@ -1,0 +1,89 @@
+"""`Model.identify` against the command line's `identify`: the same
+document as ``identify --json`` on the built-in model and on another
+shipped model (with measured records), and ``write_out_dir`` writes the
+files of ``identify --out-dir`` byte for byte."""
+
+import warnings
+
+import numpy as np
+import pytest
+
+import ancf_modal
+from conftest import model_args
+
+
+def without_version(doc):
+    doc = dict(doc)
+    doc.pop("tool_version")
+    return doc
+
+
+def test_builtin_model_gives_the_command_lines_document_and_files(tmp_path, cli):
+    out = tmp_path / "cli"
+    p = cli.run("identify", "--end-time", "0.01", "--calibrate", "--out-dir", str(out))
+    assert p.returncode == 0, p.stderr
+    doc = cli.json("identify", "--end-time", "0.01", "--calibrate")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = ancf_modal.Model.builtin().identify(end_time=0.01, calibrate=True)
+    assert without_version(r.to_dict()) == without_version(doc)
+    # The paper's Table 3: the experiment is the paper's 4600 Hz.
+    assert r.paper and r.experiment_hz == doc["experiment_hz"] == 4600.0
+    assert r.table == doc["table"]
+    assert r.frequencies_hz.shape == (12,)
+    # The calibrated model meets the experiment with its eigenvalue.
+    fitted = r.calibrated_model.modal(modes=12)
+    bending = [f for f, k in zip(fitted.frequencies_hz, fitted.kinds) if k == "bending"]
+    assert abs(bending[0] - 4600.0) < 0.01
+    mine = tmp_path / "py"
+    r.write_out_dir(mine)
+    names = sorted(f.name for f in out.iterdir())
+    assert sorted(f.name for f in mine.iterdir()) == names
+    assert "calibrated.json" in names and "summary.json" in names
+    for name in names:
+        assert (mine / name).read_bytes() == (out / name).read_bytes(), name
+    assert repr(r).startswith("model ") and "paper Table 3" in repr(r)
+
+
+def test_another_model_with_measured_records(tmp_path, cli):
+    sig = tmp_path / "sig.csv"
+    # The paper's assembly's hammer test, as measured records.
+    p = cli.run("impulse", "--end-time", "0.05", "--csv", str(sig))
+    assert p.returncode == 0, p.stderr
+    flags = ["--end-time", "0.01", "--sample-rate", "0", "--window", "rect"]
+    measured = ["--measured", str(sig), "--measured-window", "hann"]
+    doc = cli.json("identify", *model_args("cantilever"), *flags, *measured)
+    model = ancf_modal.Model.builtin("cantilever")
+    # The taper on the records is warned of, as `frf_files` warns of it.
+    with pytest.warns(UserWarning, match="hann window tapers the blow"):
+        r = model.identify(end_time=0.01, sample_rate=0.0, window="rect",
+                           measured=[sig], measured_window="hann")
+    mine = r.to_dict()
+    assert without_version(mine) == without_version(doc)
+    assert mine["measured"]["files"] == [str(sig)]
+    assert len(mine["warnings"]) == 1 and not r.paper
+    # The window and band of the records are --measured-window and
+    # --measured-band: the fitted mode is the experiment.
+    measured = ["--measured", str(sig), "--measured-window", "exponential:0.01",
+                "--measured-band", "3000:6000"]
+    banded = cli.json("identify", *model_args("cantilever"), *flags, *measured)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = model.identify(end_time=0.01, sample_rate=0.0, window="rect", measured=[sig],
+                           measured_window="exponential:0.01", measured_band=(3000.0, 6000.0))
+    assert without_version(r.to_dict()) == without_version(banded)
+    assert r.experiment_hz == banded["experiment_hz"]
+    assert abs(r.experiment_hz - 4568.6) < 1.0
+    assert np.allclose(r.to_dict()["measured"]["band_hz"], [3000.0, 6000.0])
+
+
+def test_bad_arguments_are_model_errors():
+    model = ancf_modal.Model.builtin()
+    with pytest.raises(ancf_modal.ModelError, match=r"^step `-0.000001`: must be a number > 0"):
+        model.identify(step=-1e-6)
+    with pytest.raises(ancf_modal.ModelError, match=r"^measured_window `kaiser`"):
+        model.identify(measured_window="kaiser")
+    with pytest.raises(ancf_modal.ModelError, match=r"end time 0.0000001 s must be finite"):
+        model.identify(end_time=1e-7)
+    with pytest.raises(ancf_modal.ModelError, match=r"calibrate needs an experiment"):
+        ancf_modal.Model.builtin("cantilever").identify(end_time=0.005, calibrate=True)

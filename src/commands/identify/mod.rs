@@ -1,0 +1,218 @@
+//! `identify`, the main job: the modal analysis at the reference (the
+//! natural frequencies [Hz] of [`IDENTIFY_MODES`] modes), the paper's
+//! impulse experiment (a half-sine hammer pulse [N, s], generalized-α
+//! integration [s], the sensor's spectrum and its first bending peak
+//! [Hz], raw and corrected for the integrator's period error), and the
+//! first bending frequency of both beside the experiment's: the paper's
+//! Table 3 for the paper's model ([`crate::results::identify`]).
+//!
+//! The experiment is the fitted mode of measured hammer records nearest
+//! the model's first bending frequency (`measured`, analysed as `frf`
+//! does), else the model's `reference`. With `calibrate`, the first beam's
+//! equivalent height [m] whose eigenvalue first bending frequency meets the
+//! experiment's.
+
+mod files;
+
+use super::frf::{FrfRecords, FrfRequest};
+use super::{CommandError, ModelInput, Run};
+use crate::analysis::impulse::{run_impulse, ImpulseResult, ImpulseSettings};
+use crate::analysis::{ModalResult, ModalSettings};
+use crate::measured::analysis::FrfAnalysis;
+use crate::results::identify::{choose_experiment, IDENTIFY_MODES};
+use crate::results::IdentifyOutput;
+use crate::signal::Window;
+use crate::System;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+pub use files::FIGURES;
+
+/// What `identify` computes: the impulse experiment's settings (as
+/// `impulse`'s), and what the model is compared with and fitted to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IdentifyRequest {
+    /// Pulse amplitude F₀ [N] of the model's half-sine loads (non-zero);
+    /// `None`: the model's.
+    pub amplitude: Option<f64>,
+    /// Pulse duration t_F [s] (> 0); `None`: the model's.
+    pub duration: Option<f64>,
+    /// End time of the integration [s] (> 0).
+    pub end_time: f64,
+    /// Time step [s] (> 0).
+    pub step: f64,
+    /// Spectral radius at infinity of generalized-α [–] (0 to 1; 1: no
+    /// numerical damping).
+    pub spectral_radius: f64,
+    /// Sensor sampling rate [Hz] (≥ 0); 0 records every step.
+    pub sample_rate: f64,
+    /// The sensor recorded; `None`: the model's first.
+    pub sensor: Option<String>,
+    /// The window of the sensor's spectrum.
+    pub window: Window,
+    /// Also fit the first beam's equivalent height to the experiment's
+    /// first bending frequency (eigenvalue-based `calibrate`).
+    pub calibrate: bool,
+    /// Measured hammer records (CSV or UFF 58, as for `frf`): their fitted
+    /// mode nearest the model's first bending frequency is the experiment.
+    pub measured: Vec<PathBuf>,
+    /// The window of the measured records.
+    pub measured_window: Window,
+    /// Fit band (LO, HI) [Hz] of the measured records; `None`: chosen as
+    /// `frf` chooses it.
+    pub measured_band: Option<(f64, f64)>,
+}
+
+impl Default for IdentifyRequest {
+    fn default() -> Self {
+        let experiment = ImpulseSettings::default();
+        let measured = FrfRequest::default();
+        IdentifyRequest {
+            amplitude: experiment.amplitude,
+            duration: experiment.duration,
+            end_time: experiment.transient.end_time,
+            step: experiment.transient.step,
+            spectral_radius: experiment.transient.spectral_radius,
+            sample_rate: experiment.sample_rate.unwrap_or(0.0),
+            sensor: experiment.sensor,
+            window: experiment.spectrum.window,
+            calibrate: false,
+            measured: Vec::new(),
+            measured_window: measured.window,
+            measured_band: measured.band,
+        }
+    }
+}
+
+impl IdentifyRequest {
+    /// The impulse experiment's settings, the request's ranges checked.
+    pub fn impulse_settings(&self) -> Result<ImpulseSettings, CommandError> {
+        let check = |name: &'static str, v: f64, ok: bool, why: &str| {
+            if v.is_finite() && ok {
+                Ok(v)
+            } else {
+                Err(CommandError::argument(name, v, why))
+            }
+        };
+        let positive = "must be a number > 0";
+        if let Some(a) = self.amplitude {
+            check("amplitude", a, a != 0.0, "must be a non-zero number")?;
+        }
+        if let Some(d) = self.duration {
+            check("duration", d, d > 0.0, positive)?;
+        }
+        let mut s = ImpulseSettings::default();
+        s.transient.end_time = check("end_time", self.end_time, self.end_time > 0.0, positive)?;
+        s.transient.step = check("step", self.step, self.step > 0.0, positive)?;
+        let r = self.spectral_radius;
+        s.transient.spectral_radius = check(
+            "spectral_radius",
+            r,
+            (0.0..=1.0).contains(&r),
+            "must be a number from 0 to 1",
+        )?;
+        let rate = self.sample_rate;
+        check("sample_rate", rate, rate >= 0.0, "must be a number ≥ 0")?;
+        s.sample_rate = (rate != 0.0).then_some(rate);
+        s.amplitude = self.amplitude;
+        s.duration = self.duration;
+        s.sensor = self.sensor.clone();
+        s.spectrum.window = self.window;
+        s.transient.validate()?;
+        Ok(s)
+    }
+}
+
+/// `identify`'s output: the parts it computed and the document.
+#[derive(Debug)]
+pub struct IdentifyRun {
+    /// The model.
+    pub model: Arc<crate::model::ValidModel>,
+    /// Its assembled system.
+    pub system: System,
+    /// The modes at the reference.
+    pub modal: ModalResult,
+    /// The impulse experiment.
+    pub impulse: ImpulseResult,
+    /// The measured records' analysis (`measured`).
+    pub measured: Option<FrfAnalysis>,
+    /// Whether the comparison is the paper's Table 3.
+    pub paper: bool,
+    /// The document (`--json`, `summary.json`) with the run's warnings.
+    pub document: Run<IdentifyOutput>,
+}
+
+/// Runs `identify` on `input`.
+pub fn run(input: &ModelInput, request: &IdentifyRequest) -> Result<IdentifyRun, CommandError> {
+    run_with_progress(input, request, &mut |_| {})
+}
+
+/// [`run`], telling `progress` the fraction of the integration's steps
+/// done.
+pub fn run_with_progress(
+    input: &ModelInput,
+    request: &IdentifyRequest,
+    progress: &mut dyn FnMut(f64),
+) -> Result<IdentifyRun, CommandError> {
+    let settings = request.impulse_settings()?;
+    let model = &input.model;
+    let system = System::new(model);
+    let modal_settings = ModalSettings {
+        modes: Some(IDENTIFY_MODES),
+        ..ModalSettings::default()
+    };
+    let (modal, modal_output) = crate::results::modal::modal(model, &system, &modal_settings)
+        .map_err(|e| CommandError::analysis(input.label(), e))?;
+    let impulse =
+        run_impulse(model, &settings, progress).map_err(|source| CommandError::Impulse {
+            model: input.label(),
+            source,
+        })?;
+    let (measured, notes) = if request.measured.is_empty() {
+        (None, Vec::new())
+    } else {
+        let frf = super::frf::run(
+            None,
+            &FrfRequest {
+                records: FrfRecords::Files(request.measured.clone()),
+                window: request.measured_window,
+                band: request.measured_band,
+                ..FrfRequest::default()
+            },
+        )?;
+        (Some(frf.analysis), frf.document.warnings)
+    };
+    let (experiment, paper) =
+        choose_experiment(model, modal_output.first_bending_hz, measured.as_ref());
+    let calibration = match (request.calibrate, &experiment) {
+        (true, Some(e)) => Some(
+            super::calibrate::equivalent_height(model, e.frequency_hz).map_err(|source| {
+                CommandError::Calibration {
+                    model: input.label(),
+                    source,
+                }
+            })?,
+        ),
+        (true, None) => return Err(CommandError::NoExperiment),
+        _ => None,
+    };
+    let output = IdentifyOutput::new(
+        model,
+        modal_output,
+        &impulse,
+        measured.as_ref(),
+        calibration.as_ref(),
+    );
+    // The records' notes name their files, not the model.
+    let mut document = Run::of(input, output);
+    document.warnings.extend(notes);
+    Ok(IdentifyRun {
+        model: Arc::clone(model),
+        system,
+        modal,
+        impulse,
+        measured,
+        paper,
+        document,
+    })
+}
