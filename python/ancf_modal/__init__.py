@@ -28,6 +28,7 @@ from ._native import (
     frf,
     frf_files,
     sweep,
+    sweep_merge,
 )
 
 __all__ = [
@@ -46,4 +47,5 @@ __all__ = [
     "frf",
     "frf_files",
     "sweep",
+    "sweep_merge",
 ]

@@ -3,6 +3,7 @@
 //! fields (`modes`), never a front end's flags or keywords; a front end
 //! that wants its own name in front maps [`CommandError::Argument`].
 
+use crate::analysis::sweep::SweepError;
 use crate::error::{AnalysisError, ModelError, SimulationError};
 use crate::measured::error::MeasuredError;
 use crate::output::files::WriteError;
@@ -49,6 +50,37 @@ pub enum CommandError {
     /// A figure could not be drawn or written.
     #[error(transparent)]
     Plot(#[from] PlotError),
+
+    // `sweep`, `sweep-merge` (and `modal --sweep-load`):
+    /// A request field that has no default was not given (`quantity`).
+    #[error("{name} is required (one of: {one_of})")]
+    Required { name: &'static str, one_of: String },
+    /// The sweep's `params` (or its other settings) define no sweep.
+    #[error("params")]
+    SweepParams(#[source] SweepError),
+    /// Shard documents that do not join into one sweep, or a document that
+    /// is not a sweep's.
+    #[error(transparent)]
+    SweepMerge(#[from] SweepError),
+    /// A file (a shard document) could not be read.
+    #[error("{}: cannot read the file", file.display())]
+    ReadFile {
+        file: PathBuf,
+        #[source]
+        io: std::io::Error,
+    },
+    /// Points of a sweep failed (each is recorded in the document; the
+    /// command line exits with an error after writing everything).
+    #[error("{failed} of {total} points failed (first: point {index}: {message})")]
+    PointsFailed {
+        failed: usize,
+        total: usize,
+        index: usize,
+        message: String,
+    },
+    /// A load sweep of a model without loads.
+    #[error("the model has no loads to scale")]
+    NoLoadsToScale,
 }
 
 impl CommandError {
@@ -91,6 +123,13 @@ impl CommandError {
                     | SimulationError::ReleaseNeedsEquilibrium { .. }
             ),
             CommandError::Analysis { .. } => false,
+            // `sweep`, `sweep-merge`:
+            CommandError::Required { .. }
+            | CommandError::SweepParams(_)
+            | CommandError::SweepMerge(_)
+            | CommandError::ReadFile { .. }
+            | CommandError::NoLoadsToScale => true,
+            CommandError::PointsFailed { .. } => false,
         }
     }
 }

@@ -14,11 +14,16 @@
 //! |---|---|---|
 //! | `modal` | [`modal::ModalRequest`] | [`modal::ModalRun`] |
 //! | `static` | [`statics::StaticRequest`] | [`statics::StaticRun`] |
+//! | `sweep` | [`sweep::SweepRequest`] | [`sweep::SweepRun`] |
+//! | `sweep-merge` | [`sweep_merge::SweepMergeRequest`] | [`sweep::SweepRun`] |
 
 pub mod error;
 pub mod input;
 pub mod modal;
 pub mod statics;
+// sweep, sweep-merge:
+pub mod sweep;
+pub mod sweep_merge;
 
 pub use error::CommandError;
 pub use input::ModelInput;
