@@ -30,6 +30,7 @@ from ._native import (
     frf,
     frf_files,
     sweep,
+    sweep_merge,
 )
 
 __all__ = [
@@ -50,4 +51,5 @@ __all__ = [
     "frf",
     "frf_files",
     "sweep",
+    "sweep_merge",
 ]

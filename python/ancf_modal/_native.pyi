@@ -26,6 +26,7 @@ __all__ = [
     "frf",
     "frf_files",
     "sweep",
+    "sweep_merge",
     "_panic",
 ]
 
@@ -539,12 +540,21 @@ def sweep(
     step: Optional[float] = None,
     end_time: Optional[float] = None,
     threads: Optional[int] = None,
+    shard: Optional[Tuple[int, int]] = None,
 ) -> SweepResult:
     """A parameter study (``ancf-modal sweep``): ``quantity``
     (first_bending_hz [Hz], frequency:K [Hz], time_to_distance_s [s],
     peak:SENSOR) over the grid of ``params`` {name: "LO:HI:N[:log]",
     (LO, HI, N), "V1,V2,..." or a list of the values} [SI]; ``step``, ``end_time`` [s] of transient quantities;
-    ``threads`` workers. KeyboardInterrupt stops it."""
+    ``threads`` workers; ``shard=(k, n)`` only the points whose index is
+    k − 1 modulo n (``--shard K/N``). KeyboardInterrupt stops it."""
+
+def sweep_merge(
+    shards: Sequence[Union[SweepResult, Mapping[str, Any], str, "os.PathLike[str]"]],
+) -> SweepResult:
+    """Joins the shards of a sweep (``ancf-modal sweep-merge``): results of
+    ``sweep(..., shard=(k, n))``, their ``to_dict()``s or ``sweep --shard
+    K/N --json`` files, into the result of one run of the whole grid."""
 
 def frf(
     force: npt.ArrayLike,

@@ -88,6 +88,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<transient::PyTransientResult>()?;
     m.add_class::<identify::PyIdentifyResult>()?;
     m.add_function(wrap_pyfunction!(sweep::sweep_function, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_merge_function, m)?)?;
     m.add_function(wrap_pyfunction!(frf::frf, m)?)?;
     m.add_function(wrap_pyfunction!(_panic, m)?)?;
     m.add_function(wrap_pyfunction!(frf::frf_files, m)?)?;

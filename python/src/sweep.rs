@@ -1,21 +1,23 @@
-//! `ancf_modal.sweep(...)` (the command line's `sweep`) and its result,
-//! `ancf_modal.SweepResult`.
+//! `ancf_modal.sweep(...)` and `ancf_modal.sweep_merge(...)` (the command
+//! line's `sweep` and `sweep-merge`) and their result,
+//! `ancf_modal.SweepResult`: front ends over [`ancf::commands::sweep`] and
+//! [`ancf::commands::sweep_merge`].
 //!
 //! The points run in chunks, each with the GIL released and in parallel;
 //! between chunks a pending `KeyboardInterrupt` (or other signal) stops the
 //! sweep. A chunk grows while its points are quick, so it takes about a
 //! quarter of a second at most.
-//!
-//! [`PySweepResult::document`] is the one place that builds `to_dict()`.
 
 use crate::errors::{compute, one_line, Failure};
 use crate::model::{choice, PyModel};
-use ancf::analysis::sweep::{Quantity, RawPoint, Sweep, SweepDocument, SweepRun, SweepSettings};
+use ancf::analysis::sweep::{Quantity, RawPoint, Shard};
 use ancf::analysis::EigenMethod;
+use ancf::commands::sweep::{prepare, SweepRequest, SweepRun};
+use ancf::commands::sweep_merge::{self, SweepMergeRequest};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
-use rayon::prelude::*;
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 /// A chunk of points may take this long before the next signal check.
@@ -56,14 +58,12 @@ pub struct Request<'a> {
     pub step: Option<f64>,
     pub end_time: Option<f64>,
     pub threads: Option<i64>,
+    pub shard: Option<(i64, i64)>,
 }
 
-/// The points `indices`, in parallel on `pool` (serially when `None`).
-fn points(sweep: &Sweep, indices: &[usize], pool: Option<&rayon::ThreadPool>) -> Vec<RawPoint> {
-    match pool {
-        None => indices.iter().map(|&i| sweep.point(i)).collect(),
-        Some(pool) => pool.install(|| indices.par_iter().map(|&i| sweep.point(i)).collect()),
-    }
+/// A count argument: negative values are out of range as 0 is.
+fn count(v: i64) -> usize {
+    usize::try_from(v).unwrap_or(0)
 }
 
 /// A parameter study of `model`.
@@ -75,22 +75,7 @@ pub fn run(
 ) -> PyResult<PySweepResult> {
     let quantity = Quantity::parse(r.quantity)
         .map_err(|e| Failure::argument("quantity", r.quantity, &one_line(&e)))?;
-    if r.modes < 1 {
-        return Err(Failure::argument("modes", r.modes, "must be a whole number ≥ 1").into());
-    }
-    for (name, v) in [("step", r.step), ("end_time", r.end_time)] {
-        if let Some(v) = v.filter(|v| !(v.is_finite() && *v > 0.0)) {
-            return Err(Failure::argument(name, v, "must be a number > 0").into());
-        }
-    }
-    let threads = match r.threads {
-        Some(n) if n < 1 => {
-            return Err(Failure::argument("threads", n, "must be a whole number ≥ 1").into())
-        }
-        Some(n) => Some(n as usize),
-        None => None,
-    };
-    let method = match choice("solver", r.solver, &["auto", "dense", "sparse"])? {
+    let solver = match choice("solver", r.solver, &["auto", "dense", "sparse"])? {
         "dense" => EigenMethod::Dense,
         "sparse" => EigenMethod::Sparse,
         _ => EigenMethod::Auto,
@@ -99,76 +84,112 @@ pub fn run(
     for (k, v) in params.iter() {
         specs.push(spec(&k.extract::<String>()?, &v)?);
     }
-    let settings = SweepSettings {
-        tracked_modes: r.modes as usize,
-        prestress: r.prestress,
-        method,
+    let request = SweepRequest {
+        params: specs,
+        quantity: Some(quantity),
         step: r.step,
         end_time: r.end_time,
-        ..SweepSettings::new(quantity)
+        modes: count(r.modes),
+        prestress: r.prestress,
+        solver,
+        shard: r.shard.map(|(k, n)| Shard {
+            index: count(k),
+            count: count(n),
+        }),
+        threads: r.threads.map(count),
     };
-    let shared = model.model.clone();
-    let sweep = compute(py, move || {
-        Sweep::new(&shared, &specs, settings)
-            .map_err(|e| Failure::Input(format!("params: {}", one_line(&e))))
-    })?;
-    let pool = match threads {
-        Some(1) => None,
-        n => Some(
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(n.unwrap_or(0))
-                .build()
-                .map_err(|e| Failure::argument("threads", n.unwrap_or(0), &e.to_string()))?,
-        ),
-    };
-    let indices = sweep.indices(None);
-    let mut chunk = pool.as_ref().map_or(1, |p| p.current_num_threads());
+    let input = model.input();
+    let job = compute(py, move || prepare(&input, &request).map_err(Failure::from))?;
+    let indices = job.indices();
+    let mut chunk = job.workers();
     let mut done: Vec<RawPoint> = Vec::with_capacity(indices.len());
     let mut start = 0;
     while start < indices.len() {
         let end = (start + chunk).min(indices.len());
         let started = Instant::now();
-        let (s, pool_ref, part) = (&sweep, pool.as_ref(), &indices[start..end]);
-        done.extend(compute(py, move || Ok(points(s, part, pool_ref)))?);
+        let (j, part) = (&job, &indices[start..end]);
+        done.extend(compute(py, move || Ok(j.points(part, &|| {})))?);
         py.check_signals()?;
         if started.elapsed() < CHUNK_TIME / 4 {
             chunk *= 2;
         }
         start = end;
     }
-    let mut warnings = Vec::new();
-    for p in &done {
-        for w in &p.warnings {
-            warnings.push(format!("point {}: {w}", p.index));
-        }
+    let j = &job;
+    let run = compute(py, move || Ok(j.finish(done)))?;
+    // The points' own warnings as Python warnings (`RuntimeWarning`); the
+    // model's were given when it was read.
+    crate::warn_runtime(py, run.document.own_warnings())?;
+    Ok(PySweepResult { run })
+}
+
+/// A shard for `sweep_merge`, as given.
+enum GivenShard {
+    /// A result of `sweep(..., shard=(k, n))`.
+    Result(ancf::analysis::sweep::SweepDocument),
+    /// Its `to_dict()`, as JSON text.
+    Json(String),
+    /// A file of `sweep --shard K/N --json`.
+    File(PathBuf),
+}
+
+/// Joins shards (results, their dicts or files) into the complete sweep.
+pub fn merge(py: Python<'_>, shards: &Bound<'_, PyAny>) -> PyResult<PySweepResult> {
+    if shards.is_instance_of::<PyString>() || shards.is_instance_of::<PyDict>() {
+        return Err(Failure::argument(
+            "shards",
+            shards.repr().map(|r| r.to_string()).unwrap_or_default(),
+            "must be a sequence of shards (SweepResults, their to_dict()s or file paths)",
+        )
+        .into());
     }
-    let run = SweepRun {
-        header: sweep.header.clone(),
-        shard: None,
-        points: done,
-    };
-    let document = compute(py, move || {
-        Ok(SweepDocument {
-            tool_version: Some(ancf::results::provenance::tool_version().to_string()),
-            model_sha256: Some(model.sha256.clone()),
-            warnings,
-            ..run.document()
-        })
+    let mut given = Vec::new();
+    for item in shards.try_iter()? {
+        let item = item?;
+        given.push(if let Ok(r) = item.cast::<PySweepResult>() {
+            GivenShard::Result(r.get().run.stamped())
+        } else if item.is_instance_of::<PyDict>() {
+            let text = py.import("json")?.call_method1("dumps", (&item,))?;
+            GivenShard::Json(text.extract()?)
+        } else {
+            GivenShard::File(item.extract().map_err(|_| {
+                Failure::argument(
+                    "shards",
+                    item.repr().map(|r| r.to_string()).unwrap_or_default(),
+                    "each shard must be a SweepResult, its to_dict() or a file path",
+                )
+            })?)
+        });
+    }
+    let run = compute(py, move || {
+        let mut request = SweepMergeRequest::default();
+        for (i, shard) in given.into_iter().enumerate() {
+            let name = format!("shards[{i}]");
+            request.shards.push(match shard {
+                GivenShard::Result(doc) => (name, doc),
+                GivenShard::Json(text) => {
+                    let doc = sweep_merge::parse(&name, &text).map_err(Failure::from)?;
+                    (name, doc)
+                }
+                GivenShard::File(path) => sweep_merge::read(&path).map_err(Failure::from)?,
+            });
+        }
+        sweep_merge::run(&request).map_err(Failure::from)
     })?;
-    Ok(PySweepResult { document })
+    Ok(PySweepResult { run })
 }
 
 /// The result of `ancf_modal.sweep`: the grid, the quantity at each point
 /// and, for a tracked quantity, the tracked frequencies.
 #[pyclass(name = "SweepResult", module = "ancf_modal", frozen)]
 pub struct PySweepResult {
-    document: SweepDocument,
+    run: SweepRun,
 }
 
 impl PySweepResult {
-    /// The sweep's JSON document (`sweep --json`).
-    fn document(&self) -> &SweepDocument {
-        &self.document
+    /// The sweep without its provenance (the points, the parameters).
+    fn document(&self) -> &ancf::analysis::sweep::SweepDocument {
+        &self.run.document.output
     }
 }
 
@@ -177,7 +198,7 @@ impl PySweepResult {
     /// The parameters' names, in the order of `values`' columns.
     #[getter]
     fn names(&self) -> Vec<String> {
-        let p = &self.document.parameters;
+        let p = &self.document().parameters;
         p.iter().map(|p| p.name.clone()).collect()
     }
 
@@ -186,7 +207,7 @@ impl PySweepResult {
     #[getter]
     fn values<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let rows: Vec<Vec<f64>> = self
-            .document
+            .document()
             .points
             .iter()
             .map(|p| p.values.clone())
@@ -198,7 +219,7 @@ impl PySweepResult {
     #[getter]
     fn result<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let r = self
-            .document
+            .document()
             .points
             .iter()
             .map(|p| p.result.unwrap_or(f64::NAN));
@@ -208,7 +229,7 @@ impl PySweepResult {
     /// Each point's error message, None where it succeeded.
     #[getter]
     fn errors(&self) -> Vec<Option<String>> {
-        self.document
+        self.document()
             .points
             .iter()
             .map(|p| p.error.clone())
@@ -218,18 +239,18 @@ impl PySweepResult {
     /// Points that failed.
     #[getter]
     fn failed_points(&self) -> usize {
-        self.document.failed_points
+        self.document().failed_points
     }
 
     /// The tracked modes' frequencies [Hz], points × tracked modes (NaN
     /// where a mode was not found); None for an untracked quantity.
     #[getter]
     fn frequencies_hz<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyArray2<f64>>>> {
-        let Some(k) = self.document.tracked_modes else {
+        let Some(k) = self.document().tracked_modes else {
             return Ok(None);
         };
         let rows: Vec<Vec<f64>> = self
-            .document
+            .document()
             .points
             .iter()
             .map(|p| match &p.frequencies_hz {
@@ -244,13 +265,13 @@ impl PySweepResult {
 
     /// The sweep's JSON document (`sweep --json`) as a dict.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let doc =
-            serde_json::to_value(self.document()).map_err(|e| Failure::Analysis(e.to_string()))?;
+        let doc = serde_json::to_value(self.run.stamped())
+            .map_err(|e| Failure::Analysis(e.to_string()))?;
         crate::json_to_python(py, &doc)
     }
 
     fn __repr__(&self) -> String {
-        ancf::output::sweep_report::sweep_table(&self.document)
+        self.run.text()
     }
 }
 
@@ -262,11 +283,13 @@ impl PySweepResult {
 /// `load_scale:ID,...`; a name ending in `+` offsets the model's value),
 /// values SI. `modes` tracked modes [count], `prestress` linearizes at the
 /// equilibrium, `step` and `end_time` [s] set transient quantities'
-/// integration, `threads` workers (default all cores; 1 = serial). A point
-/// that fails is recorded (`errors`, NaN in `result`) and the sweep goes
-/// on; KeyboardInterrupt stops it.
+/// integration, `threads` workers (default all cores; 1 = serial),
+/// `shard=(k, n)` computes only the points whose index is k − 1 modulo n
+/// (as `--shard K/N`; join the shards with `sweep_merge`). A point that
+/// fails is recorded (`errors`, NaN in `result`) and the sweep goes on;
+/// KeyboardInterrupt stops it.
 #[pyfunction(name = "sweep")]
-#[pyo3(signature = (model, params, quantity, modes = 6, prestress = false, solver = "auto", step = None, end_time = None, threads = None))]
+#[pyo3(signature = (model, params, quantity, modes = 6, prestress = false, solver = "auto", step = None, end_time = None, threads = None, shard = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn sweep_function(
     py: Python<'_>,
@@ -279,6 +302,7 @@ pub fn sweep_function(
     step: Option<f64>,
     end_time: Option<f64>,
     threads: Option<i64>,
+    shard: Option<(i64, i64)>,
 ) -> PyResult<PySweepResult> {
     let r = Request {
         quantity,
@@ -288,6 +312,17 @@ pub fn sweep_function(
         step,
         end_time,
         threads,
+        shard,
     };
     run(py, &model, params, r)
+}
+
+/// Joins the shards of a sweep (the command line's `sweep-merge`) into the
+/// result one run of the whole grid gives: `shards` is a sequence of
+/// `SweepResult`s of `sweep(..., shard=(k, n))`, their `to_dict()`s, or
+/// paths of `sweep --shard K/N --json` files (mixed as you like). The
+/// merged result's `to_dict()` is `sweep-merge --json`'s document.
+#[pyfunction(name = "sweep_merge")]
+pub fn sweep_merge_function(py: Python<'_>, shards: &Bound<'_, PyAny>) -> PyResult<PySweepResult> {
+    merge(py, shards)
 }

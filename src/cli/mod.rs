@@ -99,8 +99,8 @@ pub fn run(cli: Cli) -> Result<common::Warnings> {
         Command::Calibrate(a) => calibrate::run(a),
         Command::Convergence(a) => convergence::run(a),
         Command::Static(a) => statics::run(a),
-        Command::Sweep(a) => global(sweep::run(a)),
-        Command::SweepMerge(a) => global(sweep_merge::run(a)),
+        Command::Sweep(a) => sweep::run(a),
+        Command::SweepMerge(a) => sweep_merge::run(a),
         Command::Transient(a) => transient::run(a),
         Command::SwitchOff(a) => switch_off::run(a),
         Command::Schema(a) => {

@@ -10,7 +10,7 @@ use anyhow::Result;
 
 pub fn run(args: ModalArgs) -> Result<Warnings> {
     if let Some(range) = args.sweep_load {
-        return super::sweep::run_load_sweep(&args, range).map(|()| super::common::warnings());
+        return super::sweep::run_load_sweep(&args, range);
     }
     if args.prestress {
         args.output.only(

@@ -1,19 +1,15 @@
-//! `ancf-modal sweep`: a quantity over a grid of model parameters, in
-//! parallel, optionally one shard of it. Also `modal --sweep-load`, which is
-//! this command with one `load_scale:` parameter over all loads.
+//! `ancf-modal sweep`: maps the flags to [`ancf_modal::commands::sweep`]
+//! and renders its output (table or JSON, CSV, plot), with a progress bar
+//! on a terminal. Also `modal --sweep-load`, which is this command with one
+//! `load_scale:` parameter over all loads.
 
 use super::args::{ModalArgs, Solver, Sweep as LoadRange};
-use super::common::{load_model, write_output};
+use super::common::{write_output, Warnings};
 use super::output::{Output, OutputArgs};
-use ancf_modal::analysis::sweep::param::load_labels;
-use ancf_modal::analysis::sweep::{
-    Execution, Quantity, Shard, Sweep, SweepDocument, SweepRun, SweepSettings,
-    DEFAULT_TRACKED_MODES,
-};
-use ancf_modal::output::figures::sweep::{check_plottable, write_sweep_figure};
-use ancf_modal::output::sweep_report::{sweep_csv, sweep_table};
-use ancf_modal::results::provenance::tool_version;
-use anyhow::{anyhow, bail, Context, Result};
+use ancf_modal::analysis::sweep::{Quantity, Shard};
+use ancf_modal::commands::sweep::{input, prepare, SweepJob, SweepRequest, SweepRun};
+use ancf_modal::commands::{CommandError, ModelInput};
+use anyhow::{anyhow, bail, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -51,7 +47,7 @@ pub struct SweepArgs {
     pub end_time: Option<f64>,
     /// Elastic modes tracked for frequency:K (at least K; all are drawn by
     /// --plot and written by --csv).
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_TRACKED_MODES, allow_hyphen_values = true, value_parser = super::values::at_least_one_usize)]
+    #[arg(long, value_name = "N", default_value_t = SweepRequest::default().modes, allow_hyphen_values = true, value_parser = super::values::at_least_one_usize)]
     pub modes: usize,
     /// Linearize at the static equilibrium under the model's constant loads
     /// and gravity (implied by a load_scale parameter).
@@ -74,76 +70,67 @@ pub struct SweepArgs {
 /// The outputs of `sweep` and `sweep-merge`.
 pub const SWEEP_OUTPUTS: &[Output] = &[Output::Json, Output::Csv, Output::Plot];
 
-pub fn run(args: SweepArgs) -> Result<()> {
+pub fn run(args: SweepArgs) -> Result<Warnings> {
     args.outputs.only("sweep", SWEEP_OUTPUTS)?;
-    let quantity = match &args.quantity {
-        Some(q) => Quantity::parse(q).map_err(|e| anyhow!("--quantity: {e}"))?,
-        None => bail!(
-            "--quantity is required (one of: {})",
-            ancf_modal::analysis::sweep::quantity::AVAILABLE.join(", ")
-        ),
-    };
-    let model = match (&args.model, &quantity) {
-        (None, Quantity::TimeToDistance) => ancf_modal::Model::switch_off_builtin(),
-        _ => load_model(args.model.as_deref())?,
-    };
+    let quantity = args
+        .quantity
+        .as_deref()
+        .map(Quantity::parse)
+        .transpose()
+        .map_err(|e| anyhow!("--quantity: {e}"))?;
+    let input = input(args.model.as_deref(), quantity.as_ref())?;
     let shard = args
         .shard
         .as_deref()
         .map(Shard::parse)
         .transpose()
         .map_err(|e| anyhow!("--shard: {e}"))?;
-    let settings = SweepSettings {
-        tracked_modes: args.modes,
-        prestress: args.prestress,
-        method: args.solver.into(),
+    let request = SweepRequest {
+        params: args.params,
+        quantity,
         step: args.step,
         end_time: args.end_time,
-        ..SweepSettings::new(quantity)
+        modes: args.modes,
+        prestress: args.prestress,
+        solver: args.solver.into(),
+        shard,
+        threads: args.threads,
     };
-    let sweep = Sweep::new(&model, &args.params, settings).map_err(|e| anyhow!("--param: {e}"))?;
-    if let Some(path) = &args.outputs.plot {
-        if shard.is_some() {
+    run_request(&input, &request, &args.outputs)
+}
+
+/// Prepares the sweep, checks the plot, computes and renders.
+fn run_request(input: &ModelInput, request: &SweepRequest, out: &OutputArgs) -> Result<Warnings> {
+    let job = prepare(input, request).map_err(flagged)?;
+    if let Some(path) = &out.plot {
+        if request.shard.is_some() {
             bail!("--plot: a shard is part of a sweep; draw the merged sweep (`ancf-modal sweep-merge SHARD.json... --plot FILE`)");
         }
-        check_plottable(path, sweep.parameters.len()).map_err(|e| anyhow!("--plot: {e}"))?;
+        job.check_plot(path).map_err(|e| anyhow!("--plot: {e}"))?;
     }
-    let sha = model_sha256(
-        args.model.as_deref(),
-        sweep.settings.quantity == Quantity::TimeToDistance,
-    )?;
-    let run = compute(&sweep, shard, args.threads)?;
-    for p in &run.points {
-        for w in &p.warnings {
-            super::common::warn(format!("point {}: {w}", p.index));
+    let run = compute(&job);
+    emit(&run, out)?;
+    Ok(run.document.warnings)
+}
+
+/// A sweep's error with the flag it concerns in front (`--param: …`,
+/// `--quantity is required …`); the library names request fields.
+fn flagged(e: CommandError) -> anyhow::Error {
+    match e {
+        CommandError::SweepParams(e) => anyhow!("--param: {e}"),
+        CommandError::Required { name, one_of } => {
+            anyhow!("--{name} is required (one of: {one_of})")
         }
+        e => e.into(),
     }
-    let doc = SweepDocument {
-        tool_version: Some(tool_version().to_string()),
-        model_sha256: Some(sha),
-        warnings: super::common::warnings(),
-        ..run.document()
-    };
-    emit(&doc, &args.outputs)
 }
 
-/// SHA-256 of the model file, or of the built-in model's text (the
-/// switch-off assembly for a switch-off quantity).
-fn model_sha256(path: Option<&std::path::Path>, switch_off: bool) -> Result<String> {
-    let builtin = if switch_off {
-        ancf_modal::model::SWITCH_OFF_MODEL_JSON
-    } else {
-        ancf_modal::model::DEFAULT_MODEL_JSON
-    };
-    super::common::model_sha256_or(path, builtin)
-}
-
-/// Runs the sweep on `threads` workers (all cores by default) with a
-/// progress bar when stderr is a terminal.
-fn compute(sweep: &Sweep, shard: Option<Shard>, threads: Option<usize>) -> Result<SweepRun> {
-    let count = sweep.indices(shard).len() as u64;
+/// Computes the job's points with a progress bar when stderr is a
+/// terminal.
+fn compute(job: &SweepJob) -> SweepRun {
+    let indices = job.indices();
     let bar = if std::io::stderr().is_terminal() {
-        let bar = ProgressBar::new(count);
+        let bar = ProgressBar::new(indices.len() as u64);
         bar.set_style(
             ProgressStyle::with_template("{bar:40} {pos}/{len} points, {elapsed} (eta {eta})")
                 .expect("a valid template"),
@@ -152,75 +139,42 @@ fn compute(sweep: &Sweep, shard: Option<Shard>, threads: Option<usize>) -> Resul
     } else {
         ProgressBar::hidden()
     };
-    let progress = || bar.inc(1);
-    let run = match threads {
-        Some(1) => sweep.run(shard, Execution::Serial, &progress),
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .context("--threads: cannot start the worker threads")?
-            .install(|| sweep.run(shard, Execution::Parallel, &progress)),
-        None => sweep.run(shard, Execution::Parallel, &progress),
-    };
+    let points = job.points(&indices, &|| bar.inc(1));
     bar.finish_and_clear();
-    Ok(run)
+    job.finish(points)
 }
 
 /// Writes the CSV and the plot, prints the document or the table, and
 /// fails (exit code 1) when any point failed — after everything is out.
-pub fn emit(doc: &SweepDocument, out: &OutputArgs) -> Result<()> {
+pub fn emit(run: &SweepRun, out: &OutputArgs) -> Result<()> {
     if let Some(path) = &out.csv {
-        write_output(path, &sweep_csv(doc))?;
+        write_output(path, &run.csv())?;
     }
     if let Some(path) = &out.plot {
-        write_sweep_figure(doc, path)?;
+        run.write_plot(path)?;
     }
     if out.json {
-        outln!("{}", serde_json::to_string_pretty(doc)?);
+        outln!("{}", serde_json::to_string_pretty(&run.stamped())?);
     } else {
-        out!("{}", sweep_table(doc));
+        out!("{}", run.text());
     }
-    if doc.failed_points > 0 {
-        let first = doc
-            .points
-            .iter()
-            .find_map(|p| p.error.as_deref().map(|e| (p.index, e)));
-        let (index, message) = first.unwrap_or((0, ""));
-        bail!(
-            "{} of {} points failed (first: point {index}: {message})",
-            doc.failed_points,
-            doc.points.len()
-        );
+    match run.failure() {
+        Some(e) => Err(e.into()),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 /// `modal --sweep-load A:B:N`: `sweep` with `load_scale:` over every load
 /// and `frequency:1`, tracking the first min(--modes, 6) elastic modes.
-pub fn run_load_sweep(args: &ModalArgs, range: LoadRange) -> Result<()> {
-    let model = load_model(args.model.as_deref())?;
-    if model.loads.is_empty() {
-        bail!("--sweep-load: the model has no loads to scale");
-    }
-    let loads = load_labels(&model);
-    let param = format!(
-        "load_scale:{}={:?}:{:?}:{}",
-        loads.join(","),
-        range.from,
-        range.to,
-        range.count
-    );
-    run(SweepArgs {
-        model: args.model.clone(),
-        params: vec![param],
-        quantity: Some(String::from("frequency:1")),
-        step: None,
-        end_time: None,
-        modes: (args.modes as usize).min(6),
-        prestress: true,
-        solver: args.solver,
-        shard: None,
-        threads: None,
-        outputs: args.output.clone(),
-    })
+pub fn run_load_sweep(args: &ModalArgs, range: LoadRange) -> Result<Warnings> {
+    let input = ModelInput::load(args.model.as_deref())?;
+    let request = SweepRequest::load_sweep(
+        &input.model,
+        (range.from, range.to, range.count),
+        args.modes as usize,
+        args.solver.into(),
+    )
+    .map_err(|e| anyhow::Error::new(e).context("--sweep-load"))?;
+    args.output.only("sweep", SWEEP_OUTPUTS)?;
+    run_request(&input, &request, &args.output)
 }

@@ -5,6 +5,7 @@
 
 use crate::analysis::calibrate::CalibrationError;
 use crate::analysis::impulse::ImpulseError;
+use crate::analysis::sweep::SweepError;
 use crate::error::{AnalysisError, ModelError, SimulationError, TransientError};
 use crate::measured::error::MeasuredError;
 use crate::output::files::WriteError;
@@ -101,6 +102,37 @@ pub enum CommandError {
         #[source]
         io: std::io::Error,
     },
+
+    // `sweep`, `sweep-merge` (and `modal --sweep-load`):
+    /// A request field that has no default was not given (`quantity`).
+    #[error("{name} is required (one of: {one_of})")]
+    Required { name: &'static str, one_of: String },
+    /// The sweep's `params` (or its other settings) define no sweep.
+    #[error("params")]
+    SweepParams(#[source] SweepError),
+    /// Shard documents that do not join into one sweep, or a document that
+    /// is not a sweep's.
+    #[error(transparent)]
+    SweepMerge(#[from] SweepError),
+    /// A file (a shard document) could not be read.
+    #[error("{}: cannot read the file", file.display())]
+    ReadFile {
+        file: PathBuf,
+        #[source]
+        io: std::io::Error,
+    },
+    /// Points of a sweep failed (each is recorded in the document; the
+    /// command line exits with an error after writing everything).
+    #[error("{failed} of {total} points failed (first: point {index}: {message})")]
+    PointsFailed {
+        failed: usize,
+        total: usize,
+        index: usize,
+        message: String,
+    },
+    /// A load sweep of a model without loads.
+    #[error("the model has no loads to scale")]
+    NoLoadsToScale,
 }
 
 impl CommandError {
@@ -182,6 +214,13 @@ impl CommandError {
             // --- `frf` and `identify` ---
             CommandError::Overlay { source, .. } => matches!(source, OverlayError::Frf(_)),
             CommandError::NoExperiment | CommandError::OutputDir { .. } => true,
+            // `sweep`, `sweep-merge`:
+            CommandError::Required { .. }
+            | CommandError::SweepParams(_)
+            | CommandError::SweepMerge(_)
+            | CommandError::ReadFile { .. }
+            | CommandError::NoLoadsToScale => true,
+            CommandError::PointsFailed { .. } => false,
         }
     }
 }

@@ -21,6 +21,8 @@
 //! | `calibrate` | [`calibrate::CalibrateRequest`] | [`calibrate::CalibrateRun`] |
 //! | `frf` | [`frf::FrfRequest`] | [`frf::FrfRun`] |
 //! | `identify` | [`identify::IdentifyRequest`] | [`identify::IdentifyRun`] |
+//! | `sweep` | [`sweep::SweepRequest`] | [`sweep::SweepRun`] |
+//! | `sweep-merge` | [`sweep_merge::SweepMergeRequest`] | [`sweep::SweepRun`] |
 
 pub mod convergence;
 pub mod error;
@@ -34,6 +36,9 @@ pub mod calibrate;
 pub mod impulse;
 pub mod switch_off;
 pub mod transient;
+// sweep, sweep-merge:
+pub mod sweep;
+pub mod sweep_merge;
 
 pub use error::CommandError;
 pub use input::ModelInput;
