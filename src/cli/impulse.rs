@@ -3,16 +3,15 @@
 //! flags of the experiment are shared with `calibrate --method impulse`,
 //! `identify` and `report`.
 
-use super::common::{command_error, print_document, source_label, write_output, Warnings};
-use ancf_modal::analysis::impulse::{run_impulse, ImpulseResult, ImpulseSettings};
+use super::common::{command_error, print_document, write_output, Warnings};
 use ancf_modal::commands::impulse::{run_with_progress, spectrum_path, ImpulseRequest};
 use ancf_modal::commands::ModelInput;
 use ancf_modal::output::plot::Format;
 use ancf_modal::signal::Window;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
 use std::io::{IsTerminal, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Flags of the experiment, shared with `identify`.
 #[derive(Debug, Args)]
@@ -58,11 +57,6 @@ impl ExperimentArgs {
             window: self.window,
         }
     }
-
-    /// The experiment's settings.
-    pub fn settings(&self) -> ImpulseSettings {
-        self.request().settings()
-    }
 }
 
 #[derive(Debug, Args)]
@@ -106,19 +100,6 @@ impl Progress {
             eprint!("\r{:30}\r", "");
         }
     }
-}
-
-/// Run the experiment with a progress line on a terminal (for `identify`).
-pub fn experiment(
-    model: &ancf_modal::model::ValidModel,
-    path: Option<&Path>,
-    args: &ExperimentArgs,
-) -> Result<ImpulseResult> {
-    let progress = Progress::new();
-    let result = run_impulse(model, &args.settings(), &mut |f| progress.update(f))
-        .with_context(|| source_label(path));
-    progress.clear();
-    result
 }
 
 pub fn run(args: ImpulseArgs) -> Result<Warnings> {

@@ -90,10 +90,9 @@ pub struct SchemaArgs {
 
 /// Runs the command; its warnings, to print after a success.
 pub fn run(cli: Cli) -> Result<common::Warnings> {
-    let global = |r: Result<()>| r.map(|()| common::warnings());
     match cli.command {
         Command::Identify(a) => identify::run(a),
-        Command::Report(a) => global(report::run(a)),
+        Command::Report(a) => report::run(a),
         Command::Impulse(a) => impulse::run(a),
         Command::Modal(a) => modal::run(a),
         Command::Calibrate(a) => calibrate::run(a),

@@ -4,7 +4,7 @@
 //! animated modes, the pre-stressed modes beside them (`--prestress`) and
 //! the switch-off when the model releases something.
 
-use super::common::{load_model, source_label, write_output};
+use super::common::{source_label, write_output, Warnings};
 use super::identify::{compute, request, ComparisonArgs};
 use super::impulse::ExperimentArgs;
 use ancf_modal::analysis::impulse::excitation;
@@ -43,18 +43,16 @@ pub struct ReportArgs {
     pub comparison: ComparisonArgs,
 }
 
-pub fn run(args: ReportArgs) -> Result<()> {
+pub fn run(args: ReportArgs) -> Result<Warnings> {
     let path = args.model.clone();
     let out = args.out.clone();
     let prestress = args.prestress;
-    let model = load_model(path.as_deref())?;
-    if excitation(&model).is_ok() {
-        let input = ancf_modal::commands::ModelInput::load(path.as_deref())?;
+    let input = ancf_modal::commands::ModelInput::load(path.as_deref())?;
+    let model = &*input.model;
+    let mut warnings = input.unit_warnings();
+    if excitation(model).is_ok() {
         let id = compute(&input, &request(&args.experiment, &args.comparison))?;
-        // The model's unit warnings were given when it was loaded above.
-        for w in id.document.own_warnings() {
-            super::common::warn(w.clone());
-        }
+        warnings.extend(id.document.own_warnings().iter().cloned());
         write_report(&out, &id, path.as_deref(), prestress)?;
     } else {
         if args.comparison.calibrate || !args.comparison.measured.is_empty() {
@@ -63,15 +61,15 @@ pub fn run(args: ReportArgs) -> Result<()> {
                 source_label(path.as_deref())
             );
         }
-        let system = System::new(&model);
+        let system = System::new(model);
         let settings = ModalSettings {
             modes: Some(IDENTIFY_MODES),
             ..ModalSettings::default()
         };
-        let (modal, output) = ancf_modal::results::modal::modal(&model, &system, &settings)
+        let (modal, output) = ancf_modal::results::modal::modal(model, &system, &settings)
             .with_context(|| source_label(path.as_deref()))?;
         let parts = Parts {
-            model: &model,
+            model,
             system: &system,
             modal: &modal,
             damping_ratio: output.modes.iter().map(|m| m.damping_ratio).collect(),
@@ -80,7 +78,7 @@ pub fn run(args: ReportArgs) -> Result<()> {
         write(&out, parts, path.as_deref(), prestress)?;
     }
     outln!("report written to {}", out.display());
-    Ok(())
+    Ok(warnings)
 }
 
 /// The report of what `identify` computed (`identify --html`, `report`).
