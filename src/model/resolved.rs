@@ -43,9 +43,11 @@ impl From<&PointTarget<'_>> for ResolvedPoint {
 
 impl ResolvedPoint {
     /// Initial global position in `model` (the model the point was
-    /// resolved in), or `None` for a rigid-body point without `local`
-    /// (see [`PointTarget::explicit_position`]).
-    pub fn explicit_position(&self, model: &Model) -> Option<[f64; 2]> {
+    /// resolved in: its indices are that model's), or `None` for a
+    /// rigid-body point without `local` (see
+    /// [`PointTarget::explicit_position`]). Crate-only: the assembly calls
+    /// it with its own model.
+    pub(crate) fn explicit_position(&self, model: &Model) -> Option<[f64; 2]> {
         match *self {
             ResolvedPoint::Beam { index, s } => Some(model.beams[index].point_at(s)),
             ResolvedPoint::Rigid { index, local } => {
