@@ -20,7 +20,7 @@ const E: f64 = 127e9;
 const RHO: f64 = 8940.0;
 
 /// Free-free βL of the first bending mode (Euler–Bernoulli).
-const BETA_L_FREE_1: f64 = 4.730040745;
+const BETA_L_FREE_1: f64 = 4.730_040_744_862_704;
 
 fn model(v: &Value) -> ValidModel {
     Model::from_json(&v.to_string(), Source::BuiltIn).expect("valid model")

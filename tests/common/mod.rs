@@ -17,7 +17,12 @@ pub const RHO: f64 = 8940.0;
 pub const E: f64 = 127e9;
 
 /// Free-free βL (DESIGN §3, standard tables).
-pub const FREE_FREE_BL: [f64; 4] = [4.730040745, 7.853204624, 10.99560784, 14.13716549];
+pub const FREE_FREE_BL: [f64; 4] = [
+    4.730_040_744_862_704,
+    7.853_204_624_095_838,
+    10.995_607_838_001_671,
+    14.137_165_491_257_464,
+];
 /// Cantilever βL.
 pub const CANTILEVER_BL: [f64; 4] = [1.875104069, 4.694091133, 7.854757438, 10.99554073];
 
