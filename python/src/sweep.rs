@@ -126,7 +126,7 @@ pub fn run(
 /// A shard for `sweep_merge`, as given.
 enum GivenShard {
     /// A result of `sweep(..., shard=(k, n))`.
-    Result(ancf::analysis::sweep::SweepDocument),
+    Result(Box<ancf::analysis::sweep::SweepDocument>),
     /// Its `to_dict()`, as JSON text.
     Json(String),
     /// A file of `sweep --shard K/N --json`.
@@ -147,7 +147,7 @@ pub fn merge(py: Python<'_>, shards: &Bound<'_, PyAny>) -> PyResult<PySweepResul
     for item in shards.try_iter()? {
         let item = item?;
         given.push(if let Ok(r) = item.cast::<PySweepResult>() {
-            GivenShard::Result(r.get().run.stamped())
+            GivenShard::Result(Box::new(r.get().run.stamped()))
         } else if item.is_instance_of::<PyDict>() {
             let text = py.import("json")?.call_method1("dumps", (&item,))?;
             GivenShard::Json(text.extract()?)
@@ -166,7 +166,7 @@ pub fn merge(py: Python<'_>, shards: &Bound<'_, PyAny>) -> PyResult<PySweepResul
         for (i, shard) in given.into_iter().enumerate() {
             let name = format!("shards[{i}]");
             request.shards.push(match shard {
-                GivenShard::Result(doc) => (name, doc),
+                GivenShard::Result(doc) => (name, *doc),
                 GivenShard::Json(text) => {
                     let doc = sweep_merge::parse(&name, &text).map_err(Failure::from)?;
                     (name, doc)

@@ -87,3 +87,18 @@ def test_bad_arguments_are_model_errors():
         model.identify(end_time=1e-7)
     with pytest.raises(ancf_modal.ModelError, match=r"calibrate needs an experiment"):
         ancf_modal.Model.builtin("cantilever").identify(end_time=0.005, calibrate=True)
+
+
+def test_identify_gives_the_modal_analysis_warnings_modal_gives(cli):
+    # The first outside-eyes trial of the command layer: `identify` dropped
+    # the beam-theory warnings `modal` gives on the same model and modes.
+    model = ancf_modal.Model.builtin("cantilever")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        modal = model.modal(modes=12).to_dict()["warnings"]
+        identified = model.identify(end_time=0.005, step=1e-5).to_dict()["warnings"]
+    beam_theory = [w for w in modal if "beam theory limits it" in w]
+    assert beam_theory, modal
+    assert all(w in identified for w in beam_theory), (beam_theory, identified)
+    doc = cli.json("identify", "models/cantilever.json", "--end-time", "0.005", "--step", "1e-5")
+    assert doc["warnings"] == identified

@@ -226,7 +226,10 @@ pub fn run(args: CalibrateArgs) -> Result<Warnings> {
         e => command_error(e),
     })?;
     // Everything is computed before any file is written.
-    let plot_bytes = plot_format.map(|f| run.plot(f)).transpose()?;
+    let plot_bytes = match plot_format {
+        Some(f) => Some(run.plot(f)?),
+        None => None,
+    };
     if let Some(path) = &args.out {
         write_output(path, &run.fitted_json())?;
     }

@@ -163,6 +163,9 @@ pub fn run_with_progress(
     };
     let (modal, modal_output) = crate::results::modal::modal(model, &system, &modal_settings)
         .map_err(|e| CommandError::analysis(input.label(), e))?;
+    // The modal analysis's own warnings, as `modal` gives them.
+    let mut own = crate::results::modal::reference_warnings(&modal);
+    own.extend(crate::analysis::shear::beam_theory_warnings(&modal));
     let impulse =
         run_impulse(model, &settings, progress).map_err(|source| CommandError::Impulse {
             model: input.label(),
@@ -204,7 +207,7 @@ pub fn run_with_progress(
         calibration.as_ref(),
     );
     // The records' notes name their files, not the model.
-    let mut document = Run::of(input, output);
+    let mut document = Run::of(input, output).warn(input, own);
     document.warnings.extend(notes);
     Ok(IdentifyRun {
         model: Arc::clone(model),
