@@ -59,9 +59,19 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_>) -> PyResult<PyIdenti
     let run = compute(py, move || {
         identify(&input, &request).map_err(Failure::from)
     })?;
-    // The measured records' notes (the model's warnings were raised when
-    // it was read), as `frf_files` raises them.
-    crate::warn_all(py, run.document.own_warnings())?;
+    // The modal analysis's own warnings (named by the model's source) as
+    // `modal` raises them (RuntimeWarning); the measured records' notes
+    // (named by their files) as `frf_files` raises them (UserWarning). The
+    // model's warnings were raised when it was read.
+    let prefix = format!("{}: ", model.label());
+    let (own, notes): (Vec<String>, Vec<String>) = run
+        .document
+        .own_warnings()
+        .iter()
+        .cloned()
+        .partition(|w| w.starts_with(&prefix));
+    crate::warn_runtime(py, &own)?;
+    crate::warn_all(py, &notes)?;
     Ok(PyIdentifyResult {
         source: model.source.clone(),
         run,
