@@ -302,8 +302,21 @@ pub fn sweep_function(
     step: Option<f64>,
     end_time: Option<f64>,
     threads: Option<i64>,
-    shard: Option<(i64, i64)>,
+    shard: Option<Vec<i64>>,
 ) -> PyResult<PySweepResult> {
+    // A pair as a tuple or a list, as `params` takes either.
+    let shard = match shard.as_deref() {
+        None => None,
+        Some(&[k, n]) => Some((k, n)),
+        Some(other) => {
+            return Err(Failure::argument(
+                "shard",
+                format!("{other:?}"),
+                "must be a pair (k, n): part k of n",
+            )
+            .into())
+        }
+    };
     let r = Request {
         quantity,
         modes,

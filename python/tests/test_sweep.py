@@ -101,3 +101,14 @@ def test_keyboard_interrupt_stops_a_sweep_within_a_second():
     stopped = time.perf_counter() - start
     timer.cancel()
     assert stopped < 0.5 + 1.0, stopped
+
+
+def test_shard_is_a_pair_as_a_tuple_or_a_list():
+    # The outside-eyes trial: `shard=[1, 2]` was a TypeError.
+    model = ancf_modal.Model.builtin("beam_free_free")
+    params = {"height": [1e-3, 2e-3, 3e-3]}
+    as_tuple = ancf_modal.sweep(model, params, "first_bending_hz", threads=1, shard=(1, 2))
+    as_list = ancf_modal.sweep(model, params, "first_bending_hz", threads=1, shard=[1, 2])
+    assert as_list.to_dict() == as_tuple.to_dict()
+    with pytest.raises(ancf_modal.ModelError, match=r"shard `\[1, 2, 3\]`: must be a pair"):
+        ancf_modal.sweep(model, params, "first_bending_hz", shard=[1, 2, 3])
