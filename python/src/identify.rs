@@ -8,6 +8,7 @@
 use crate::errors::{compute, Failure};
 use crate::model::PyModel;
 use ancf::commands::identify::{run as identify, IdentifyRequest, IdentifyRun};
+use ancf::commands::impulse::ImpulseRequest;
 use ancf::results::provenance::sha256_hex;
 use ancf::signal::Window;
 use numpy::PyArray1;
@@ -42,14 +43,16 @@ fn window(name: &str, text: &str) -> Result<Window, Failure> {
 /// `identify` on `model`.
 pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_>) -> PyResult<PyIdentifyResult> {
     let request = IdentifyRequest {
-        amplitude: r.amplitude,
-        duration: r.duration,
-        end_time: r.end_time,
-        step: r.step,
-        spectral_radius: r.spectral_radius,
-        sample_rate: r.sample_rate,
-        sensor: r.sensor,
-        window: window("window", r.window)?,
+        experiment: ImpulseRequest {
+            amplitude: r.amplitude,
+            duration: r.duration,
+            end_time: r.end_time,
+            step: r.step,
+            spectral_radius: r.spectral_radius,
+            sample_rate: r.sample_rate,
+            sensor: r.sensor,
+            window: window("window", r.window)?,
+        },
         calibrate: r.calibrate,
         measured: r.measured.unwrap_or_default(),
         measured_window: window("measured_window", r.measured_window)?,

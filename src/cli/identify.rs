@@ -57,14 +57,7 @@ pub struct ComparisonArgs {
 /// The request of the experiment's and the comparison's flags.
 pub fn request(e: &ExperimentArgs, c: &ComparisonArgs) -> IdentifyRequest {
     IdentifyRequest {
-        amplitude: e.amplitude,
-        duration: e.duration,
-        end_time: e.end_time,
-        step: e.step,
-        spectral_radius: e.spectral_radius,
-        sample_rate: e.sample_rate,
-        sensor: e.sensor.clone(),
-        window: e.window,
+        experiment: e.request(),
         calibrate: c.calibrate,
         measured: c.measured.clone(),
         measured_window: c.measured_window,

@@ -15,6 +15,7 @@
 mod files;
 
 use super::frf::{FrfRecords, FrfRequest};
+use super::impulse::ImpulseRequest;
 use super::{CommandError, ModelInput, Run};
 use crate::analysis::impulse::{run_impulse, ImpulseResult, ImpulseSettings};
 use crate::analysis::{ModalResult, ModalSettings};
@@ -32,24 +33,8 @@ pub use files::FIGURES;
 /// `impulse`'s), and what the model is compared with and fitted to.
 #[derive(Debug, Clone, PartialEq)]
 pub struct IdentifyRequest {
-    /// Pulse amplitude F₀ [N] of the model's half-sine loads (non-zero);
-    /// `None`: the model's.
-    pub amplitude: Option<f64>,
-    /// Pulse duration t_F [s] (> 0); `None`: the model's.
-    pub duration: Option<f64>,
-    /// End time of the integration [s] (> 0).
-    pub end_time: f64,
-    /// Time step [s] (> 0).
-    pub step: f64,
-    /// Spectral radius at infinity of generalized-α [–] (0 to 1; 1: no
-    /// numerical damping).
-    pub spectral_radius: f64,
-    /// Sensor sampling rate [Hz] (≥ 0); 0 records every step.
-    pub sample_rate: f64,
-    /// The sensor recorded; `None`: the model's first.
-    pub sensor: Option<String>,
-    /// The window of the sensor's spectrum.
-    pub window: Window,
+    /// The impulse experiment, as `impulse` runs it.
+    pub experiment: ImpulseRequest,
     /// Also fit the first beam's equivalent height to the experiment's
     /// first bending frequency (eigenvalue-based `calibrate`).
     pub calibrate: bool,
@@ -65,17 +50,9 @@ pub struct IdentifyRequest {
 
 impl Default for IdentifyRequest {
     fn default() -> Self {
-        let experiment = ImpulseSettings::default();
         let measured = FrfRequest::default();
         IdentifyRequest {
-            amplitude: experiment.amplitude,
-            duration: experiment.duration,
-            end_time: experiment.transient.end_time,
-            step: experiment.transient.step,
-            spectral_radius: experiment.transient.spectral_radius,
-            sample_rate: experiment.sample_rate.unwrap_or(0.0),
-            sensor: experiment.sensor,
-            window: experiment.spectrum.window,
+            experiment: ImpulseRequest::default(),
             calibrate: false,
             measured: Vec::new(),
             measured_window: measured.window,
@@ -85,41 +62,11 @@ impl Default for IdentifyRequest {
 }
 
 impl IdentifyRequest {
-    /// The impulse experiment's settings, the request's ranges checked.
+    /// The impulse experiment's settings, the request's ranges checked
+    /// ([`ImpulseRequest::check`]).
     pub fn impulse_settings(&self) -> Result<ImpulseSettings, CommandError> {
-        let check = |name: &'static str, v: f64, ok: bool, why: &str| {
-            if v.is_finite() && ok {
-                Ok(v)
-            } else {
-                Err(CommandError::argument(name, v, why))
-            }
-        };
-        let positive = "must be a number > 0";
-        if let Some(a) = self.amplitude {
-            check("amplitude", a, a != 0.0, "must be a non-zero number")?;
-        }
-        if let Some(d) = self.duration {
-            check("duration", d, d > 0.0, positive)?;
-        }
-        let mut s = ImpulseSettings::default();
-        s.transient.end_time = check("end_time", self.end_time, self.end_time > 0.0, positive)?;
-        s.transient.step = check("step", self.step, self.step > 0.0, positive)?;
-        let r = self.spectral_radius;
-        s.transient.spectral_radius = check(
-            "spectral_radius",
-            r,
-            (0.0..=1.0).contains(&r),
-            "must be a number from 0 to 1",
-        )?;
-        let rate = self.sample_rate;
-        check("sample_rate", rate, rate >= 0.0, "must be a number ≥ 0")?;
-        s.sample_rate = (rate != 0.0).then_some(rate);
-        s.amplitude = self.amplitude;
-        s.duration = self.duration;
-        s.sensor = self.sensor.clone();
-        s.spectrum.window = self.window;
-        s.transient.validate()?;
-        Ok(s)
+        self.experiment.check()?;
+        Ok(self.experiment.settings())
     }
 }
 
