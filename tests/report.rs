@@ -247,3 +247,62 @@ fn animated_modes_draw_q0_plus_and_minus_a_phi() {
         );
     }
 }
+
+/// The `data-frequency-hz` values of the page's mode tables, in order.
+fn page_frequencies(html: &str) -> Vec<f64> {
+    html.split("data-frequency-hz=\"")
+        .skip(1)
+        .map(|rest| rest[..rest.find('"').unwrap()].parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn the_report_command_shows_the_modal_commands_frequencies_at_both_states() {
+    // The report renders `modal`'s runs: its tables hold, to the bit, the
+    // frequencies `modal` and `modal --prestress` compute on their own.
+    use ancf_modal::commands::modal::{run as modal_run, ModalRequest};
+    use ancf_modal::commands::report::{run, ReportRequest};
+    use ancf_modal::commands::{CommandError, ModelInput};
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/rcbo_prestressed.json");
+    let input = ModelInput::from_file(&path).unwrap();
+    let request = ReportRequest {
+        prestress: true,
+        ..ReportRequest::default()
+    };
+    let page = run(&input, &request).unwrap();
+    let freqs = |prestress: bool, modes: usize| -> Vec<f64> {
+        let r = ModalRequest {
+            modes,
+            prestress,
+            ..ModalRequest::default()
+        };
+        modal_run(&input, &r)
+            .unwrap()
+            .outcome
+            .result()
+            .modes
+            .iter()
+            .map(|m| m.frequency_hz)
+            .collect()
+    };
+    let reference = freqs(false, ancf_modal::results::identify::IDENTIFY_MODES);
+    let mut expected = reference.clone();
+    expected.extend(freqs(true, reference.len()));
+    assert_eq!(page_frequencies(&page.html), expected);
+    assert!(page.html.contains("Modes at the pre-stressed equilibrium"));
+    // Without an impulse experiment there is nothing to calibrate.
+    let asked = ReportRequest {
+        identify: ancf_modal::commands::identify::IdentifyRequest {
+            calibrate: true,
+            ..Default::default()
+        },
+        ..ReportRequest::default()
+    };
+    let refused = run(&input, &asked).unwrap_err();
+    assert!(
+        matches!(refused, CommandError::NeedsImpulse { .. }),
+        "{refused}"
+    );
+    assert!(refused.is_input());
+}

@@ -198,6 +198,28 @@ class Model:
         ``measured_band`` (LO, HI) [Hz]) nearest it, else the model's
         ``reference``; ``calibrate`` fits the first beam's equivalent
         height to it."""
+    def report(
+        self,
+        out: Union[str, "os.PathLike[str]"] = "report.html",
+        prestress: bool = False,
+        amplitude: Optional[float] = None,
+        duration: Optional[float] = None,
+        end_time: float = 0.1,
+        step: float = 1e-6,
+        spectral_radius: float = 0.9,
+        sample_rate: float = 51200.0,
+        sensor: Optional[str] = None,
+        window: str = "hann",
+        calibrate: bool = False,
+        measured: Optional[Sequence[Union[str, "os.PathLike[str]"]]] = None,
+        measured_window: str = "rect",
+        measured_band: Optional[Tuple[float, float]] = None,
+    ) -> None:
+        """One self-contained HTML file (``ancf-modal report``) written to
+        ``out``: the assembly and its animated modes (``prestress``: also at
+        the equilibrium under the loads); for a model with a half-sine or
+        step load everything ``identify`` computes (its keyword arguments);
+        the switch-off when the model releases something."""
     def static(self, load_scale: float = 1.0) -> "StaticResult":
         """The static equilibrium under the loads × load_scale [–] and
         gravity (``ancf-modal static``)."""
@@ -444,6 +466,8 @@ class IdentifyResult:
         """The library's JSON document (``identify --json``, summary.json)."""
     def write_out_dir(self, out_dir: Union[str, "os.PathLike[str]"]) -> None:
         """Writes the files of ``identify --out-dir`` into ``out_dir``."""
+    def write_html(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes this run's report (``identify --html``) to ``path``."""
 
 @final
 class SweepResult:

@@ -6,9 +6,11 @@
 //! `write_out_dir` writes the files of `identify --out-dir`.
 
 use crate::errors::{compute, Failure};
+use crate::impulse::Experiment;
 use crate::model::PyModel;
 use ancf::commands::identify::{run as identify, IdentifyRequest, IdentifyRun};
-use ancf::commands::impulse::ImpulseRequest;
+use ancf::commands::report::{of_identified, ReportRequest};
+use ancf::commands::ModelInput;
 use ancf::results::provenance::sha256_hex;
 use ancf::signal::Window;
 use numpy::PyArray1;
@@ -18,14 +20,8 @@ use std::sync::Arc;
 
 /// `identify`'s keyword arguments (SI units).
 pub struct Request<'a> {
-    pub amplitude: Option<f64>,
-    pub duration: Option<f64>,
-    pub end_time: f64,
-    pub step: f64,
-    pub spectral_radius: f64,
-    pub sample_rate: f64,
-    pub sensor: Option<String>,
-    pub window: &'a str,
+    /// The impulse experiment's, as `Model.impulse`'s.
+    pub experiment: Experiment<'a>,
     pub calibrate: bool,
     pub measured: Option<Vec<PathBuf>>,
     pub measured_window: &'a str,
@@ -40,45 +36,39 @@ fn window(name: &str, text: &str) -> Result<Window, Failure> {
         })
 }
 
+impl Request<'_> {
+    /// The library's request (the windows parsed, each named by its
+    /// keyword in an error).
+    pub fn into_request(self) -> Result<IdentifyRequest, Failure> {
+        Ok(IdentifyRequest {
+            experiment: self.experiment.request()?,
+            calibrate: self.calibrate,
+            measured: self.measured.unwrap_or_default(),
+            measured_window: window("measured_window", self.measured_window)?,
+            measured_band: self.measured_band,
+        })
+    }
+}
+
+/// Raises a run's own warnings on `model`: the analyses' (named by the
+/// model's source) as `modal` raises them (RuntimeWarning), the measured
+/// records' notes (named by their files) as `frf_files` raises them
+/// (UserWarning). The model's were raised when it was read.
+pub fn warn_own(py: Python<'_>, model: &PyModel, own: &[String]) -> PyResult<()> {
+    let prefix = format!("{}: ", model.label());
+    let (analyses, notes): (Vec<String>, Vec<String>) =
+        own.iter().cloned().partition(|w| w.starts_with(&prefix));
+    crate::warn_runtime(py, &analyses)?;
+    crate::warn_all(py, &notes)
+}
+
 /// `identify` on `model`.
 pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_>) -> PyResult<PyIdentifyResult> {
-    let request = IdentifyRequest {
-        experiment: ImpulseRequest {
-            amplitude: r.amplitude,
-            duration: r.duration,
-            end_time: r.end_time,
-            step: r.step,
-            spectral_radius: r.spectral_radius,
-            sample_rate: r.sample_rate,
-            sensor: r.sensor,
-            window: window("window", r.window)?,
-        },
-        calibrate: r.calibrate,
-        measured: r.measured.unwrap_or_default(),
-        measured_window: window("measured_window", r.measured_window)?,
-        measured_band: r.measured_band,
-    };
+    let request = r.into_request()?;
     let input = model.input();
-    let run = compute(py, move || {
-        identify(&input, &request).map_err(Failure::from)
-    })?;
-    // The modal analysis's own warnings (named by the model's source) as
-    // `modal` raises them (RuntimeWarning); the measured records' notes
-    // (named by their files) as `frf_files` raises them (UserWarning). The
-    // model's warnings were raised when it was read.
-    let prefix = format!("{}: ", model.label());
-    let (own, notes): (Vec<String>, Vec<String>) = run
-        .document
-        .own_warnings()
-        .iter()
-        .cloned()
-        .partition(|w| w.starts_with(&prefix));
-    crate::warn_runtime(py, &own)?;
-    crate::warn_all(py, &notes)?;
-    Ok(PyIdentifyResult {
-        source: model.source.clone(),
-        run,
-    })
+    let run = compute(py, || identify(&input, &request).map_err(Failure::from))?;
+    warn_own(py, model, run.document.own_warnings())?;
+    Ok(PyIdentifyResult { input, run })
 }
 
 /// The result of `Model.identify`: the comparison of first bending
@@ -86,7 +76,7 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_>) -> PyResult<PyIdenti
 /// and the calibration.
 #[pyclass(name = "IdentifyResult", module = "ancf_modal", frozen)]
 pub struct PyIdentifyResult {
-    source: ancf::error::Source,
+    input: ModelInput,
     run: IdentifyRun,
 }
 
@@ -134,7 +124,7 @@ impl PyIdentifyResult {
         Some(PyModel {
             sha256: sha256_hex(model.to_json().as_bytes()),
             model: Arc::new(model),
-            source: self.source.clone(),
+            source: self.input.source.clone(),
         })
     }
 
@@ -151,6 +141,20 @@ impl PyIdentifyResult {
     fn write_out_dir(&self, py: Python<'_>, out_dir: PathBuf) -> PyResult<()> {
         compute(py, || {
             self.run.write_out_dir(&out_dir).map_err(Failure::from)
+        })
+    }
+
+    /// Writes what `identify --html` writes: the report (as
+    /// `Model.report`) of this run, to `path`.
+    fn write_html(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        let request = ReportRequest {
+            out: path,
+            command_line: crate::report::provenance("IdentifyResult.write_html"),
+            ..ReportRequest::default()
+        };
+        compute(py, || {
+            let page = of_identified(&self.input, &self.run, &request).map_err(Failure::from)?;
+            page.write().map_err(Failure::from)
         })
     }
 

@@ -14,6 +14,7 @@ mod impulse;
 mod matrices;
 mod modal;
 mod model;
+mod report;
 mod statics;
 mod sweep;
 mod switch_off;

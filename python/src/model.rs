@@ -348,7 +348,7 @@ impl PyModel {
         step: f64,
         spectral_radius: f64,
         sample_rate: f64,
-        sensor: Option<String>,
+        sensor: Option<&str>,
         window: &str,
         calibrate: bool,
         measured: Option<Vec<PathBuf>>,
@@ -356,20 +356,67 @@ impl PyModel {
         measured_band: Option<(f64, f64)>,
     ) -> PyResult<crate::identify::PyIdentifyResult> {
         let r = crate::identify::Request {
-            amplitude,
-            duration,
-            end_time,
-            step,
-            spectral_radius,
-            sample_rate,
-            sensor,
-            window,
+            experiment: crate::impulse::Experiment {
+                amplitude,
+                duration,
+                end_time,
+                step,
+                spectral_radius,
+                sample_rate,
+                sensor,
+                window,
+            },
             calibrate,
             measured,
             measured_window,
             measured_band,
         };
         crate::identify::run(self, py, r)
+    }
+
+    /// One self-contained HTML file (the command line's `report`) written
+    /// to `out`: the assembly and its animated modes (`prestress`: also at
+    /// the static equilibrium under the loads, beside them); for a model
+    /// with a half-sine or step load everything `identify` computes, its
+    /// keyword arguments as `identify`'s; the switch-off when the model
+    /// releases something. Other models refuse `calibrate` and `measured`.
+    #[pyo3(signature = (out = PathBuf::from("report.html"), prestress = false, amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann", calibrate = false, measured = None, measured_window = "rect", measured_band = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn report(
+        &self,
+        py: Python<'_>,
+        out: PathBuf,
+        prestress: bool,
+        amplitude: Option<f64>,
+        duration: Option<f64>,
+        end_time: f64,
+        step: f64,
+        spectral_radius: f64,
+        sample_rate: f64,
+        sensor: Option<&str>,
+        window: &str,
+        calibrate: bool,
+        measured: Option<Vec<PathBuf>>,
+        measured_window: &str,
+        measured_band: Option<(f64, f64)>,
+    ) -> PyResult<()> {
+        let r = crate::identify::Request {
+            experiment: crate::impulse::Experiment {
+                amplitude,
+                duration,
+                end_time,
+                step,
+                spectral_radius,
+                sample_rate,
+                sensor,
+                window,
+            },
+            calibrate,
+            measured,
+            measured_window,
+            measured_band,
+        };
+        crate::report::run(self, py, out, prestress, r)
     }
 
     /// The static equilibrium under the loads × load_scale [–] (their values

@@ -12,9 +12,8 @@ import pytest
 
 import ancf_modal
 
-# Subcommands without a Python counterpart by design, and (issue 34, still
-# open) `report`, whose port onto the command layer has not landed yet.
-EXEMPT = {"schema", "help", "report"}
+# Subcommands without a Python counterpart by design.
+EXEMPT = {"schema", "help"}
 
 
 def subcommands(cli):
@@ -94,7 +93,7 @@ def same(python_default, cli_text):
     return str(python_default) == cli_text
 
 
-@pytest.mark.parametrize("name", ["modal", "static", "impulse", "transient", "switch-off", "calibrate", "convergence", "sweep", "frf", "identify"])
+@pytest.mark.parametrize("name", ["modal", "static", "impulse", "transient", "switch-off", "calibrate", "convergence", "sweep", "frf", "identify", "report"])
 def test_python_defaults_are_the_flags_defaults(cli, name):
     flags = flag_defaults(cli, name)
     functions = counterparts(name)

@@ -21,14 +21,6 @@ pub fn print_document<T: serde::Serialize>(run: &ancf_modal::commands::Run<T>) -
     Ok(())
 }
 
-/// The model's name in messages: its path, or `<built-in model>`.
-pub fn source_label(path: Option<&Path>) -> String {
-    match path {
-        Some(p) => ancf_modal::error::Source::File(p.to_path_buf()).to_string(),
-        None => ancf_modal::error::Source::BuiltIn.to_string(),
-    }
-}
-
 /// Write text to a file atomically.
 pub fn write_output(path: &Path, text: &str) -> Result<()> {
     ancf_modal::output::files::write_atomic(path, text.as_bytes())?;

@@ -6,7 +6,7 @@
 use super::common::{print_document, Warnings};
 use super::impulse::ExperimentArgs;
 use super::output::Output;
-use ancf_modal::commands::identify::{run_with_progress, IdentifyRequest, IdentifyRun};
+use ancf_modal::commands::identify::{run_with_progress, IdentifyRequest};
 use ancf_modal::commands::ModelInput;
 use anyhow::Result;
 use clap::Args;
@@ -65,8 +65,9 @@ pub fn request(e: &ExperimentArgs, c: &ComparisonArgs) -> IdentifyRequest {
     }
 }
 
-/// Runs `identify` with a progress line on a terminal while it integrates.
-pub fn compute(input: &ModelInput, request: &IdentifyRequest) -> Result<IdentifyRun> {
+/// Runs `work` with a progress line on a terminal while it integrates
+/// (`work` tells its progress the fraction of the steps done).
+pub fn progress_line<T>(work: impl FnOnce(&mut dyn FnMut(f64)) -> Result<T>) -> Result<T> {
     let tty = std::io::stderr().is_terminal();
     let started = std::time::Instant::now();
     let mut progress = |fraction: f64| {
@@ -75,22 +76,24 @@ pub fn compute(input: &ModelInput, request: &IdentifyRequest) -> Result<Identify
             let _ = std::io::stderr().flush();
         }
     };
-    let run = run_with_progress(input, request, &mut progress);
+    let run = work(&mut progress);
     if tty && started.elapsed().as_secs_f64() > 0.5 {
         eprint!("\r{:30}\r", "");
     }
-    Ok(run?)
+    run
 }
 
 pub fn run(args: IdentifyArgs) -> Result<Warnings> {
     args.output.only("identify", &[Output::Json])?;
     let input = ModelInput::load(args.model.as_deref())?;
-    let run = compute(&input, &request(&args.experiment, &args.comparison))?;
+    let request = request(&args.experiment, &args.comparison);
+    let run = progress_line(|progress| Ok(run_with_progress(&input, &request, progress)?))?;
     if let Some(dir) = &args.out_dir {
         run.write_out_dir(dir)?;
     }
     if let Some(path) = &args.html {
-        super::report::write_report(path, &run, args.model.as_deref(), false)?;
+        let request = super::report::report_request(path.clone(), false);
+        ancf_modal::commands::report::of_identified(&input, &run, &request)?.write()?;
     }
     if args.output.json {
         print_document(&run.document)?;

@@ -95,6 +95,10 @@ pub enum CommandError {
     /// `calibrate` was asked for without an experiment to fit to.
     #[error("calibrate needs an experiment: the model has no `reference` and no measured records were given")]
     NoExperiment,
+    /// `calibrate` or `measured` asked of `report` for a model (named
+    /// `model`) without the impulse experiment they need.
+    #[error("{model}: calibrate and measured need the impulse experiment, and the model has no half-sine or step load")]
+    NeedsImpulse { model: String },
     /// The output directory could not be created.
     #[error("{}: cannot create the output directory", dir.display())]
     OutputDir {
@@ -213,7 +217,9 @@ impl CommandError {
             ),
             // --- `frf` and `identify` ---
             CommandError::Overlay { source, .. } => matches!(source, OverlayError::Frf(_)),
-            CommandError::NoExperiment | CommandError::OutputDir { .. } => true,
+            CommandError::NoExperiment
+            | CommandError::NeedsImpulse { .. }
+            | CommandError::OutputDir { .. } => true,
             // `sweep`, `sweep-merge`:
             CommandError::Required { .. }
             | CommandError::SweepParams(_)

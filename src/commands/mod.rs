@@ -30,6 +30,7 @@ pub mod frf;
 pub mod identify;
 pub mod input;
 pub mod modal;
+pub mod report;
 pub mod statics;
 // impulse, transient, switch-off, calibrate
 pub mod calibrate;

@@ -43,11 +43,18 @@ pub fn header_lines(model_sha256: &str) -> [String; 2] {
 }
 
 /// The current time in UTC, ISO 8601 to the second
-/// (`2026-11-25T11:52:50Z`).
+/// (`2026-11-25T11:52:50Z`); with `SOURCE_DATE_EPOCH` set to whole seconds
+/// since 1970 (the reproducible-builds convention), that time instead, so
+/// that two runs can write the same bytes.
 pub fn utc_now() -> String {
-    let secs = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_secs());
+    let fixed = std::env::var("SOURCE_DATE_EPOCH")
+        .ok()
+        .and_then(|s| s.trim().parse::<u64>().ok());
+    let secs = fixed.unwrap_or_else(|| {
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_secs())
+    });
     utc_timestamp(secs)
 }
 
