@@ -26,10 +26,21 @@ fn main() {
 /// The error and its causes on one line, `a: b: c` (each error names its
 /// own context once and leaves its cause to the chain).
 fn one_line(e: &anyhow::Error) -> String {
-    e.chain()
-        .map(ToString::to_string)
-        .collect::<Vec<_>>()
-        .join(": ")
+    e.chain().map(as_flag).collect::<Vec<_>>().join(": ")
+}
+
+/// One error of the chain; a request field the library names
+/// (`sample_rate`) is named as its flag (`--sample-rate`).
+fn as_flag(e: &(dyn std::error::Error + 'static)) -> String {
+    use ancf_modal::commands::CommandError;
+    match e.downcast_ref::<CommandError>() {
+        Some(CommandError::Argument {
+            name,
+            value,
+            allowed,
+        }) => format!("--{} `{value}`: {allowed}", name.replace('_', "-")),
+        _ => e.to_string(),
+    }
 }
 
 /// A flag's value out of its range, as one line: the flag, the value

@@ -52,8 +52,14 @@ fn fails_with(flags: &[&str], expect: &str) {
 fn bad_settings_are_one_line_errors() {
     fails_with(&["--step", "0"], "--step `0`: must be a number > 0");
     fails_with(&["--step=-1e-6"], "--step `-1e-6`: must be a number > 0");
-    fails_with(&["--end-time", "1e-6"], "end time");
-    fails_with(&["--sample-rate", "2e6"], "sample rate");
+    fails_with(
+        &["--end-time", "1e-6"],
+        "--end-time `0.000001`: must be longer than one step (0.000001 s)",
+    );
+    fails_with(
+        &["--sample-rate", "2e6"],
+        "--sample-rate `2000000`: must be at most 1/step = 1000000 Hz (or 0 to record every step)",
+    );
     fails_with(&["--duration", "1e-6"], "shorter than two steps");
     fails_with(&["--spectral-radius", "1.5"], "--spectral-radius `1.5`");
     fails_with(&["--amplitude", "0"], "--amplitude `0`");

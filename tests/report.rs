@@ -29,6 +29,7 @@ fn paper_report() -> (System, String) {
         height: 560,
     };
     let input = ReportInput {
+        warnings: &[],
         provenance: Provenance {
             tool_version: "test".into(),
             model_name: model.name.clone(),

@@ -147,6 +147,7 @@ impl PyIdentifyResult {
     /// Writes what `identify --html` writes: the report (as
     /// `Model.report`) of this run, to `path`.
     fn write_html(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        ancf::commands::report::check_out("path", &path).map_err(Failure::from)?;
         let request = ReportRequest {
             out: path,
             command_line: crate::report::provenance("IdentifyResult.write_html"),

@@ -2,6 +2,7 @@
 modes are known, and the same records through frf_files."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -110,3 +111,26 @@ def test_bad_arguments():
         ancf_modal.frf(f, v[:-1], FS)
     with pytest.raises(ancf_modal.ModelError, match=r"all zero|zero"):
         ancf_modal.frf(np.zeros_like(f), v, FS)
+
+
+def test_swapped_channels_name_samples_not_file_lines(tmp_path):
+    # The velocity given as the force rises again after its first swing
+    # ends: a double impact, which arrays place by 0-based sample (they
+    # have no file lines) and a CSV file by its line. (4 s: 45 decay times
+    # of the 1 % mode, so the swung velocity is impulsive, peak > 10 RMS.)
+    t, f, v = hammer_hit(seed=0, seconds=4.0)
+    with pytest.raises(ancf_modal.ModelError) as e:
+        ancf_modal.frf(v, f, FS)
+    message = str(e.value)
+    assert "double impact" in message and "sample" in message and "line" not in message
+    # The sample it names is where the swapped "force" rises again to 20 %
+    # of its peak after falling under 5 % (the impact's end): computed here.
+    sample = int(re.search(r"at sample (\d+)", message).group(1))
+    end = int(re.search(r"ended at sample (\d+)", message).group(1))
+    assert abs(v[sample]) > 0.2 * np.max(np.abs(v)) and sample > end
+    path = tmp_path / "swapped.csv"
+    write_csv(path, t, v, f)
+    with pytest.raises(ancf_modal.ModelError) as e:
+        ancf_modal.frf_files([path], force="force")
+    # The file's line of the same sample: a header line, then 1-based.
+    assert f"{path}:{sample + 2}: double impact" in str(e.value)

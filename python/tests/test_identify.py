@@ -86,7 +86,7 @@ def test_bad_arguments_are_model_errors():
         model.identify(step=-1e-6)
     with pytest.raises(ancf_modal.ModelError, match=r"^measured_window `kaiser`"):
         model.identify(measured_window="kaiser")
-    with pytest.raises(ancf_modal.ModelError, match=r"end time 0.0000001 s must be finite"):
+    with pytest.raises(ancf_modal.ModelError, match=r"^end_time `0.0000001`: must be longer than one step \(0.000001 s\)"):
         model.identify(end_time=1e-7)
     with pytest.raises(ancf_modal.ModelError, match=r"calibrate needs an experiment"):
         ancf_modal.Model.builtin("cantilever").identify(end_time=0.005, calibrate=True)

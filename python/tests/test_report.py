@@ -3,6 +3,7 @@
 ``identify --html``, byte for byte apart from how each was asked for (the
 provenance's command line); refusals and warnings are the command line's."""
 
+import html
 import re
 
 import pytest
@@ -49,6 +50,12 @@ def test_the_report_is_the_command_lines(cli, tmp_path, monkeypatch, name, flags
     mine = tmp_path / "python.html"
     assert ancf_modal.Model.builtin(name).report(mine, **kwargs) is None
     _same_page(mine, theirs)
+    # The page says how to make it again: the call with its keywords.
+    command = html.unescape(re.search(r"<dt>command</dt><dd><code>([^<]*)</code>", mine.read_text()).group(1))
+    call = command.split(" (Python package", 1)[0]
+    assert call == "Model.report(" + ", ".join(
+        [f"out={str(mine)!r}".replace("'", '"')] + [f"{k}={v!r}" for k, v in kwargs.items()]
+    ) + ")"
 
 
 def test_an_identify_runs_page_is_identify_html(cli, tmp_path, monkeypatch):
@@ -70,7 +77,17 @@ def test_report_refusals_are_the_command_lines(cli, tmp_path):
     assert "calibrate and measured need the impulse experiment" in str(e.value)
     with pytest.raises(ancf_modal.ModelError, match=r"window.*nope"):
         model.report(out, window="nope")
-    assert not out.exists(), "a refused report writes nothing"
+    # The page is HTML whatever its name: another extension is refused,
+    # before any computing, as `--plot` refuses one it cannot write.
+    pdf = tmp_path / "r.pdf"
+    with pytest.raises(ancf_modal.ModelError) as e:
+        model.report(pdf)
+    assert str(e.value) == f"out `{pdf}`: must end in .html or .htm (the report is one HTML file)"
+    assert cli.error("report", "--out", str(pdf)) == "--" + str(e.value)
+    assert cli.error("identify", "--html", str(pdf)).startswith(f"--html `{pdf}`: must end in .html")
+    with pytest.raises(ancf_modal.ModelError, match=r"^path `.*r.pdf`: must end in .html"):
+        ancf_modal.Model.builtin().identify(end_time=0.005).write_html(pdf)
+    assert not out.exists() and not pdf.exists(), "a refused report writes nothing"
 
 
 def test_the_reports_warnings_are_the_command_lines(cli, tmp_path):
@@ -82,3 +99,9 @@ def test_the_reports_warnings_are_the_command_lines(cli, tmp_path):
     with pytest.warns(RuntimeWarning) as caught:
         ancf_modal.Model.builtin().report(tmp_path / "python.html", end_time=0.02)
     assert [str(w.message) for w in caught if w.category is RuntimeWarning] == theirs
+    # The page says them too, first: a mailed report carries its caveats.
+    page = (tmp_path / "python.html").read_text()
+    assert '<section id="warnings"' in page
+    assert page.index('id="warnings"') < page.index('id="assembly"')
+    section = page.split('<section id="warnings"', 1)[1].split("</section>", 1)[0]
+    assert [html.unescape(li) for li in re.findall(r"<li>(.*?)</li>", section)] == theirs

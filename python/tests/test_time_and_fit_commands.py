@@ -204,7 +204,8 @@ def test_impulse_calibration_refuses_what_it_cannot_fit(cli):
     assert str(e.value) == line.replace("--method: ", "method: ", 1)
     with pytest.raises(ancf_modal.ModelError) as e:
         model.calibrate(method="impulse", end_time=1e-6, step=1e-5)
-    assert str(e.value) == cli.error(
+    # The library names the request's field; each front end its own name.
+    assert "--" + str(e.value).replace("end_time", "end-time", 1) == cli.error(
         "calibrate", "--method", "impulse", "--end-time", "1e-6", "--step", "1e-5"
     )
 

@@ -85,6 +85,9 @@ pub fn progress_line<T>(work: impl FnOnce(&mut dyn FnMut(f64)) -> Result<T>) -> 
 
 pub fn run(args: IdentifyArgs) -> Result<Warnings> {
     args.output.only("identify", &[Output::Json])?;
+    if let Some(path) = &args.html {
+        ancf_modal::commands::report::check_out("html", path)?;
+    }
     let input = ModelInput::load(args.model.as_deref())?;
     let request = request(&args.experiment, &args.comparison);
     let run = progress_line(|progress| Ok(run_with_progress(&input, &request, progress)?))?;

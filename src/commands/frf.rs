@@ -215,7 +215,7 @@ fn arrays(
             response: x.clone(),
             force_label: String::from("force"),
             response_label: String::from("response"),
-            lines: (1..=f.len()).collect(),
+            lines: Vec::new(),
         };
         check_force(&r)?;
         measurements.push(Measurement::Time(r));

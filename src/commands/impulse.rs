@@ -78,22 +78,9 @@ impl ImpulseRequest {
         if let Some(d) = self.duration {
             range("duration", d, d > 0.0, "must be a number > 0")?;
         }
-        range(
-            "end_time",
-            self.end_time,
-            self.end_time > 0.0,
-            "must be a number > 0",
-        )?;
-        range("step", self.step, self.step > 0.0, "must be a number > 0")?;
-        let r = self.spectral_radius;
-        range(
-            "spectral_radius",
-            r,
-            (0.0..=1.0).contains(&r),
-            "must be a number from 0 to 1",
-        )?;
-        let rate = self.sample_rate;
-        range("sample_rate", rate, rate >= 0.0, "must be a number ≥ 0")?;
+        super::checks::time_span(self.end_time, self.step)?;
+        super::checks::spectral_radius(self.spectral_radius)?;
+        super::checks::sample_rate_for_step(self.sample_rate, self.step)?;
         self.settings().transient.validate()?;
         Ok(())
     }

@@ -58,6 +58,24 @@ impl Default for ReportRequest {
     }
 }
 
+/// Refuses a page file named `path` whose extension is not `.html` or
+/// `.htm` (the page is HTML, whatever the name says); `name` is the
+/// request's field (`out`).
+pub fn check_out(name: &'static str, path: &std::path::Path) -> Result<(), CommandError> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("html" | "htm") => Ok(()),
+        _ => Err(CommandError::argument(
+            name,
+            path.display(),
+            "must end in .html or .htm (the report is one HTML file)",
+        )),
+    }
+}
+
 /// `report`'s output: the page and where it goes.
 #[derive(Debug, Clone)]
 pub struct Report {
@@ -99,6 +117,7 @@ pub fn run_with_progress(
     request: &ReportRequest,
     progress: &mut dyn FnMut(f64),
 ) -> Result<Report, CommandError> {
+    check_out("out", &request.out)?;
     if excitation(&input.model).is_ok() {
         let id = super::identify::run_with_progress(input, &request.identify, progress)?;
         return of_identified(input, &id, request);
@@ -240,10 +259,12 @@ fn render(input: &ModelInput, p: Page, request: &ReportRequest) -> Result<Report
         description: &model.description,
         mode_sets,
         sections,
+        warnings: &warnings,
     };
+    let html = report_html(&page)?;
     Ok(Report {
         out: request.out.clone(),
-        html: report_html(&page)?,
+        html,
         warnings,
         model_warnings: p.model_warnings,
     })

@@ -92,23 +92,10 @@ pub struct SwitchOffRun {
 
 /// Runs `switch-off` on `input`.
 pub fn run(input: &ModelInput, request: &SwitchOffRequest) -> Result<SwitchOffRun, CommandError> {
-    for (name, v) in [
-        ("end_time", request.end_time),
-        ("step", request.step),
-        ("distance", request.distance),
-    ] {
-        if !(v.is_finite() && v > 0.0) {
-            return Err(CommandError::argument(name, v, "must be a number > 0"));
-        }
-    }
+    super::checks::time_span(request.end_time, request.step)?;
+    super::checks::positive("distance", request.distance)?;
     let rate = request.sample_rate;
-    if !(rate.is_finite() && rate >= 0.0) {
-        return Err(CommandError::argument(
-            "sample_rate",
-            rate,
-            "must be a number ≥ 0",
-        ));
-    }
+    super::checks::sample_rate(rate)?;
     let [dx, dy] = request.direction;
     if !(dx.is_finite() && dy.is_finite()) {
         return Err(CommandError::argument(

@@ -66,27 +66,9 @@ pub struct TransientRun {
 
 /// Runs `transient` on `input`.
 pub fn run(input: &ModelInput, request: &TransientRequest) -> Result<TransientRun, CommandError> {
-    for (name, v) in [("end_time", request.end_time), ("step", request.step)] {
-        if !(v.is_finite() && v > 0.0) {
-            return Err(CommandError::argument(name, v, "must be a number > 0"));
-        }
-    }
-    let rho = request.spectral_radius;
-    if !(0.0..=1.0).contains(&rho) {
-        return Err(CommandError::argument(
-            "spectral_radius",
-            rho,
-            "must be a number from 0 to 1",
-        ));
-    }
-    let rate = request.sample_rate;
-    if !(rate.is_finite() && rate >= 0.0) {
-        return Err(CommandError::argument(
-            "sample_rate",
-            rate,
-            "must be a number ≥ 0",
-        ));
-    }
+    super::checks::time_span(request.end_time, request.step)?;
+    super::checks::spectral_radius(request.spectral_radius)?;
+    super::checks::sample_rate(request.sample_rate)?;
     let model = match request.rigid_beams {
         true => input
             .model
@@ -102,12 +84,12 @@ pub fn run(input: &ModelInput, request: &TransientRequest) -> Result<TransientRu
         transient: TransientSettings {
             step: request.step,
             end_time: request.end_time,
-            spectral_radius: rho,
+            spectral_radius: request.spectral_radius,
             damping: model.damping,
             ..TransientSettings::default()
         },
         from_equilibrium: request.from_equilibrium,
-        sample_rate: rate,
+        sample_rate: request.sample_rate,
         keep_partial: false,
     };
     settings.transient.validate()?;

@@ -93,6 +93,15 @@ pub enum MeasuredError {
         end_line: usize,
         percent: f64,
     },
+    /// A double impact in a record given as arrays (no file lines): the
+    /// samples are 0-based indices.
+    #[error("{}: double impact: the force rises again to {percent:.0} % of its peak at sample {sample}, after the first impact ended at sample {end_sample} (0-based; are force and response swapped?)", file.display())]
+    DoubleImpactInSamples {
+        file: PathBuf,
+        sample: usize,
+        end_sample: usize,
+        percent: f64,
+    },
     #[error("{}: {what} differs from {first}: {value:e} against {expected:e}", file.display())]
     Mismatch {
         file: PathBuf,

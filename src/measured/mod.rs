@@ -54,7 +54,8 @@ pub struct TimeRecord {
     /// Names of the two channels (header or UFF labels).
     pub force_label: String,
     pub response_label: String,
-    /// The file line (1-based) of each sample, for messages.
+    /// The file line (1-based) of each sample, for messages; empty for
+    /// a record given as arrays (messages then name 0-based samples).
     pub lines: Vec<usize>,
 }
 
@@ -218,11 +219,20 @@ pub fn check_force(r: &TimeRecord) -> Result<(), MeasuredError> {
     if let Some(j) =
         (end..r.force.len()).find(|&i| r.force[i].abs() > DOUBLE_IMPACT_FRACTION * peak)
     {
-        return Err(MeasuredError::DoubleImpact {
-            file: r.file.clone(),
-            line: r.lines[j],
-            end_line: r.lines[end],
-            percent: 100.0 * r.force[j].abs() / peak,
+        let percent = 100.0 * r.force[j].abs() / peak;
+        return Err(match (r.lines.get(j), r.lines.get(end)) {
+            (Some(&line), Some(&end_line)) => MeasuredError::DoubleImpact {
+                file: r.file.clone(),
+                line,
+                end_line,
+                percent,
+            },
+            _ => MeasuredError::DoubleImpactInSamples {
+                file: r.file.clone(),
+                sample: j,
+                end_sample: end,
+                percent,
+            },
         });
     }
     Ok(())

@@ -164,10 +164,7 @@ impl Default for ImpulseSettings {
             sample_rate: Some(ACQUISITION_RATE_HZ),
             sensor: None,
             spectrum: SpectrumSettings::default(),
-            peaks: PeakSettings {
-                min_frequency_hz: 100.0,
-                ..PeakSettings::default()
-            },
+            peaks: PeakSettings::default(),
         }
     }
 }
@@ -319,7 +316,7 @@ pub fn run_impulse(
     let (time, signal, force) = recorder.finish(|t| pulse_magnitude(&system, kind, t));
     let sample_rate_hz = settings.sample_rate.unwrap_or(1.0 / h);
     let spectrum = spectrum::amplitude_spectrum(&signal, sample_rate_hz, &settings.spectrum)?;
-    let peaks = spectrum::find_peaks(&spectrum, &settings.peaks);
+    let peaks = spectrum::find_peaks(&spectrum, &peak_settings(&modal, &settings.peaks));
     let first_bending = identify_first_bending(&modal, &spectrum, settings)?;
     let damping = damping_band(&modal, &transient)?
         .and_then(|band| identify_damping(&force, &signal, sample_rate_hz, &band));
@@ -352,6 +349,29 @@ fn pulse_magnitude(system: &System, kind: Excitation, t: f64) -> f64 {
         .filter(|l| kind.matches(&l.time))
         .map(|l| l.force_at(t).norm())
         .sum()
+}
+
+/// `settings` with the search starting no lower than half the lowest
+/// elastic eigenfrequency [SI: Hz]: below it a record holds only the rigid
+/// motion's leakage, whatever the structure's scale (a 2 Hz diving board
+/// and a 4.6 kHz contact alike), and the threshold is relative to the
+/// largest magnitude above it.
+fn peak_settings(modal: &ModalResult, settings: &PeakSettings) -> PeakSettings {
+    let lowest = modal
+        .modes
+        .iter()
+        .filter(|m| !m.kind.is_zero())
+        .map(|m| m.frequency_hz)
+        .fold(f64::INFINITY, f64::min);
+    let from_modes = if lowest.is_finite() {
+        0.5 * lowest
+    } else {
+        0.0
+    };
+    PeakSettings {
+        min_frequency_hz: settings.min_frequency_hz.max(from_modes),
+        ..*settings
+    }
 }
 
 /// The first bending eigenfrequency and its band, half-way to its elastic

@@ -87,6 +87,9 @@ pub struct ReportInput<'a> {
     /// The modes (the first set draws the assembly too).
     pub mode_sets: Vec<ModeSet<'a>>,
     pub sections: Vec<Section>,
+    /// The run's warnings (about the model, the analyses and the
+    /// records), one sentence each: shown first, before any number.
+    pub warnings: &'a [String],
 }
 
 /// Largest displacement of an animated mode, as a fraction of the
@@ -101,6 +104,14 @@ const POINTS_PER_ELEMENT: usize = 8;
 pub fn report_html(input: &ReportInput) -> Result<String, PlotError> {
     let mut body = String::new();
     let mut nav = Vec::new();
+    if !input.warnings.is_empty() {
+        nav.push(("warnings".to_string(), "Warnings".to_string()));
+        body.push_str("<section id=\"warnings\" class=\"warnings\"><h2>Warnings</h2><ul>");
+        for w in input.warnings {
+            let _ = write!(body, "<li>{}</li>", escape(w));
+        }
+        body.push_str("</ul></section>");
+    }
     if let Some(first) = input.mode_sets.first() {
         let g = assembly_geometry(first.system, first.q, POINTS_PER_ELEMENT);
         nav.push(("assembly".to_string(), "Assembly".to_string()));

@@ -34,6 +34,7 @@ const STYLE: &str = r#"
 body { font: 15px/1.45 system-ui, sans-serif; color: var(--ink); margin: 0 auto; padding: 0 1rem 3rem; max-width: 1180px; }
 header { border-bottom: 1px solid #ddd; margin-bottom: 1rem; }
 h1 { font-size: 1.5rem; margin: 1rem 0 0.3rem; }
+.warnings { border-left: 4px solid #d55e00; padding-left: 0.8rem; }
 h2 { font-size: 1.2rem; margin-top: 2rem; border-bottom: 1px solid #eee; }
 dl.provenance { display: grid; grid-template-columns: max-content minmax(0, 1fr); gap: 0.1rem 1rem; font-size: 0.85rem; }
 dl.provenance dd { margin: 0; overflow-wrap: anywhere; }

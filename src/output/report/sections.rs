@@ -155,7 +155,8 @@ pub fn comparison_section(output: &IdentifyOutput, paper: bool) -> Section {
         .map(|r| {
             vec![
                 r.source.clone(),
-                r.first_bending_hz.map_or("–".into(), |f| format!("{f:.2}")),
+                r.first_bending_hz
+                    .map_or("–".into(), |f| crate::model::number::significant(f, 7)),
                 pct(r.error_percent),
                 pct(r.paper_error_percent),
             ]
