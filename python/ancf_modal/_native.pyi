@@ -135,6 +135,7 @@ class Model:
         sample_rate: float = 51200.0,
         sensor: Optional[str] = None,
         window: str = "hann",
+        target_from: Optional[Union[str, "os.PathLike[str]"]] = None,
     ) -> "CalibrationResult":
         """Fits ``params`` (default "height"; names as ``calibrate --param``,
         bounds [SI]) so that the modes ``mode`` of ``mode_kind`` reach

@@ -67,6 +67,7 @@ pub struct Request<'py, 'a> {
     pub max_evaluations: i64,
     pub method: &'a str,
     pub experiment: Experiment<'a>,
+    pub target_from: Option<PathBuf>,
 }
 
 /// Fits the model's parameters to measured frequencies.
@@ -96,6 +97,7 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_, '_>) -> PyResult<PyCa
     })?;
     let request = CalibrateRequest {
         targets_hz: targets(r.target_hz)?,
+        target_from: r.target_from,
         params: parameter_specs(r.params)?,
         keep_mass: r.keep_mass,
         mode_kind,

@@ -457,8 +457,10 @@ impl PyModel {
     /// candidate is evaluated by `method` "eigen" (the eigenproblem) or
     /// "impulse" (the experiment of `Model.impulse` with the keyword
     /// arguments from `amplitude` to `window`, its first bending peak; one
-    /// parameter, one target).
-    #[pyo3(signature = (target_hz = None, params = None, mode_kind = "bending", mode = None, keep_mass = false, tolerance = None, max_evaluations = 60, method = "eigen", amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann"))]
+    /// parameter, one target). `target_from`: the path of an `frf --json`
+    /// document whose `peaks` are the targets (in order of frequency, as
+    /// many as `mode` lists, or all), instead of `target_hz`.
+    #[pyo3(signature = (target_hz = None, params = None, mode_kind = "bending", mode = None, keep_mass = false, tolerance = None, max_evaluations = 60, method = "eigen", amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann", target_from = None))]
     #[allow(clippy::too_many_arguments)]
     fn calibrate(
         &self,
@@ -479,6 +481,7 @@ impl PyModel {
         sample_rate: f64,
         sensor: Option<&str>,
         window: &str,
+        target_from: Option<PathBuf>,
     ) -> PyResult<crate::calibrate::PyCalibrationResult> {
         let experiment = crate::impulse::Experiment {
             amplitude,
@@ -500,6 +503,7 @@ impl PyModel {
             max_evaluations,
             method,
             experiment,
+            target_from,
         };
         crate::calibrate::run(self, py, r)
     }

@@ -143,63 +143,11 @@ fn parse_param(s: &str) -> Result<ParameterSpec, String> {
     })
 }
 
-/// Frequencies of the `peaks` of an `frf --json` document, ascending; the
-/// first `count` of them (all when `count` is 0).
-fn targets_from(path: &std::path::Path, count: usize) -> Result<Vec<f64>> {
-    use anyhow::Context;
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("{}: cannot read the file", path.display()))?;
-    let doc: serde_json::Value = serde_json::from_str(&text)
-        .with_context(|| format!("{}: not a JSON document", path.display()))?;
-    let peaks = doc["peaks"].as_array().with_context(|| {
-        format!(
-            "{}: no `peaks` array (write it with `ancf-modal frf --json`)",
-            path.display()
-        )
-    })?;
-    let mut f = peaks
-        .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            p["frequency_hz"]
-                .as_f64()
-                .filter(|f| f.is_finite() && *f > 0.0)
-                .with_context(|| {
-                    format!(
-                        "{}: peaks[{i}].frequency_hz is not a positive number",
-                        path.display()
-                    )
-                })
-        })
-        .collect::<Result<Vec<f64>>>()?;
-    if f.is_empty() {
-        anyhow::bail!(
-            "{}: the frf result holds no peak to calibrate to",
-            path.display()
-        );
-    }
-    f.sort_by(f64::total_cmp);
-    if count > 0 {
-        if f.len() < count {
-            anyhow::bail!(
-                "{}: {} peak(s), but --mode lists {count} modes",
-                path.display(),
-                f.len()
-            );
-        }
-        f.truncate(count);
-    }
-    Ok(f)
-}
-
 /// The request from the flags.
 pub fn request(args: &CalibrateArgs) -> Result<CalibrateRequest> {
-    let targets_hz = match &args.target_from {
-        Some(path) => targets_from(path, args.mode.len())?,
-        None => args.target.clone(),
-    };
     Ok(CalibrateRequest {
-        targets_hz,
+        targets_hz: args.target.clone(),
+        target_from: args.target_from.clone(),
         params: args.params.clone(),
         keep_mass: args.keep_mass,
         mode_kind: args.mode_kind.into(),

@@ -19,7 +19,7 @@ use crate::model::path::{available_names, PathError};
 use crate::output::calibrate_report::{calibrate_table, calibration_plot};
 use crate::output::plot::{calibration_figure, render, Figure, Format, PlotSize};
 use crate::results::CalibrationOutput;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// The parameter fitted when the request names none: the section height
@@ -61,9 +61,13 @@ pub enum Method {
 /// What `calibrate` fits, and how.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CalibrateRequest {
-    /// Measured frequencies [Hz], one per mode; empty: the model's
-    /// `reference.first_bending_hz`.
+    /// Measured frequencies [Hz], one per mode; empty: those of
+    /// `target_from`, else the model's `reference.first_bending_hz`.
     pub targets_hz: Vec<f64>,
+    /// An `frf` document (JSON) whose `peaks` are the targets: in order of
+    /// frequency, as many as `modes` lists (all when it lists none).
+    /// Not with `targets_hz`.
+    pub target_from: Option<PathBuf>,
     /// The parameters, optionally with bounds [SI]; empty:
     /// [`DEFAULT_PARAMETER`].
     pub params: Vec<ParameterSpec>,
@@ -91,6 +95,7 @@ impl Default for CalibrateRequest {
     fn default() -> Self {
         CalibrateRequest {
             targets_hz: Vec::new(),
+            target_from: None,
             params: Vec::new(),
             keep_mass: false,
             mode_kind: TargetKind::Bending,
@@ -151,10 +156,22 @@ pub fn run(input: &ModelInput, request: &CalibrateRequest) -> Result<CalibrateRu
     check(request)?;
     let model = &input.model;
     let fail = |e| CommandError::calibration(input.label(), e);
-    let targets_hz = match (&request.targets_hz[..], &model.reference) {
-        ([], Some(r)) => vec![r.first_bending_hz],
-        ([], None) => return Err(fail(CalibrationError::NoTargets)),
-        (given, _) => given.to_vec(),
+    let targets_hz = match (
+        &request.targets_hz[..],
+        &request.target_from,
+        &model.reference,
+    ) {
+        ([], Some(file), _) => targets_from(file, request.modes.len())?,
+        ([], None, Some(r)) => vec![r.first_bending_hz],
+        ([], None, None) => return Err(fail(CalibrationError::NoTargets)),
+        (_, Some(file), _) => {
+            return Err(CommandError::argument(
+                "target_from",
+                file.display(),
+                "takes the targets from a file: not with targets given",
+            ))
+        }
+        (given, None, _) => given.to_vec(),
     };
     let parameters = match request.params.is_empty() {
         true => vec![ParameterSpec::named(DEFAULT_PARAMETER)],
@@ -269,4 +286,58 @@ pub fn equivalent_height(
         keep_mass: false,
     };
     calibrate(model, &request, &CalibrationSettings::default())
+}
+
+/// Why the targets cannot be taken from an `frf` document.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TargetsFromError {
+    #[error("not a JSON document: {0}")]
+    NotJson(String),
+    #[error("no `peaks` array (write it with `ancf-modal frf --json`)")]
+    NoPeaks,
+    #[error("peaks[{index}].frequency_hz is not a positive number")]
+    NotAFrequency { index: usize },
+    #[error("the frf result holds no peak to calibrate to")]
+    Empty,
+    #[error("{found} peak(s), but {wanted} modes are to be fitted")]
+    TooFew { found: usize, wanted: usize },
+}
+
+/// The frequencies [Hz] of the `peaks` of the `frf` document `file`,
+/// ascending; the first `count` of them (all when `count` is 0).
+pub fn targets_from(file: &Path, count: usize) -> Result<Vec<f64>, CommandError> {
+    let text = std::fs::read_to_string(file).map_err(|io| CommandError::ReadFile {
+        file: file.to_path_buf(),
+        io,
+    })?;
+    let fail = |source| CommandError::TargetsFrom {
+        file: file.to_path_buf(),
+        source,
+    };
+    let doc: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| fail(TargetsFromError::NotJson(e.to_string())))?;
+    let peaks = doc["peaks"]
+        .as_array()
+        .ok_or(fail(TargetsFromError::NoPeaks))?;
+    let mut f = Vec::with_capacity(peaks.len());
+    for (index, p) in peaks.iter().enumerate() {
+        match p["frequency_hz"].as_f64() {
+            Some(v) if v.is_finite() && v > 0.0 => f.push(v),
+            _ => return Err(fail(TargetsFromError::NotAFrequency { index })),
+        }
+    }
+    if f.is_empty() {
+        return Err(fail(TargetsFromError::Empty));
+    }
+    f.sort_by(f64::total_cmp);
+    if count > 0 {
+        if f.len() < count {
+            return Err(fail(TargetsFromError::TooFew {
+                found: f.len(),
+                wanted: count,
+            }));
+        }
+        f.truncate(count);
+    }
+    Ok(f)
 }

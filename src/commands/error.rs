@@ -125,6 +125,14 @@ pub enum CommandError {
         #[source]
         io: std::io::Error,
     },
+    /// `calibrate`'s targets could not be taken from the `frf` document
+    /// `file`.
+    #[error("{}", file.display())]
+    TargetsFrom {
+        file: PathBuf,
+        #[source]
+        source: super::calibrate::TargetsFromError,
+    },
     /// Points of a sweep failed (each is recorded in the document; the
     /// command line exits with an error after writing everything).
     #[error("{failed} of {total} points failed (first: point {index}: {message})")]
@@ -225,6 +233,7 @@ impl CommandError {
             | CommandError::SweepParams(_)
             | CommandError::SweepMerge(_)
             | CommandError::ReadFile { .. }
+            | CommandError::TargetsFrom { .. }
             | CommandError::NoLoadsToScale => true,
             CommandError::PointsFailed { .. } => false,
         }
