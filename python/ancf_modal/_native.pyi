@@ -201,7 +201,7 @@ class Model:
         height to it."""
     def report(
         self,
-        out: Union[str, "os.PathLike[str]"] = "report.html",
+        out: Union[str, "os.PathLike[str]"] = ...,  # "report.html"
         prestress: bool = False,
         amplitude: Optional[float] = None,
         duration: Optional[float] = None,

@@ -44,6 +44,7 @@ pub mod contacts;
 pub mod dispersion;
 pub mod frame;
 pub mod rayleigh;
+mod scaling;
 mod settings;
 pub mod solver;
 
@@ -160,7 +161,7 @@ impl<'s> Integrator<'s> {
             row_weights
                 .extend((0..c.rows()).map(|r| if c.row_is_angle(r) { 1.0 } else { 1.0 / size }));
         }
-        let weights = (0..n).map(|i| length_scale(sys, i) / size).collect();
+        let weights = (0..n).map(|i| length_scale(sys, i, size) / size).collect();
         let empty = State {
             t: 0.0,
             q: vec![0.0; n],
@@ -643,9 +644,11 @@ fn factor_error(sys: &System, failure: FactorFailure, time: f64) -> TransientErr
 /// The displacement [SI: m] that a unit change of coordinate i causes:
 /// 1 for positions; for a beam slope the mean length of the adjacent
 /// elements (δr' moves the centre line by ~δr'·Le); for a rigid body's
-/// angle its radius of gyration √(J/m). Newton corrections are measured in
-/// these units, relative to the assembly's size.
-fn length_scale(sys: &System, i: usize) -> f64 {
+/// angle its radius of gyration √(J/m) (the assembly's `size` without
+/// inertia). Newton corrections are measured in these units, relative to
+/// the assembly's size: no constant of its own, so that the test is the
+/// same at every scale.
+fn length_scale(sys: &System, i: usize, size: f64) -> f64 {
     for b in &sys.beams {
         if (b.dof0..b.dof0 + 4 * b.node_count()).contains(&i) {
             let k = i - b.dof0;
@@ -666,14 +669,17 @@ fn length_scale(sys: &System, i: usize) -> f64 {
     }
     for r in &sys.rigid_bodies {
         if i == r.dof0 + 2 {
-            return (r.inertia / r.mass).sqrt().max(1e-6);
+            let gyration = (r.inertia / r.mass).sqrt();
+            return if gyration > 0.0 { gyration } else { size };
         }
     }
     1.0
 }
 
 /// Size of the assembly [SI: m]: the largest beam length or extent of the
-/// beam end nodes, body centres and point masses, at least 1 mm.
+/// beam end nodes, body centres and point masses, or contact segment (1 m
+/// for a single point without contacts: nothing else sets a length). No floor: joints are held to the same
+/// fraction of a MEMS device as of a machine.
 fn characteristic_length(sys: &System) -> f64 {
     let q = &sys.q0;
     let mut points: Vec<usize> = Vec::new();
@@ -693,6 +699,10 @@ fn characteristic_length(sys: &System) -> f64 {
         .beams
         .iter()
         .map(|b| b.node_s[b.node_s.len() - 1])
+        .chain(sys.contacts.iter().map(|c| c.length()))
         .fold(0.0, f64::max);
-    longest.max(extent).max(1e-3)
+    match longest.max(extent) {
+        size if size > 0.0 && size.is_finite() => size,
+        _ => 1.0,
+    }
 }

@@ -16,6 +16,7 @@
 //! Both are filled through [`Scatter`] ([`Factorization`] is itself an
 //! assembly target), so the integrator assembles one way for both.
 
+use super::scaling::Equilibration;
 use crate::linalg::Scatter;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::lu::partial_pivoting::{factor, inverse};
@@ -65,6 +66,10 @@ pub struct DenseLu {
     x: Mat<f64>,
     /// Per column, the pivot size below which it counts as singular.
     tiny: Vec<f64>,
+    /// The scales the matrix is factored with ([`Equilibration`]).
+    scales: Equilibration,
+    /// The matrix as assembled, kept while the balanced one is tried.
+    unscaled: Mat<f64>,
 }
 
 impl DenseLu {
@@ -82,6 +87,8 @@ impl DenseLu {
             mem: MemBuffer::new(req),
             x: Mat::zeros(n, 1),
             tiny: vec![0.0; n],
+            scales: Equilibration::new(n),
+            unscaled: Mat::zeros(n, n),
         }
     }
 
@@ -94,6 +101,35 @@ impl DenseLu {
     /// relative to its largest entry only by luck (the former LU's test
     /// rejected a 200-element cantilever at t = 0).
     pub fn factor(&mut self) -> Result<(), FactorFailure> {
+        let n = self.a.nrows();
+        let a = &self.a;
+        self.scales.compute(|f| {
+            for j in 0..n {
+                for (i, &v) in a.col(j).iter().enumerate() {
+                    if v != 0.0 {
+                        f(i, j, v);
+                    }
+                }
+            }
+        });
+        self.unscaled.copy_from(&self.a);
+        for j in 0..n {
+            let c = self.scales.scale[j];
+            for (v, r) in self.a.col_mut(j).iter_mut().zip(&self.scales.scale) {
+                *v *= r * c;
+            }
+        }
+        if self.factor_as_is().is_ok() {
+            return Ok(());
+        }
+        // The units' own scale decides where the balanced one fails.
+        self.a.copy_from(&self.unscaled);
+        self.scales.reset();
+        self.factor_as_is()
+    }
+
+    /// Factors `a` as it stands (the pivot test, the inverse).
+    fn factor_as_is(&mut self) -> Result<(), FactorFailure> {
         let n = self.a.nrows();
         let eps = f64::EPSILON * n as f64;
         for (t, j) in self.tiny.iter_mut().zip(0..n) {
@@ -128,6 +164,7 @@ impl DenseLu {
     /// b ← A⁻¹ b.
     pub fn solve_in_place(&mut self, b: &mut [f64]) {
         let n = self.a.nrows();
+        self.scales.apply(b);
         matmul(
             self.x.as_mut(),
             Accum::Replace,
@@ -139,6 +176,7 @@ impl DenseLu {
         for (b, x) in b.iter_mut().zip(self.x.col(0).iter()) {
             *b = *x;
         }
+        self.scales.apply(b);
     }
 }
 
@@ -159,6 +197,10 @@ pub struct SparseLu {
     factored: bool,
     /// Scratch of the singularity probe.
     probe: Vec<f64>,
+    /// The scales the matrix is factored with ([`Equilibration`]).
+    scales: Equilibration,
+    /// The values as assembled, kept while the balanced ones are tried.
+    unscaled: Vec<f64>,
 }
 
 impl SparseLu {
@@ -179,6 +221,8 @@ impl SparseLu {
             solve_mem,
             factored: false,
             probe: vec![0.0; n],
+            scales: Equilibration::new(n),
+            unscaled: Vec::new(),
         })
     }
 
@@ -241,6 +285,40 @@ impl SparseLu {
         if !self.outside.is_empty() {
             self.grow()?;
         }
+        let p = self.pattern.as_ref();
+        let values = &self.values;
+        self.scales.compute(|f| {
+            for j in 0..p.ncols() {
+                for (&i, &v) in p.row_idx()[p.col_range(j)]
+                    .iter()
+                    .zip(&values[p.col_range(j)])
+                {
+                    f(i, j, v);
+                }
+            }
+        });
+        self.unscaled.clone_from(&self.values);
+        for j in 0..p.ncols() {
+            let c = self.scales.scale[j];
+            for (&i, v) in p.row_idx()[p.col_range(j)]
+                .iter()
+                .zip(&mut self.values[p.col_range(j)])
+            {
+                *v *= self.scales.scale[i] * c;
+            }
+        }
+        if self.factor_as_is().is_ok() {
+            return Ok(());
+        }
+        // The units' own scale decides where the balanced one fails.
+        self.values.clone_from(&self.unscaled);
+        self.scales.reset();
+        self.factor_as_is()
+    }
+
+    /// Factors the values as they stand (numeric factorization, the
+    /// singularity probe).
+    fn factor_as_is(&mut self) -> Result<(), FactorFailure> {
         let a = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
         let result = self.symbolic.factorize_numeric_lu(
             &mut self.numeric,
@@ -279,7 +357,7 @@ impl SparseLu {
                 x[i] += v;
             }
         }
-        self.solve_in_place(&mut x);
+        self.solve_scaled(&mut x);
         let bad = x.iter().position(|v| !v.is_finite());
         self.probe = x;
         match bad {
@@ -293,6 +371,13 @@ impl SparseLu {
 
     /// b ← A⁻¹ b (after a successful [`SparseLu::factor`]).
     pub fn solve_in_place(&mut self, b: &mut [f64]) {
+        self.scales.apply(b);
+        self.solve_scaled(b);
+        self.scales.apply(b);
+    }
+
+    /// b ← (D A D)⁻¹ b: the factored (scaled) matrix's solve.
+    fn solve_scaled(&mut self, b: &mut [f64]) {
         assert!(self.factored, "solve before a successful factorization");
         let n = self.size();
         LuRef::new_unchecked(&self.symbolic, &self.numeric).solve_in_place_with_conj(

@@ -94,6 +94,11 @@ fn rotate(phi: f64, v: Vector2<f64>) -> Vector2<f64> {
 }
 
 impl ContactElement {
+    /// Length of the contact's segment [SI: m].
+    pub fn length(&self) -> f64 {
+        self.length
+    }
+
     /// A contact between the segment `[from, to]` (anchors of its body, or
     /// of the ground) and the point `point`, at the reference state `q0`.
     pub fn new(
