@@ -212,7 +212,6 @@ pub fn simulate_from(
         let p = load_power(sys, st, &mut scratch);
         if let Some((t0, p0)) = last {
             work += 0.5 * (st.t - t0) * (p + p0);
-            min_step = min_step.min(st.t - t0);
         }
         last = Some((st.t, p));
         step_time.push(st.t);
@@ -235,7 +234,12 @@ pub fn simulate_from(
     let mut failure = None;
     while t_end - state.t > 1e-9 * settings.transient.step {
         match integ.advance(&mut state, t_end) {
-            Ok(()) => observe(&state, &integ.contacts.force),
+            Ok(()) => {
+                // The step taken (differences of the times t₀ + k·h would
+                // show round-off of the times, not of the steps).
+                min_step = min_step.min(integ.current_step());
+                observe(&state, &integ.contacts.force);
+            }
             Err(e) if settings.keep_partial && step_time.len() > 1 => {
                 failure = Some(e);
                 break;
