@@ -76,6 +76,30 @@ pub struct EnergyBalance {
     pub stored_j: f64,
 }
 
+impl EnergyBalance {
+    /// The energy put into the run [SI: J]: the kinetic, strain and
+    /// spring energy at the start, the loads' work (its magnitude) and the
+    /// potential energy gravity gave up.
+    pub fn put_in_j(&self) -> f64 {
+        let (i, e) = (&self.initial, &self.end);
+        i.kinetic_j
+            + i.strain_j
+            + i.spring_j
+            + self.load_work_j.abs()
+            + (i.gravity_j - e.gravity_j).max(0.0)
+    }
+
+    /// The error as a fraction of the energy put in (infinite for an
+    /// error where nothing was put in, 0 for none).
+    pub fn relative_error(&self) -> f64 {
+        if self.error_j == 0.0 {
+            0.0
+        } else {
+            self.error_j.abs() / self.put_in_j()
+        }
+    }
+}
+
 /// A recorded run.
 #[derive(Debug, Clone)]
 pub struct Simulation {

@@ -8,7 +8,7 @@
 
 use super::{CommandError, ModelInput, Run};
 use crate::analysis::impulse::ACQUISITION_RATE_HZ;
-use crate::analysis::simulate::{simulate, Simulation, SimulationSettings};
+use crate::analysis::simulate::{simulate, EnergyBalance, Simulation, SimulationSettings};
 use crate::analysis::transient::TransientSettings;
 use crate::output::figures::write_figure;
 use crate::output::plot::PlotSize;
@@ -96,12 +96,53 @@ pub fn run(input: &ModelInput, request: &TransientRequest) -> Result<TransientRu
     let simulation = simulate(System::new(&model), &[], &settings)
         .map_err(|e| CommandError::simulation(input.label(), e))?;
     let output = TransientOutput::new(&model.name, &settings, &simulation);
+    let own = energy_warning(&simulation.energy, request.spectral_radius);
     Ok(TransientRun {
         model_name: model.name.clone(),
         settings,
         simulation,
-        document: Run::of(input, output),
+        document: Run::of(input, output).warn(input, own),
     })
+}
+
+/// An energy error above this fraction of the energy put in is a warning.
+pub const ENERGY_WARNING_FRACTION: f64 = 1e-3;
+
+/// The warning of a run whose energy balance misses by more than
+/// [`ENERGY_WARNING_FRACTION`] of the energy put in, with what helps.
+pub fn energy_warning(e: &EnergyBalance, spectral_radius: f64) -> Option<String> {
+    let fraction = e.relative_error();
+    if fraction <= ENERGY_WARNING_FRACTION {
+        return None;
+    }
+    let (verb, help) = if e.error_j > 0.0 && spectral_radius >= 1.0 {
+        (
+            "gains",
+            "generalized-α at a spectral radius of 1 dissipates nothing numerically, and with joints its energy can drift: a spectral radius below 1 (0.9) or a smaller step helps",
+        )
+    } else if e.error_j > 0.0 {
+        ("gains", "a run at half the step tells whether it converges")
+    } else {
+        ("loses", "the integrator's numerical damping (spectral radius below 1) or a coarse step takes it: a run at half the step or a spectral radius nearer 1 tells which")
+    };
+    Some(format!(
+        "energy balance: the run {verb} {:.3e} J unaccounted for, {} the {:.4e} J put in (energy at the start, load work, gravity): {help}",
+        e.error_j.abs(),
+        share(fraction),
+        e.put_in_j(),
+    ))
+}
+
+/// A fraction of what was put in, in words: "1.5 % of", "14630 times".
+fn share(fraction: f64) -> String {
+    let sig = |v: f64| crate::model::number::significant(v, 4);
+    if !fraction.is_finite() {
+        String::from("with nothing put in, against")
+    } else if fraction < 1.0 {
+        format!("{} % of", sig(100.0 * fraction))
+    } else {
+        format!("{} times", sig(fraction))
+    }
 }
 
 impl TransientRun {

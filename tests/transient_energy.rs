@@ -1,0 +1,78 @@
+//! The energy balance of `transient` is stated against the energy put in
+//! (the energy at the start, the loads' work, the potential energy
+//! gravity gave up), and an error above 1e-3 of it is a warning (issue
+//! 35): a conservation law, computed here from the document's own terms.
+
+use ancf_modal::commands::transient::{run, TransientRequest, ENERGY_WARNING_FRACTION};
+use ancf_modal::commands::ModelInput;
+use std::path::Path;
+
+fn shipped(name: &str) -> ModelInput {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("models/{name}.json"));
+    ModelInput::from_file(&path).unwrap()
+}
+
+/// |error| / (T + U + V at the start + |W| + gravity's release), from the
+/// `--json` document's fields.
+fn fraction(doc: &serde_json::Value) -> f64 {
+    let e = &doc["energy"];
+    let (i, f) = (&e["initial"], &e["final"]);
+    let v = |x: &serde_json::Value, k: &str| x[k].as_f64().unwrap();
+    let put = v(i, "kinetic_j")
+        + v(i, "strain_j")
+        + v(i, "spring_j")
+        + v(e, "load_work_j").abs()
+        + (v(i, "gravity_j") - v(f, "gravity_j")).max(0.0);
+    v(e, "error_j").abs() / put
+}
+
+fn energy_warnings(warnings: &[String]) -> Vec<&String> {
+    warnings
+        .iter()
+        .filter(|w| w.contains("energy balance"))
+        .collect()
+}
+
+#[test]
+fn a_run_that_misses_its_balance_says_so_and_a_sound_one_does_not() {
+    // The switch-off assembly started at rest in its reference, where the
+    // pre-stressed contact overlaps by millimetres: its balance misses by
+    // thousands of times what was put in.
+    let bad = run(&shipped("rcbo_switch_off"), &TransientRequest::default()).unwrap();
+    let doc = bad.document.document();
+    let f = fraction(&doc);
+    assert!(f > ENERGY_WARNING_FRACTION, "{f}");
+    let w = energy_warnings(&bad.document.warnings);
+    assert_eq!(w.len(), 1, "{:?}", bad.document.warnings);
+    assert!(
+        w[0].contains("rcbo_switch_off.json: energy balance: the run gains"),
+        "{}",
+        w[0]
+    );
+    let said = stated_share(w[0]);
+    assert!(
+        (said - f).abs() <= 1e-3 * f,
+        "the warning's {said} against {f}"
+    );
+    // A step load on a clamped blade: the balance closes (6e-5 of the
+    // load work), and nothing is said.
+    let good = run(&shipped("cantilever"), &TransientRequest::default()).unwrap();
+    let f = fraction(&good.document.document());
+    assert!(f < ENERGY_WARNING_FRACTION, "{f}");
+    assert!(energy_warnings(&good.document.warnings).is_empty());
+}
+
+/// The share the warning states ("14630 times the", "1.5 % of the").
+fn stated_share(warning: &str) -> f64 {
+    let words: Vec<&str> = warning.split_whitespace().collect();
+    let i = words
+        .iter()
+        .position(|w| *w == "times" || *w == "%")
+        .unwrap();
+    let v: f64 = words[i - 1].parse().unwrap();
+    if words[i] == "%" {
+        v / 100.0
+    } else {
+        v
+    }
+}
