@@ -37,8 +37,22 @@ fn cantilever(length: f64, height: f64, pulse: f64) -> String {
     )
 }
 
+/// A fixed seed, so that every run draws the same cases and a failure is
+/// reproducible; `IMPULSE_PEAKS_SEED=N` explores others.
+fn config(cases: u32) -> ProptestConfig {
+    let seed = std::env::var("IMPULSE_PEAKS_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(35);
+    ProptestConfig {
+        cases,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(seed),
+        ..ProptestConfig::default()
+    }
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 8, ..ProptestConfig::default() })]
+    #![proptest_config(config(8))]
 
     #[test]
     fn the_first_bending_peak_is_listed_at_any_scale(
