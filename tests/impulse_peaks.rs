@@ -14,6 +14,8 @@ use ancf_modal::analysis::impulse::{run_impulse, ImpulseSettings};
 use ancf_modal::error::Source;
 use ancf_modal::Model;
 use proptest::prelude::*;
+
+mod common;
 use std::f64::consts::PI;
 
 /// Euler–Bernoulli first bending frequency of a clamped-free beam [Hz].
@@ -37,22 +39,8 @@ fn cantilever(length: f64, height: f64, pulse: f64) -> String {
     )
 }
 
-/// A fixed seed, so that every run draws the same cases and a failure is
-/// reproducible; `IMPULSE_PEAKS_SEED=N` explores others.
-fn config(cases: u32) -> ProptestConfig {
-    let seed = std::env::var("IMPULSE_PEAKS_SEED")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(35);
-    ProptestConfig {
-        cases,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(seed),
-        ..ProptestConfig::default()
-    }
-}
-
 proptest! {
-    #![proptest_config(config(8))]
+    #![proptest_config(common::fixed_cases(8, "IMPULSE_PEAKS_SEED", 35))]
 
     #[test]
     fn the_first_bending_peak_is_listed_at_any_scale(

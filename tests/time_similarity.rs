@@ -20,6 +20,8 @@ use ancf_modal::commands::ModelInput;
 use ancf_modal::error::Source;
 use proptest::prelude::*;
 
+mod common;
+
 /// The proof mass on two clamped beams, at scale `lambda` of a 15 mm
 /// device (λ = 0.01: the MEMS resonator); its load is a half-sine of
 /// 2 µs·λ·100, or constant.
@@ -83,22 +85,8 @@ fn off(a: &[f64], b: &[f64], scale: f64) -> f64 {
         / peak
 }
 
-/// A fixed seed, so that every run draws the same cases and a failure is
-/// reproducible; `TIME_SIMILARITY_SEED=N` explores others.
-fn config(cases: u32) -> ProptestConfig {
-    let seed = std::env::var("TIME_SIMILARITY_SEED")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(35);
-    ProptestConfig {
-        cases,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(seed),
-        ..ProptestConfig::default()
-    }
-}
-
 proptest! {
-    #![proptest_config(config(6))]
+    #![proptest_config(common::fixed_cases(6, "TIME_SIMILARITY_SEED", 35))]
 
     #[test]
     fn a_scaled_transient_is_the_same_motion(log_lambda in -4.0f64..3.0) {

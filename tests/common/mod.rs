@@ -95,3 +95,18 @@ where
     );
     out.stdout
 }
+
+/// A property test's configuration: `cases` drawn from a fixed seed
+/// (`default`), so that every run draws the same cases and a failure is
+/// reproducible; the environment variable `var` = N explores others.
+pub fn fixed_cases(cases: u32, var: &str, default: u64) -> proptest::prelude::ProptestConfig {
+    let seed = std::env::var(var)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default);
+    proptest::prelude::ProptestConfig {
+        cases,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(seed),
+        ..proptest::prelude::ProptestConfig::default()
+    }
+}
