@@ -14,6 +14,7 @@ fn request(params: &[&str], targets: &[f64]) -> CalibrationRequest {
         targets_hz: targets.to_vec(),
         modes: ModeSelection::default(),
         keep_mass: false,
+        prestress: false,
     }
 }
 

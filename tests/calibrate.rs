@@ -28,6 +28,7 @@ fn request(params: &[&str], targets: &[f64]) -> CalibrationRequest {
         targets_hz: targets.to_vec(),
         modes: ModeSelection::default(),
         keep_mass: false,
+        prestress: false,
     }
 }
 
@@ -426,7 +427,7 @@ fn analytic_sensitivities_match_central_differences() {
             kind: ModeKind::Bending,
             numbers: vec![1, 2, 3, 4],
         };
-        let eval = EigenFrequencies::new(&m, &sel, 4, ModalSettings::default()).unwrap();
+        let eval = EigenFrequencies::new(&m, &sel, 4, ModalSettings::default(), false).unwrap();
         let p0 = set.start();
         let e = eval.evaluate(&set.apply(&p0).unwrap(), &set).unwrap();
         let s = e.sensitivities.unwrap();

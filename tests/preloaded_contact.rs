@@ -46,7 +46,7 @@ fn a_preloaded_contact_is_elastic_until_it_separates() {
             tolerance: 1e-12,
             ..TransientSettings::default()
         },
-        from_equilibrium: true,
+        start: ancf_modal::analysis::statics::start::Start::Equilibrium,
         sample_rate: 0.0,
         keep_partial: false,
     };

@@ -210,7 +210,7 @@ fn energy_balance_closes_with_the_damping_dissipation() {
                 damping: model.damping,
                 ..TransientSettings::default()
             },
-            from_equilibrium: false,
+            start: ancf_modal::analysis::statics::start::Start::Reference,
             sample_rate: 0.0,
             keep_partial: false,
         },

@@ -67,7 +67,7 @@ fn run(m: &ValidModel, end_time: f64) -> (Vec<f64>, Vec<f64>) {
             spectral_radius: 1.0,
             ..TransientSettings::default()
         },
-        from_equilibrium: true,
+        start: ancf_modal::analysis::statics::start::Start::Equilibrium,
         sample_rate: 0.0,
         keep_partial: false,
     };
@@ -185,9 +185,12 @@ fn a_released_weld_and_a_transient_from_the_reference_are_refused() {
     });
     let err = one_line_error(&weld, &["static"]);
     assert!(err.contains("joints[0].release"), "{err}");
-    let err = one_line_error(&latched(pin_latch(json!({"until": 0.0}))), &["transient"]);
+    let err = one_line_error(
+        &latched(pin_latch(json!({"until": 0.0}))),
+        &["transient", "--from-reference"],
+    );
     assert!(
-        err.contains("latch") && err.contains("--from-equilibrium"),
+        err.contains("latch") && err.contains("--from-reference"),
         "{err}"
     );
     let constant = latched(pin_latch(json!("constant")));

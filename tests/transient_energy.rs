@@ -3,6 +3,7 @@
 //! gravity gave up), and an error above 1e-3 of it is a warning (issue
 //! 35): a conservation law, computed here from the document's own terms.
 
+use ancf_modal::analysis::statics::start::Start;
 use ancf_modal::commands::transient::{run, TransientRequest, ENERGY_WARNING_FRACTION};
 use ancf_modal::commands::ModelInput;
 use std::path::Path;
@@ -35,10 +36,15 @@ fn energy_warnings(warnings: &[String]) -> Vec<&String> {
 
 #[test]
 fn a_run_that_misses_its_balance_says_so_and_a_sound_one_does_not() {
-    // The switch-off assembly started at rest in its reference, where the
+    // The switch-off assembly started at rest in its reference (asked
+    // for: by default it starts from its equilibrium), where the
     // pre-stressed contact overlaps by millimetres: its balance misses by
     // thousands of times what was put in.
-    let bad = run(&shipped("rcbo_switch_off"), &TransientRequest::default()).unwrap();
+    let from_reference = TransientRequest {
+        start: Start::Reference,
+        ..TransientRequest::default()
+    };
+    let bad = run(&shipped("rcbo_switch_off"), &from_reference).unwrap();
     let doc = bad.document.document();
     let f = fraction(&doc);
     assert!(f > ENERGY_WARNING_FRACTION, "{f}");
@@ -60,6 +66,14 @@ fn a_run_that_misses_its_balance_says_so_and_a_sound_one_does_not() {
     let f = fraction(&good.document.document());
     assert!(f < ENERGY_WARNING_FRACTION, "{f}");
     assert!(energy_warnings(&good.document.warnings).is_empty());
+    // The switch-off assembly from its equilibrium (the default): the
+    // latch lets go, and the balance closes.
+    let released = run(&shipped("rcbo_switch_off"), &TransientRequest::default()).unwrap();
+    let doc = released.document.document();
+    assert_eq!(doc["from_equilibrium"], true);
+    let f = fraction(&doc);
+    assert!(f < ENERGY_WARNING_FRACTION, "{f}");
+    assert!(energy_warnings(&released.document.warnings).is_empty());
 }
 
 /// The share the warning states ("14630 times the", "1.5 % of the").

@@ -110,6 +110,7 @@ class Model:
         sample_rate: float = 51200.0,
         sensor: Optional[str] = None,
         window: str = "hann",
+        from_reference: bool = False,
     ) -> "ImpulseResult":
         """The time-domain test (``ancf-modal impulse``): the half-sine
         loads (``amplitude`` [N], ``duration`` [s] override them), ``end_time``
@@ -124,6 +125,7 @@ class Model:
         mode_kind: Literal["bending", "axial", "spring"] = "bending",
         mode: Optional[Sequence[int]] = None,
         keep_mass: bool = False,
+        prestress: bool = False,
         tolerance: Optional[float] = None,
         max_evaluations: int = 60,
         method: Literal["eigen", "impulse"] = "eigen",
@@ -135,6 +137,7 @@ class Model:
         sample_rate: float = 51200.0,
         sensor: Optional[str] = None,
         window: str = "hann",
+        from_reference: bool = False,
         target_from: Optional[Union[str, "os.PathLike[str]"]] = None,
     ) -> "CalibrationResult":
         """Fits ``params`` (default "height"; names as ``calibrate --param``,
@@ -165,13 +168,15 @@ class Model:
         end_time: float = 0.01,
         step: float = 1e-6,
         spectral_radius: float = 0.9,
-        from_equilibrium: bool = False,
+        from_reference: bool = False,
         sample_rate: float = 51200.0,
         rigid_beams: bool = False,
     ) -> "TransientResult":
         """A time integration (``ancf-modal transient``): ``end_time`` [s] in
         steps of ``step`` [s], generalized-α ``spectral_radius`` [–], from
-        rest or ``from_equilibrium``; sensors at ``sample_rate`` [Hz]."""
+        rest at the static equilibrium under the loads at t = 0⁻ (the
+        reference when it balances them), or at the reference with
+        ``from_reference``; sensors at ``sample_rate`` [Hz]."""
     def convergence(self, max_elements: int = 64, modes: int = 3) -> "ConvergenceResult":
         """Mesh convergence of the first ``modes`` bending frequencies
         (``ancf-modal convergence``): beams meshed with 2, 4, 8, … elements
@@ -187,6 +192,7 @@ class Model:
         sample_rate: float = 51200.0,
         sensor: Optional[str] = None,
         window: str = "hann",
+        from_reference: bool = False,
         calibrate: bool = False,
         measured: Optional[Sequence[Union[str, "os.PathLike[str]"]]] = None,
         measured_window: str = "rect",
@@ -211,6 +217,7 @@ class Model:
         sample_rate: float = 51200.0,
         sensor: Optional[str] = None,
         window: str = "hann",
+        from_reference: bool = False,
         calibrate: bool = False,
         measured: Optional[Sequence[Union[str, "os.PathLike[str]"]]] = None,
         measured_window: str = "rect",

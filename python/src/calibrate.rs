@@ -63,6 +63,7 @@ pub struct Request<'py, 'a> {
     pub mode_kind: &'a str,
     pub mode: Option<Vec<i64>>,
     pub keep_mass: bool,
+    pub prestress: bool,
     pub tolerance: Option<f64>,
     pub max_evaluations: i64,
     pub method: &'a str,
@@ -106,6 +107,7 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_, '_>) -> PyResult<PyCa
         tolerance: r.tolerance,
         max_evaluations,
         experiment: r.experiment.request()?,
+        prestress: r.prestress,
     };
     let input = model.input();
     let run = compute(py, move || calibrate(&input, &request).map_err(failure))?;

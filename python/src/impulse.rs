@@ -24,6 +24,8 @@ pub struct Experiment<'a> {
     pub sample_rate: f64,
     pub sensor: Option<&'a str>,
     pub window: &'a str,
+    /// Strike the reference instead of the static equilibrium.
+    pub from_reference: bool,
 }
 
 impl Experiment<'_> {
@@ -42,6 +44,7 @@ impl Experiment<'_> {
             sample_rate: self.sample_rate,
             sensor: self.sensor.map(str::to_string),
             window,
+            start: ancf::analysis::statics::start::Start::from_reference(self.from_reference),
         })
     }
 }

@@ -299,7 +299,7 @@ impl PyModel {
     /// [–], the sensor `sensor` (default: the model's first) is recorded at
     /// `sample_rate` [Hz] (0: every step), and its spectrum (`window`:
     /// hann, rect, blackman, flattop) gives the peaks.
-    #[pyo3(signature = (amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann"))]
+    #[pyo3(signature = (amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann", from_reference = false))]
     #[allow(clippy::too_many_arguments)]
     fn impulse(
         &self,
@@ -312,6 +312,7 @@ impl PyModel {
         sample_rate: f64,
         sensor: Option<&str>,
         window: &str,
+        from_reference: bool,
     ) -> PyResult<crate::impulse::PyImpulseResult> {
         let e = crate::impulse::Experiment {
             amplitude,
@@ -322,6 +323,7 @@ impl PyModel {
             sample_rate,
             sensor,
             window,
+            from_reference,
         };
         crate::impulse::run(self, py, e)
     }
@@ -337,7 +339,7 @@ impl PyModel {
     /// [Hz]) nearest the first bending frequency, else the model's
     /// `reference`; `calibrate` fits the first beam's equivalent height to
     /// it.
-    #[pyo3(signature = (amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann", calibrate = false, measured = None, measured_window = "rect", measured_band = None))]
+    #[pyo3(signature = (amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann", from_reference = false, calibrate = false, measured = None, measured_window = "rect", measured_band = None))]
     #[allow(clippy::too_many_arguments)]
     fn identify(
         &self,
@@ -350,6 +352,7 @@ impl PyModel {
         sample_rate: f64,
         sensor: Option<&str>,
         window: &str,
+        from_reference: bool,
         calibrate: bool,
         measured: Option<Vec<PathBuf>>,
         measured_window: &str,
@@ -365,6 +368,7 @@ impl PyModel {
                 sample_rate,
                 sensor,
                 window,
+                from_reference,
             },
             calibrate,
             measured,
@@ -380,7 +384,7 @@ impl PyModel {
     /// with a half-sine or step load everything `identify` computes, its
     /// keyword arguments as `identify`'s; the switch-off when the model
     /// releases something. Other models refuse `calibrate` and `measured`.
-    #[pyo3(signature = (out = PathBuf::from("report.html"), prestress = false, amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann", calibrate = false, measured = None, measured_window = "rect", measured_band = None))]
+    #[pyo3(signature = (out = PathBuf::from("report.html"), prestress = false, amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann", from_reference = false, calibrate = false, measured = None, measured_window = "rect", measured_band = None))]
     #[allow(clippy::too_many_arguments)]
     fn report(
         &self,
@@ -395,6 +399,7 @@ impl PyModel {
         sample_rate: f64,
         sensor: Option<&str>,
         window: &str,
+        from_reference: bool,
         calibrate: bool,
         measured: Option<Vec<PathBuf>>,
         measured_window: &str,
@@ -410,6 +415,7 @@ impl PyModel {
                 sample_rate,
                 sensor,
                 window,
+                from_reference,
             },
             calibrate,
             measured,
@@ -452,7 +458,9 @@ impl PyModel {
     /// or {name: (lower, upper) [SI] or None} (default "height"; names as
     /// `calibrate --param`), the targets' modes `mode` (1-based among
     /// `mode_kind`: bending, axial, spring; default 1, 2, …), `keep_mass`
-    /// (density follows the section), `tolerance` [Hz] (default 1e-10 ×
+    /// (density follows the section), `prestress` (fit the modes at the
+    /// static equilibrium under the loads and gravity; implied by a load's
+    /// force, `ID.force_x` or `ID.force_y`, among `params`), `tolerance` [Hz] (default 1e-10 ×
     /// target, 1e-3 Hz by the impulse method), `max_evaluations`. Each
     /// candidate is evaluated by `method` "eigen" (the eigenproblem) or
     /// "impulse" (the experiment of `Model.impulse` with the keyword
@@ -460,7 +468,7 @@ impl PyModel {
     /// parameter, one target). `target_from`: the path of an `frf --json`
     /// document whose `peaks` are the targets (in order of frequency, as
     /// many as `mode` lists, or all), instead of `target_hz`.
-    #[pyo3(signature = (target_hz = None, params = None, mode_kind = "bending", mode = None, keep_mass = false, tolerance = None, max_evaluations = 60, method = "eigen", amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann", target_from = None))]
+    #[pyo3(signature = (target_hz = None, params = None, mode_kind = "bending", mode = None, keep_mass = false, prestress = false, tolerance = None, max_evaluations = 60, method = "eigen", amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann", from_reference = false, target_from = None))]
     #[allow(clippy::too_many_arguments)]
     fn calibrate(
         &self,
@@ -470,6 +478,7 @@ impl PyModel {
         mode_kind: &str,
         mode: Option<Vec<i64>>,
         keep_mass: bool,
+        prestress: bool,
         tolerance: Option<f64>,
         max_evaluations: i64,
         method: &str,
@@ -481,6 +490,7 @@ impl PyModel {
         sample_rate: f64,
         sensor: Option<&str>,
         window: &str,
+        from_reference: bool,
         target_from: Option<PathBuf>,
     ) -> PyResult<crate::calibrate::PyCalibrationResult> {
         let experiment = crate::impulse::Experiment {
@@ -492,6 +502,7 @@ impl PyModel {
             sample_rate,
             sensor,
             window,
+            from_reference,
         };
         let r = crate::calibrate::Request {
             target_hz,
@@ -499,6 +510,7 @@ impl PyModel {
             mode_kind,
             mode,
             keep_mass,
+            prestress,
             tolerance,
             max_evaluations,
             method,
@@ -545,11 +557,12 @@ impl PyModel {
     /// A general time integration (the command line's `transient`):
     /// generalized-α with spectral radius `spectral_radius` [–] over
     /// `end_time` [s] in steps of `step` [s] (shortened at contact onsets),
-    /// from rest at the reference or, with `from_equilibrium`, from the
-    /// static equilibrium under the loads at t = 0 (released supports let
-    /// go); the sensors sampled at `sample_rate` [Hz] (0: every step);
+    /// from rest at the static equilibrium under the loads at t = 0⁻
+    /// (constant loads, preloads, gravity; released supports let go; the
+    /// reference when it balances them) or, with `from_reference`, at the
+    /// reference; the sensors sampled at `sample_rate` [Hz] (0: every step);
     /// `rigid_beams` models every beam as a rigid body.
-    #[pyo3(signature = (end_time = 0.01, step = 1e-6, spectral_radius = 0.9, from_equilibrium = false, sample_rate = 51200.0, rigid_beams = false))]
+    #[pyo3(signature = (end_time = 0.01, step = 1e-6, spectral_radius = 0.9, from_reference = false, sample_rate = 51200.0, rigid_beams = false))]
     #[allow(clippy::too_many_arguments)]
     fn transient(
         &self,
@@ -557,7 +570,7 @@ impl PyModel {
         end_time: f64,
         step: f64,
         spectral_radius: f64,
-        from_equilibrium: bool,
+        from_reference: bool,
         sample_rate: f64,
         rigid_beams: bool,
     ) -> PyResult<crate::transient::PyTransientResult> {
@@ -565,7 +578,7 @@ impl PyModel {
             end_time,
             step,
             spectral_radius,
-            from_equilibrium,
+            start: ancf::analysis::statics::start::Start::from_reference(from_reference),
             sample_rate,
             rigid_beams,
         };

@@ -62,6 +62,7 @@ fn call_text(r: &ReportRequest) -> String {
         e.sensor.as_deref().map_or_else(String::new, text),
     );
     add("window", e.window != de.window, text(&e.window.to_string()));
+    add("from_reference", e.start != de.start, "True".into());
     let c = &r.identify;
     add("calibrate", c.calibrate, "True".into());
     let files: Vec<String> = c

@@ -13,7 +13,8 @@
 //! numerical damping (ρ∞ < 1) and the Newton tolerance leave.
 
 use super::impulse::sensor::SensorProbe;
-use super::statics::{solve_equilibrium, Equilibrium, StaticSettings};
+use super::statics::start::{starting_equilibrium, Start};
+use super::statics::Equilibrium;
 use super::transient::contacts::ContactStats;
 use super::transient::{Integrator, RunStats, State, TransientSettings};
 use crate::error::{SimulationError, TransientError};
@@ -26,9 +27,10 @@ use crate::system::System;
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimulationSettings {
     pub transient: TransientSettings,
-    /// Start from the static equilibrium under the loads at t = 0 (else
-    /// from the reference configuration at rest).
-    pub from_equilibrium: bool,
+    /// Start from the static equilibrium under the loads at t = 0⁻ (the
+    /// reference when it balances them) or from the reference at rest
+    /// ([`super::statics::start`]).
+    pub start: Start,
     /// Output sample rate [SI: Hz]; 0 keeps every step.
     pub sample_rate: f64,
     /// When the integration fails (a Newton failure, a singular iteration
@@ -124,6 +126,9 @@ pub struct Simulation {
     pub stats: RunStats,
     /// Shortest step taken [SI: s].
     pub min_step: f64,
+    /// Whether the run started from a solved static equilibrium (else
+    /// from the reference at rest).
+    pub from_equilibrium: bool,
     /// Static iterations spent on the initial equilibrium.
     pub static_iterations: usize,
     /// The applied loads of the integrated system (released supports'
@@ -173,11 +178,7 @@ pub fn simulate(
     settings: &SimulationSettings,
 ) -> Result<Simulation, SimulationError> {
     check_sample_rate(settings)?;
-    let start = if settings.from_equilibrium {
-        Some(solve_equilibrium(&sys, &StaticSettings::default())?)
-    } else {
-        None
-    };
+    let start = starting_equilibrium(&sys, settings.start)?;
     simulate_from(sys, start, points, settings)
 }
 
@@ -208,6 +209,7 @@ pub fn simulate_from(
         },
     };
     let sys = &sys;
+    let from_equilibrium = start.is_some();
     let mut integ = Integrator::new(sys, settings.transient)?;
     let (mut state, static_iterations) = match start {
         Some(eq) => (
@@ -325,6 +327,7 @@ pub fn simulate_from(
         energy,
         stats,
         min_step,
+        from_equilibrium,
         static_iterations,
         loads: sys.loads.clone(),
     })

@@ -24,6 +24,7 @@
 
 use super::simulate::{simulate_from, time_to_distance, EnergyBalance, SimulationSettings};
 use super::statics::design_path::on_state_equilibrium;
+use super::statics::start::Start;
 use super::statics::StaticSettings;
 use super::statics::{Branch, BranchKind};
 use super::transient::contacts::ContactStats;
@@ -205,7 +206,7 @@ impl SwitchOffSettings {
                 spectral_radius: self.spectral_radius,
                 ..TransientSettings::default()
             },
-            from_equilibrium: true,
+            start: Start::Equilibrium,
             sample_rate: self.sample_rate,
             keep_partial: true,
         }

@@ -98,6 +98,12 @@ pub struct CalibrateArgs {
     /// Keep each beam's mass while its section changes (density adjusts).
     #[arg(long)]
     pub keep_mass: bool,
+    /// Fit the modes at the static equilibrium under the model's loads,
+    /// preloads and gravity (pre-stressed, as `modal --prestress`) instead
+    /// of the reference; implied by a load's force (ID.force_x,
+    /// ID.force_y) among the parameters.
+    #[arg(long)]
+    pub prestress: bool,
     /// Kind of the modes the targets refer to.
     #[arg(long, value_enum, default_value_t = KindArg::from(CalibrateRequest::default().mode_kind))]
     pub mode_kind: KindArg,
@@ -156,6 +162,7 @@ pub fn request(args: &CalibrateArgs) -> Result<CalibrateRequest> {
         tolerance: args.tolerance,
         max_evaluations: args.max_evaluations as usize,
         experiment: args.experiment.request(),
+        prestress: args.prestress,
     })
 }
 

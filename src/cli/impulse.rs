@@ -41,6 +41,12 @@ pub struct ExperimentArgs {
     /// as `frf --window`).
     #[arg(long, default_value_t = ImpulseRequest::default().window)]
     pub window: Window,
+    /// Strike the reference configuration, whatever acts on it (by default
+    /// the blow strikes the static equilibrium under the loads at t = 0⁻:
+    /// constant loads, preloads and gravity; the reference itself when it
+    /// balances them).
+    #[arg(long)]
+    pub from_reference: bool,
 }
 
 impl ExperimentArgs {
@@ -55,6 +61,7 @@ impl ExperimentArgs {
             sample_rate: self.sample_rate,
             sensor: self.sensor.clone(),
             window: self.window,
+            start: ancf_modal::analysis::statics::start::Start::from_reference(self.from_reference),
         }
     }
 }

@@ -24,7 +24,8 @@ pub struct SweepArgs {
     /// model (`beams[blade].section.height`, `springs[0].stiffness`), a
     /// short name of `calibrate --param` (`height`, `blade.young`), or
     /// `load_scale:ID[,ID...]` (multiplies those loads; linearizes at the
-    /// static equilibrium). Values SI: LO:HI:N from LO to HI (`:log` spaces
+    /// static equilibrium, as a load's force, a spring's preload or gravity
+    /// does). Values SI: LO:HI:N from LO to HI (`:log` spaces
     /// them geometrically), or V1,V2,... as listed.
     #[arg(
         long = "param",
@@ -50,7 +51,8 @@ pub struct SweepArgs {
     #[arg(long, value_name = "N", default_value_t = SweepRequest::default().modes, allow_hyphen_values = true, value_parser = super::values::at_least_one_usize)]
     pub modes: usize,
     /// Linearize at the static equilibrium under the model's constant loads
-    /// and gravity (implied by a load_scale parameter).
+    /// and gravity (implied by a load_scale parameter and by a parameter
+    /// that is a load's force, a spring's preload or gravity).
     #[arg(long)]
     pub prestress: bool,
     /// Eigensolver (as for `modal`).

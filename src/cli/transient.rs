@@ -27,9 +27,14 @@ pub struct TransientArgs {
     /// Spectral radius at infinity of generalized-α (1 = no numerical damping).
     #[arg(long, value_name = "R", default_value_t = TransientRequest::default().spectral_radius, allow_hyphen_values = true, value_parser = super::values::unit_interval)]
     pub spectral_radius: f64,
-    /// Start from the static equilibrium under the loads at t = 0 (else at
-    /// rest in the reference configuration).
-    #[arg(long)]
+    /// Start at rest in the reference configuration, whatever acts on it
+    /// (by default a run starts from the static equilibrium under the
+    /// loads at t = 0⁻: constant loads, preloads and gravity; the
+    /// reference itself when it balances them).
+    #[arg(long, conflicts_with = "from_equilibrium")]
+    pub from_reference: bool,
+    /// Start from the static equilibrium: the default, kept for scripts.
+    #[arg(long, hide = true)]
     pub from_equilibrium: bool,
     /// Output sample rate [Hz]; 0 keeps every step.
     #[arg(long, value_name = "HZ", default_value_t = TransientRequest::default().sample_rate, allow_hyphen_values = true, value_parser = super::values::non_negative)]
@@ -54,17 +59,17 @@ pub fn run(args: TransientArgs) -> Result<Warnings> {
         end_time: args.end_time,
         step: args.step,
         spectral_radius: args.spectral_radius,
-        from_equilibrium: args.from_equilibrium,
+        start: ancf_modal::analysis::statics::start::Start::from_reference(args.from_reference),
         sample_rate: args.sample_rate,
         rigid_beams: args.rigid_beams,
     };
     let run = transient(&input, &request).map_err(|e| match e {
-        // The flag that starts from the equilibrium, named after the
+        // The flag that starts from the reference, named after the
         // library's words.
         CommandError::Simulation {
             model,
             source: e @ SimulationError::ReleaseNeedsEquilibrium { .. },
-        } => anyhow::anyhow!("{e} (--from-equilibrium)").context(model),
+        } => anyhow::anyhow!("{e} (drop --from-reference)").context(model),
         e => command_error(e),
     })?;
     if let Some(path) = &args.output.csv {

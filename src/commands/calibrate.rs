@@ -14,6 +14,7 @@ use crate::analysis::calibrate::{
     CalibrationSettings, EigenFrequencies, ImpulseFrequency, ModeSelection, ParameterSet,
     ParameterSpec,
 };
+use crate::analysis::statics::start::reference_balances;
 use crate::analysis::ModeKind;
 use crate::model::path::{available_names, PathError};
 use crate::output::calibrate_report::{calibrate_table, calibration_plot};
@@ -89,6 +90,11 @@ pub struct CalibrateRequest {
     pub max_evaluations: usize,
     /// The experiment of the impulse method.
     pub experiment: ImpulseRequest,
+    /// Fit the eigen method's modes at the static equilibrium under the
+    /// loads and gravity (pre-stressed) instead of the reference; implied
+    /// by a load's force among the parameters. (The impulse method strikes
+    /// that equilibrium unless its experiment starts at the reference.)
+    pub prestress: bool,
 }
 
 impl Default for CalibrateRequest {
@@ -104,6 +110,7 @@ impl Default for CalibrateRequest {
             tolerance: None,
             max_evaluations: CalibrationSettings::default().max_evaluations,
             experiment: ImpulseRequest::default(),
+            prestress: false,
         }
     }
 }
@@ -185,6 +192,7 @@ pub fn run(input: &ModelInput, request: &CalibrateRequest) -> Result<CalibrateRu
             numbers: request.modes.clone(),
         },
         keep_mass: request.keep_mass,
+        prestress: request.prestress,
     };
     let impulse = request.method == Method::Impulse;
     let settings = CalibrationSettings {
@@ -204,12 +212,27 @@ pub fn run(input: &ModelInput, request: &CalibrateRequest) -> Result<CalibrateRu
         }
     };
     let output = CalibrationOutput::new(&model.name, &result);
+    let own = unstressed_warning(model, &result);
     Ok(CalibrateRun {
         model: model.clone(),
         request: fit,
         settings,
         result,
-        document: Run::of(input, output),
+        document: Run::of(input, output).warn(input, own),
+    })
+}
+
+/// The warning of a fit to the unstressed modes of a model whose
+/// reference does not balance its loads (a pre-stressed model).
+fn unstressed_warning(
+    model: &crate::model::ValidModel,
+    result: &CalibrationResult,
+) -> Option<String> {
+    let system = crate::System::new(model);
+    (!result.prestressed && !reference_balances(&system)).then(|| {
+        String::from(
+            "the model is pre-stressed (its reference does not balance its loads, preloads and gravity), and the fit is to the unstressed modes at the reference: the pre-stressed fit (prestress) fits the modes of the static equilibrium, as modal's pre-stressed analysis computes them",
+        )
     })
 }
 
@@ -239,6 +262,7 @@ impl CalibrateRun {
             &request.modes,
             request.targets_hz.len(),
             self.settings.modal,
+            self.result.prestressed && self.result.method == "eigen",
         )
         .map_err(fail)?;
         let result = &self.result;
@@ -284,6 +308,7 @@ pub fn equivalent_height(
         targets_hz: vec![target_hz],
         modes: ModeSelection::default(),
         keep_mass: false,
+        prestress: false,
     };
     calibrate(model, &request, &CalibrationSettings::default())
 }

@@ -1,7 +1,9 @@
 //! `impulse`: the paper's time-domain frequency test (Section 2.2). The
 //! model's half-sine loads (the hammer, F(t) = F₀ sin(πt/t_F) for
 //! t ≤ t_F; `amplitude` F₀ [N] and `duration` t_F [s] override theirs)
-//! strike the assembly at rest; generalized-α (spectral radius ρ∞ [–])
+//! strike the assembly at rest in its static equilibrium under the loads
+//! at t = 0⁻ (the reference when it balances them, or when `start` asks
+//! for it); generalized-α (spectral radius ρ∞ [–])
 //! integrates `end_time` [s] in steps of `step` [s]; a sensor [m, m/s or
 //! m/s²] is recorded at `sample_rate` [Hz] behind an anti-aliasing
 //! low-pass, and its windowed amplitude spectrum gives the peaks [Hz] and
@@ -10,6 +12,7 @@
 
 use super::{CommandError, ModelInput, Run};
 use crate::analysis::impulse::{run_impulse, ImpulseError, ImpulseResult, ImpulseSettings};
+use crate::analysis::statics::start::Start;
 use crate::model::Model;
 use crate::output::figures::{response_path, write_impulse_figures};
 use crate::output::impulse_report::{impulse_table, signal_csv, spectrum_csv};
@@ -43,6 +46,10 @@ pub struct ImpulseRequest {
     pub sensor: Option<String>,
     /// The spectrum's data window.
     pub window: Window,
+    /// The state struck at rest: the static equilibrium under the loads at
+    /// t = 0⁻ (the default; the reference when it balances them) or the
+    /// reference.
+    pub start: Start,
 }
 
 impl Default for ImpulseRequest {
@@ -57,6 +64,7 @@ impl Default for ImpulseRequest {
             sample_rate: s.sample_rate.unwrap_or(0.0),
             sensor: s.sensor,
             window: s.spectrum.window,
+            start: s.start,
         }
     }
 }
@@ -96,6 +104,7 @@ impl ImpulseRequest {
         s.sample_rate = (self.sample_rate != 0.0).then_some(self.sample_rate);
         s.sensor = self.sensor.clone();
         s.spectrum.window = self.window;
+        s.start = self.start;
         s
     }
 }
@@ -128,11 +137,24 @@ pub fn run_with_progress(
         .map_err(|e| CommandError::impulse(input.label(), e))?;
     let reference = reference_hz(&input.model);
     let output = ImpulseOutput::new(&input.model.name, &result, reference);
+    let own = blind_warning(&result);
     Ok(ImpulseRun {
         model: input.model.clone(),
-        document: Run::of(input, output),
+        document: Run::of(input, output).warn(input, own),
         result,
     })
+}
+
+/// The warning of a sensor that does not see the first bending mode
+/// ([`crate::analysis::impulse::sight`]): where a sensor would.
+fn blind_warning(r: &ImpulseResult) -> Option<String> {
+    let sight = r.sight.as_ref().filter(|s| s.blind())?;
+    let mode = r.modal.first_bending()?;
+    let [dx, dy] = sight.best_direction;
+    Some(format!(
+        "the sensor `{}` does not see the first bending mode ({:.3} Hz): it reads {:.1e} of the mode's largest motion, so no first bending frequency is identified; {} moves most, along ({dx:.3}, {dy:.3}): a sensor there would see it",
+        r.sensor, mode.frequency_hz, sight.ratio, sight.best_point
+    ))
 }
 
 /// The experiment's first bending frequency in the model's `reference`

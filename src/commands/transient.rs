@@ -1,14 +1,15 @@
 //! `transient`: a general time integration of the model by generalized-α
 //! (spectral radius ρ∞ [–]) over `end_time` [s] in steps of `step` [s],
-//! shortened at contact onsets; from rest at the reference configuration
-//! or from the static equilibrium under the loads at t = 0 (released
-//! supports let go). The sensors [m, m/s or m/s²] are resampled at
+//! shortened at contact onsets; from rest at the static equilibrium under
+//! the loads at t = 0⁻ (released supports let go; the reference when it
+//! balances them) or at the reference configuration. The sensors [m, m/s or m/s²] are resampled at
 //! `sample_rate` [Hz]; the contacts' forces [N] and the energy balance [J]
 //! come with them ([`crate::analysis::simulate`]).
 
 use super::{CommandError, ModelInput, Run};
 use crate::analysis::impulse::ACQUISITION_RATE_HZ;
 use crate::analysis::simulate::{simulate, EnergyBalance, Simulation, SimulationSettings};
+use crate::analysis::statics::start::Start;
 use crate::analysis::transient::TransientSettings;
 use crate::output::figures::write_figure;
 use crate::output::plot::PlotSize;
@@ -28,9 +29,10 @@ pub struct TransientRequest {
     pub step: f64,
     /// Spectral radius at infinity of generalized-α [–] (0 to 1).
     pub spectral_radius: f64,
-    /// Start from the static equilibrium under the loads at t = 0 (else at
-    /// rest in the reference configuration).
-    pub from_equilibrium: bool,
+    /// The state the run starts from at rest: the static equilibrium
+    /// under the loads at t = 0⁻ (the default; the reference when it
+    /// balances them) or the reference ([`Start`]).
+    pub start: Start,
     /// Output sample rate [Hz] (≥ 0); 0 keeps every step.
     pub sample_rate: f64,
     /// Model every beam as a rigid body.
@@ -44,7 +46,7 @@ impl Default for TransientRequest {
             end_time: 0.01,
             step: t.step,
             spectral_radius: t.spectral_radius,
-            from_equilibrium: false,
+            start: Start::default(),
             sample_rate: ACQUISITION_RATE_HZ,
             rigid_beams: false,
         }
@@ -88,21 +90,33 @@ pub fn run(input: &ModelInput, request: &TransientRequest) -> Result<TransientRu
             damping: model.damping,
             ..TransientSettings::default()
         },
-        from_equilibrium: request.from_equilibrium,
+        start: request.start,
         sample_rate: request.sample_rate,
-        keep_partial: false,
+        keep_partial: true,
     };
     settings.transient.validate()?;
     let simulation = simulate(System::new(&model), &[], &settings)
         .map_err(|e| CommandError::simulation(input.label(), e))?;
     let output = TransientOutput::new(&model.name, &settings, &simulation);
-    let own = energy_warning(&simulation.energy, request.spectral_radius);
+    let mut own: Vec<String> = stopped_warning(&simulation).into_iter().collect();
+    own.extend(energy_warning(&simulation.energy, request.spectral_radius));
     Ok(TransientRun {
         model_name: model.name.clone(),
         settings,
         simulation,
         document: Run::of(input, output).warn(input, own),
     })
+}
+
+/// The warning of a run that stopped before its end time: what failed,
+/// and where the samples end.
+fn stopped_warning(sim: &Simulation) -> Option<String> {
+    let failure = sim.failure.as_ref()?;
+    let last = sim.step_time.last().copied().unwrap_or(0.0);
+    Some(format!(
+        "the run stopped early: {}; the records end at the last accepted step, t = {last:.6e} s",
+        crate::error::chain_text(failure)
+    ))
 }
 
 /// An energy error above this fraction of the energy put in is a warning.

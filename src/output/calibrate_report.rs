@@ -34,9 +34,14 @@ pub fn calibrate_table(model_name: &str, r: &CalibrationResult) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "model {model_name}: calibration by {} on the {} frequencies{}",
+        "model {model_name}: calibration by {} on the {} frequencies {}{}",
         algorithm_name(r.algorithm),
         r.method,
+        if r.prestressed {
+            "at the static equilibrium (pre-stressed)"
+        } else {
+            "at the reference (unstressed)"
+        },
         if r.keep_mass { " (beam mass kept)" } else { "" }
     );
     let _ = writeln!(

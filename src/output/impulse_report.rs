@@ -6,6 +6,22 @@ use crate::model::reference::Errors;
 use std::fmt::Write;
 
 /// Readable report; `reference_hz` is the measured first bending frequency.
+/// The state the blow struck, in words.
+fn struck_words(r: &ImpulseResult) -> String {
+    use crate::analysis::statics::start::Start;
+    match (r.equilibrium_iterations, r.settings.start) {
+        (Some(n), _) => format!(
+            "in the static equilibrium under the loads at t = 0 ({n} static iterations): the eigenvalues are the pre-stressed ones"
+        ),
+        (None, Start::Equilibrium) => {
+            String::from("in the reference configuration (it balances the loads at t = 0)")
+        }
+        (None, Start::Reference) => {
+            String::from("in the reference configuration, as asked (not the equilibrium)")
+        }
+    }
+}
+
 pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f64>) -> String {
     let mut s = String::new();
     let t = &r.settings.transient;
@@ -32,6 +48,7 @@ pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f
         },
         r.excitation_loads.join(", ")
     );
+    let _ = writeln!(s, "struck at rest {}", struck_words(r));
     let _ = writeln!(
         s,
         "sensor `{}` ({:?}), {} samples at {} Hz, {} window",
@@ -76,9 +93,19 @@ pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f
                 );
             }
         }
-        None => {
-            let _ = writeln!(s, "no bending peak identified (the model has no bending mode or the sensor does not see it)");
-        }
+        None => match (&r.sight, r.modal.first_bending()) {
+            (Some(sight), Some(mode)) if sight.blind() => {
+                let [dx, dy] = sight.best_direction;
+                let _ = writeln!(
+                    s,
+                    "first bending frequency: not identified: the sensor `{}` does not see the first bending mode ({:.3} Hz): it reads {:.1e} of the mode's largest motion; {} moves most, along ({dx:.3}, {dy:.3}), and a sensor there would see it",
+                    r.sensor, mode.frequency_hz, sight.ratio, sight.best_point
+                );
+            }
+            _ => {
+                let _ = writeln!(s, "no bending peak identified (the model has no bending mode, or no peak stands in its band)");
+            }
+        },
     }
     if let Some(d) = &r.damping {
         let _ = writeln!(s, "first bending damping ratio:");

@@ -13,6 +13,16 @@ use crate::output::records_uff::{records_uff, Record, RecordKind};
 
 use std::fmt::Write;
 
+/// Where the run started, as the table's header says it.
+fn start_words(settings: &SimulationSettings, sim: &Simulation) -> &'static str {
+    use crate::analysis::statics::start::Start;
+    match (sim.from_equilibrium, settings.start) {
+        (true, _) => ", from the static equilibrium under the loads at t = 0",
+        (false, Start::Equilibrium) => ", from the reference (it balances the loads at t = 0)",
+        (false, Start::Reference) => ", from the reference (as asked)",
+    }
+}
+
 pub fn transient_table(model: &str, settings: &SimulationSettings, sim: &Simulation) -> String {
     let mut s = String::new();
     let _ = writeln!(
@@ -23,8 +33,16 @@ pub fn transient_table(model: &str, settings: &SimulationSettings, sim: &Simulat
         settings.transient.step,
         sim.min_step,
         sim.stats.newton_iterations as f64 / sim.stats.steps.max(1) as f64,
-        if settings.from_equilibrium { ", from the static equilibrium" } else { "" }
+        start_words(settings, sim)
     );
+    if let Some(e) = &sim.failure {
+        let _ = writeln!(
+            s,
+            "stopped early at the last accepted step, t = {:.6e} s: {}",
+            sim.step_time.last().copied().unwrap_or(0.0),
+            crate::error::chain_text(e)
+        );
+    }
     for (id, v) in &sim.sensors {
         let (lo, hi) = v
             .iter()
@@ -47,8 +65,13 @@ pub fn transient_table(model: &str, settings: &SimulationSettings, sim: &Simulat
     let e = &sim.energy;
     let _ = writeln!(
         s,
-        "energy balance: error {:.3e} J against {:.4e} J stored (load work {:.4e} J, contact dissipation {:.4e} J)",
-        e.error_j, e.stored_j, e.load_work_j, e.contact_dissipation_j
+        "energy balance: error {:.3e} J, {:.2e} of the {:.4e} J put in (at the start {:.4e} J, load work {:.4e} J); contact dissipation {:.4e} J",
+        e.error_j,
+        e.relative_error(),
+        e.put_in_j(),
+        e.initial.kinetic_j + e.initial.strain_j + e.initial.spring_j,
+        e.load_work_j,
+        e.contact_dissipation_j
     );
     if e.damping_dissipation_j != 0.0 {
         let _ = writeln!(

@@ -5,6 +5,7 @@
 
 use crate::analysis::impulse::{Excitation, ImpulseResult};
 use crate::analysis::simulate::{EnergyBalance, Simulation, SimulationSettings};
+use crate::analysis::statics::start::Start;
 use crate::analysis::statics::Branch;
 use crate::analysis::switch_off::{Calibrated, SwitchOffResult, SwitchOffRun};
 use crate::analysis::transient::contacts::ContactStats;
@@ -49,12 +50,27 @@ pub struct ImpulseOutput {
     pub excitation: Excitation,
     /// Ids of the exciting loads.
     pub excitation_loads: Vec<String>,
+    /// The start asked for: `equilibrium` (the static equilibrium under
+    /// the loads at t = 0⁻, the reference when it balances them) or
+    /// `reference`.
+    pub start: Start,
+    /// Whether the blow struck a solved static equilibrium (its modes are
+    /// the pre-stressed ones, as `modal --prestress`), else the reference.
+    pub from_equilibrium: bool,
     /// First bending frequency from the FFT peak, the integrator's period
     /// error removed [Hz]; null when no peak is near the mode.
     pub first_bending_hz: Option<f64>,
     /// The same peak as the FFT shows it [Hz].
     pub first_bending_raw_hz: Option<f64>,
-    /// The eigenvalue analysis's first bending frequency [Hz].
+    /// The sensor's reading of the first bending mode over the mode's
+    /// largest motion [–] (below 1e-3 the sensor does not see it, and no
+    /// first bending frequency is identified); null without a bending mode.
+    pub first_bending_sight: Option<f64>,
+    /// Where the first bending mode moves most, when the sensor does not
+    /// see it (a sensor there would); else null.
+    pub first_bending_seen_at: Option<String>,
+    /// The eigenvalue analysis's first bending frequency at the state
+    /// struck [Hz].
     pub eigen_first_bending_hz: Option<f64>,
     /// (raw − eigen)/eigen [–].
     pub raw_vs_eigen: Option<f64>,
@@ -107,8 +123,16 @@ impl ImpulseOutput {
             model: model_name.to_string(),
             excitation: r.excitation,
             excitation_loads: r.excitation_loads.clone(),
+            start: r.settings.start,
+            from_equilibrium: r.equilibrium_iterations.is_some(),
             first_bending_hz: fb.map(|f| f.corrected_hz),
             first_bending_raw_hz: fb.map(|f| f.raw_hz),
+            first_bending_sight: r.sight.as_ref().map(|s| s.ratio),
+            first_bending_seen_at: r
+                .sight
+                .as_ref()
+                .filter(|s| s.blind())
+                .map(|s| s.best_point.clone()),
             eigen_first_bending_hz: fb.map(|f| f.eigen_hz),
             raw_vs_eigen: fb.map(|f| f.raw_error()),
             corrected_vs_eigen: fb.map(|f| f.corrected_error()),
@@ -155,7 +179,12 @@ pub struct TransientOutput {
     pub step_s: f64,
     /// End time [s].
     pub end_time_s: f64,
-    /// Whether the run starts from the static equilibrium.
+    /// The start asked for: `equilibrium` (the static equilibrium under
+    /// the loads at t = 0⁻, the reference when it balances them) or
+    /// `reference`.
+    pub start: Start,
+    /// Whether the run started from a solved static equilibrium (else from
+    /// the reference at rest).
     pub from_equilibrium: bool,
     /// Output sample rate [Hz]; 0 keeps every step.
     pub sample_rate_hz: f64,
@@ -165,6 +194,12 @@ pub struct TransientOutput {
     pub newton_iterations: usize,
     /// Shortest step taken [s].
     pub min_step_s: f64,
+    /// Time of the last accepted step when the run stopped before its end
+    /// time (a Newton failure, a singular iteration matrix) [s]; null when
+    /// it reached it.
+    pub ended_at_s: Option<f64>,
+    /// Why it stopped early, one line; null when it did not.
+    pub failure: Option<String>,
     /// Sample times [s].
     pub time_s: Vec<f64>,
     /// Each sensor's samples by id [m, m/s or m/s², by the sensor's quantity].
@@ -182,11 +217,14 @@ impl TransientOutput {
             model: model_name.to_string(),
             step_s: settings.transient.step,
             end_time_s: settings.transient.end_time,
-            from_equilibrium: settings.from_equilibrium,
+            start: settings.start,
+            from_equilibrium: sim.from_equilibrium,
             sample_rate_hz: settings.sample_rate,
             steps: sim.stats.steps,
             newton_iterations: sim.stats.newton_iterations,
             min_step_s: sim.min_step,
+            ended_at_s: sim.failure.as_ref().and(sim.step_time.last().copied()),
+            failure: sim.failure.as_ref().map(|e| crate::error::chain_text(e)),
             time_s: sim.time.clone(),
             sensors: sim.sensors.iter().cloned().collect(),
             contacts: sim.contacts.clone(),

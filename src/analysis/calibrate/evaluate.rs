@@ -2,7 +2,10 @@
 //!
 //! [`FrequencyModel`] maps a model to the frequencies [Hz] of the tracked
 //! modes (one per target). [`EigenFrequencies`] solves the eigenproblem at
-//! the unstressed reference and follows the modes by their shapes: at every
+//! the unstressed reference (analytic sensitivities), or, pre-stressed, at
+//! the static equilibrium under the loads and gravity (as `modal
+//! --prestress`; sensitivities by central differences of relative step
+//! [`FD_STEP`], each a new equilibrium), and follows the modes by their shapes: at every
 //! evaluation each target takes the elastic mode with the largest
 //! mass-weighted modal assurance criterion
 //! MAC(a, b) = (aᵀMb)² / ((aᵀMa)(bᵀMb)) against the shapes selected on the
@@ -15,6 +18,9 @@ use super::error::CalibrationError;
 use super::params::ParameterSet;
 use super::sensitivity::eigenvalue_sensitivities;
 use crate::analysis::impulse::{run_impulse, ImpulseSettings};
+use crate::analysis::statics::prestress::modal_at_equilibrium;
+use crate::analysis::statics::start::{reference_balances, Start};
+use crate::analysis::statics::{solve_equilibrium, StaticSettings};
 use crate::analysis::{modal_at_reference, ModalResult, ModalSettings, ModeKind};
 use crate::linalg::vector::dot;
 use crate::model::{Model, ValidModel};
@@ -83,12 +89,21 @@ pub trait FrequencyModel {
     fn has_sensitivities(&self) -> bool {
         false
     }
+
+    /// Whether the frequencies of `model` are those of its static
+    /// equilibrium under the loads and gravity (pre-stressed).
+    fn prestressed(&self, model: &ValidModel) -> bool {
+        let _ = model;
+        false
+    }
 }
 
 /// The eigenproblem at the unstressed reference, with mode tracking.
 #[derive(Debug, Clone)]
 pub struct EigenFrequencies {
     settings: ModalSettings,
+    /// Linearize at the static equilibrium instead of the reference.
+    prestress: bool,
     /// Starting shapes of the tracked modes (full coordinates).
     reference: Vec<Vec<f64>>,
     /// Their 1-based numbers among the modes of the selected kind.
@@ -104,6 +119,7 @@ impl EigenFrequencies {
         selection: &ModeSelection,
         targets: usize,
         settings: ModalSettings,
+        prestress: bool,
     ) -> Result<EigenFrequencies, CalibrationError> {
         let numbers: Vec<usize> = if selection.numbers.is_empty() {
             (1..=targets).collect()
@@ -116,7 +132,7 @@ impl EigenFrequencies {
                 targets,
             });
         }
-        let result = solve(model, &settings)?;
+        let result = solve(model, &settings, prestress, None)?;
         let of_kind: Vec<&crate::analysis::Mode> = result.of_kind(selection.kind).collect();
         let mut reference = Vec::with_capacity(targets);
         for &n in &numbers {
@@ -131,6 +147,7 @@ impl EigenFrequencies {
         }
         Ok(EigenFrequencies {
             settings,
+            prestress,
             reference,
             numbers,
             kind: selection.kind,
@@ -154,12 +171,7 @@ impl EigenFrequencies {
         set: Option<&ParameterSet>,
     ) -> Result<Evaluation, CalibrationError> {
         let system = System::new(model);
-        let result = modal_at_reference(&system, &self.settings).map_err(|source| {
-            CalibrationError::Analysis {
-                at: describe(model, set),
-                source,
-            }
-        })?;
+        let result = linearized(&system, model, &self.settings, self.prestress, set)?;
         let mass = system.mass_matrix();
         let picked = track(&system, &mass, &result, &self.reference);
         let mut freqs = Vec::with_capacity(picked.len());
@@ -167,6 +179,9 @@ impl EigenFrequencies {
         for &(i, _) in &picked {
             let mode = &result.modes[i];
             freqs.push(mode.frequency_hz);
+            if self.prestress {
+                continue;
+            }
             if let (Some(set), Some(rows)) = (set, sens.as_mut()) {
                 let mut dl = vec![0.0; set.len()];
                 eigenvalue_sensitivities(
@@ -183,6 +198,9 @@ impl EigenFrequencies {
                 rows.push(dl.iter().map(|d| d * scale).collect());
             }
         }
+        if let (true, Some(set)) = (self.prestress, set) {
+            sens = Some(self.differences(model, set)?);
+        }
         Ok(Evaluation {
             frequencies_hz: freqs,
             sensitivities: sens,
@@ -191,6 +209,44 @@ impl EigenFrequencies {
         })
     }
 }
+
+impl EigenFrequencies {
+    /// ∂fᵢ/∂pⱼ by central differences of relative step [`FD_STEP`] about
+    /// the parameters' values in `model` (rows: targets).
+    fn differences(
+        &self,
+        model: &ValidModel,
+        set: &ParameterSet,
+    ) -> Result<Vec<Vec<f64>>, CalibrationError> {
+        let values: Vec<f64> = set.params.iter().map(|p| p.target.get(model)).collect();
+        let mut columns = Vec::with_capacity(values.len());
+        for j in 0..values.len() {
+            let h = FD_STEP * values[j].abs();
+            let at = |sign: f64| -> Result<Vec<f64>, CalibrationError> {
+                let mut v = values.clone();
+                v[j] += sign * h;
+                self.frequencies(&set.apply(&v)?)
+            };
+            let (up, down) = (at(1.0)?, at(-1.0)?);
+            columns.push(
+                up.iter()
+                    .zip(&down)
+                    .map(|(a, b)| (a - b) / (2.0 * h))
+                    .collect::<Vec<f64>>(),
+            );
+        }
+        let targets = columns.first().map_or(0, Vec::len);
+        Ok((0..targets)
+            .map(|i| columns.iter().map(|c| c[i]).collect())
+            .collect())
+    }
+}
+
+/// Relative step of the pre-stressed fit's central differences [–]: the
+/// equilibrium converges to 1e-10 of its forces, so the frequencies carry
+/// about that much noise; 1e-5 keeps its share of a derivative near 1e-5
+/// and the truncation (h²) far below.
+pub const FD_STEP: f64 = 1e-5;
 
 impl FrequencyModel for EigenFrequencies {
     fn method(&self) -> &'static str {
@@ -212,11 +268,38 @@ impl FrequencyModel for EigenFrequencies {
     fn has_sensitivities(&self) -> bool {
         true
     }
+
+    fn prestressed(&self, _: &ValidModel) -> bool {
+        self.prestress
+    }
 }
 
-fn solve(model: &ValidModel, settings: &ModalSettings) -> Result<ModalResult, CalibrationError> {
-    modal_at_reference(&System::new(model), settings).map_err(|source| CalibrationError::Analysis {
-        at: describe(model, None),
+fn solve(
+    model: &ValidModel,
+    settings: &ModalSettings,
+    prestress: bool,
+    set: Option<&ParameterSet>,
+) -> Result<ModalResult, CalibrationError> {
+    linearized(&System::new(model), model, settings, prestress, set)
+}
+
+/// The modes at the reference, or at the static equilibrium under the
+/// loads and gravity when `prestress` (as `modal --prestress`).
+fn linearized(
+    system: &System,
+    model: &ValidModel,
+    settings: &ModalSettings,
+    prestress: bool,
+    set: Option<&ParameterSet>,
+) -> Result<ModalResult, CalibrationError> {
+    let result = if prestress {
+        solve_equilibrium(system, &StaticSettings::default())
+            .and_then(|eq| modal_at_equilibrium(system, &eq, settings))
+    } else {
+        modal_at_reference(system, settings)
+    };
+    result.map_err(|source| CalibrationError::Analysis {
+        at: describe(model, set),
         source,
     })
 }
@@ -357,6 +440,14 @@ impl ImpulseFrequency {
 impl FrequencyModel for ImpulseFrequency {
     fn method(&self) -> &'static str {
         "impulse"
+    }
+
+    /// The blow strikes the static equilibrium unless the reference
+    /// balances the loads ([`crate::analysis::statics::start`]).
+    fn prestressed(&self, model: &ValidModel) -> bool {
+        let system = System::new(model);
+        self.settings.start == Start::Equilibrium
+            && !(system.released.is_empty() && reference_balances(&system))
     }
 
     fn frequencies(&self, model: &ValidModel) -> Result<Vec<f64>, CalibrationError> {

@@ -48,6 +48,23 @@ pub struct CalibrationRequest {
     pub modes: ModeSelection,
     /// Keep each beam's mass when its section changes (density adjusts).
     pub keep_mass: bool,
+    /// Fit the modes at the static equilibrium under the loads and gravity
+    /// (pre-stressed, as `modal --prestress`) instead of the reference;
+    /// implied by a load's force among the parameters.
+    pub prestress: bool,
+}
+
+impl CalibrationRequest {
+    /// Whether the fit is pre-stressed: asked for, or implied by a load's
+    /// force among the parameters `set` (it acts only through the
+    /// equilibrium).
+    pub fn prestressed(&self, set: &ParameterSet) -> bool {
+        self.prestress
+            || set
+                .params
+                .iter()
+                .any(|p| matches!(p.target, ParamTarget::LoadForce(..)))
+    }
 }
 
 /// Numerical settings.
@@ -143,6 +160,9 @@ pub struct CalibrationResult {
     pub derived: Vec<FittedParameter>,
     /// Whether each beam's mass was kept (density follows the section).
     pub keep_mass: bool,
+    /// Whether the frequencies are those at the static equilibrium under
+    /// the loads and gravity (pre-stressed), else at the reference.
+    pub prestressed: bool,
     /// Kind of the target modes.
     pub mode_kind: ModeKind,
     /// 1-based numbers of the tracked modes among their kind (start) [–].
@@ -181,12 +201,13 @@ pub fn calibrate(
 ) -> Result<CalibrationResult, CalibrationError> {
     check_targets(&request.targets_hz)?;
     // Resolve the names first: a bad name is reported before any solve.
-    ParameterSet::resolve(model, &request.parameters, request.keep_mass)?;
+    let set = ParameterSet::resolve(model, &request.parameters, request.keep_mass)?;
     let eval = EigenFrequencies::new(
         model,
         &request.modes,
         request.targets_hz.len(),
         settings.modal,
+        request.prestressed(&set),
     )?;
     calibrate_with(model, request, settings, &eval, eval.numbers())
 }
@@ -268,6 +289,7 @@ pub fn calibrate_with(
         parameters: fitted_params,
         derived: derived(&set, &fitted_model),
         keep_mass: request.keep_mass,
+        prestressed: evaluator.prestressed(model),
         mode_kind: request.modes.kind,
         mode_numbers: mode_numbers.to_vec(),
         targets_hz: targets.clone(),

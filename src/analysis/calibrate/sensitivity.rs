@@ -155,6 +155,11 @@ pub fn eigenvalue_sensitivities(
                     (local_form(fe, &h, phi) / value, 0.0)
                 }
             }
+            // A load's force acts through the static equilibrium: its fit
+            // is pre-stressed and takes finite differences there
+            // ([`super::evaluate::EigenFrequencies`]); a dead load changes
+            // no stiffness of the unstressed reference.
+            ParamTarget::LoadForce(..) => (0.0, 0.0),
         };
         *slot = (dk - lambda * dm) / norm;
     }

@@ -19,6 +19,13 @@
 //! not a hammer blow. Every load still acts as the model says (constant,
 //! stepped or released); only the force record is the excitation's.
 //!
+//! **Pre-stress.** The blow strikes the assembly at rest in the static
+//! equilibrium under the loads at t = 0⁻ (a string's tension, a spring's
+//! preload, gravity: [`crate::analysis::statics::start`]), and the
+//! eigenvalues it is compared with are the linearization there, as
+//! `modal --prestress` computes them; at the reference only when it
+//! balances those loads or [`Start::Reference`] asks for it.
+//!
 //! The sensor is read at every step and, with a sample rate, resampled
 //! behind an anti-aliasing low-pass (band-limited interpolation,
 //! [`crate::signal::resample`]), as an acquisition system filters before
@@ -27,8 +34,11 @@
 
 pub mod damping;
 pub mod sensor;
+pub mod sight;
 
 use super::modal::{modal_at_reference, ModalResult, ModalSettings};
+use super::statics::prestress::modal_at_equilibrium;
+use super::statics::start::{starting_equilibrium, Start};
 use super::transient::dispersion::{DispersionError, GenAlpha};
 use super::transient::{Integrator, RunStats, State, TransientSettings};
 use crate::error::{AnalysisError, InvalidModel, TransientError};
@@ -41,6 +51,7 @@ use crate::signal::spectrum::{
 use crate::system::System;
 use damping::{identify_damping, DampingBand, DampingCheck};
 use sensor::SensorProbe;
+use sight::Sight;
 use std::f64::consts::PI;
 
 /// Why the impulse experiment failed.
@@ -143,6 +154,10 @@ pub const ACQUISITION_RATE_HZ: f64 = 51_200.0;
 #[derive(Debug, Clone, PartialEq)]
 pub struct ImpulseSettings {
     pub transient: TransientSettings,
+    /// The state struck at rest: the static equilibrium under the loads at
+    /// t = 0⁻ (the reference when it balances them) or the reference
+    /// ([`crate::analysis::statics::start`]).
+    pub start: Start,
     /// Override of the pulse amplitude F₀ [SI: N] (all half-sine loads).
     pub amplitude: Option<f64>,
     /// Override of the pulse duration t_F [SI: s] (all half-sine loads).
@@ -159,6 +174,7 @@ impl Default for ImpulseSettings {
     fn default() -> Self {
         ImpulseSettings {
             transient: TransientSettings::default(),
+            start: Start::default(),
             amplitude: None,
             duration: None,
             sample_rate: Some(ACQUISITION_RATE_HZ),
@@ -176,7 +192,8 @@ pub struct FirstBending {
     pub raw_hz: f64,
     /// Peak corrected for the integrator's frequency error [SI: Hz].
     pub corrected_hz: f64,
-    /// Eigenvalue result at the reference [SI: Hz].
+    /// Eigenvalue result at the state struck (the reference, or the
+    /// static equilibrium the run started from) [SI: Hz].
     pub eigen_hz: f64,
 }
 
@@ -212,7 +229,15 @@ pub struct ImpulseResult {
     /// the model's (see [`damping`]).
     pub damping: Option<DampingCheck>,
     pub frf: Option<Frf>,
+    /// The modes at the state struck.
     pub modal: ModalResult,
+    /// The sensor's sight of the first bending mode ([`sight`]); `None`
+    /// without a bending mode. A blind sensor identifies no first bending
+    /// frequency.
+    pub sight: Option<Sight>,
+    /// Static iterations of the equilibrium the run started from; `None`
+    /// when it started at the reference.
+    pub equilibrium_iterations: Option<usize>,
     pub stats: RunStats,
     pub settings: ImpulseSettings,
 }
@@ -283,7 +308,19 @@ pub fn run_impulse(
         overridden = (changed.validated()).map_err(|e| ImpulseError::Overrides(Box::new(e)))?;
         &overridden
     };
-    let system = System::new(model);
+    let unreleased = System::new(model);
+    let equilibrium = starting_equilibrium(&unreleased, settings.start)?;
+    // The modes of the state struck: where the run starts, with the
+    // supports it released still holding (the linearization `modal
+    // --prestress` takes).
+    let modal = match &equilibrium {
+        Some(eq) => modal_at_equilibrium(&unreleased, eq, &ModalSettings::default())?,
+        None => modal_at_reference(&unreleased, &ModalSettings::default())?,
+    };
+    let system = match &equilibrium {
+        Some(eq) => unreleased.release_supports(&eq.q, &eq.lambda),
+        None => unreleased,
+    };
     let point = match &settings.sensor {
         Some(id) => system.sensors.iter().find(|s| &s.id == id).ok_or_else(|| {
             ImpulseError::UnknownSensor {
@@ -294,14 +331,20 @@ pub fn run_impulse(
         None => system.sensors.first().ok_or(ImpulseError::NoSensor)?,
     };
     let probe = SensorProbe::new(&system, point);
-    let modal = modal_at_reference(&system, &ModalSettings::default())?;
+    let struck = equilibrium.as_ref().map_or(&system.q0, |eq| &eq.q);
+    let sight = modal
+        .first_bending()
+        .map(|m| sight::sight(&system, &probe, struck, &m.shape));
     let h = settings.transient.step;
     let transient = TransientSettings {
         damping: settings.transient.damping.or(model.damping),
         ..settings.transient
     };
     let mut integrator = Integrator::new(&system, transient)?;
-    let mut state = integrator.initial_state()?;
+    let mut state = match &equilibrium {
+        Some(eq) => integrator.state_after_release(eq.q.clone(), vec![0.0; system.ndof()])?,
+        None => integrator.initial_state()?,
+    };
     let total = settings.transient.steps();
     let mut recorder = Recorder::new(&probe, settings.sample_rate, &settings.transient);
     let mut done = 0usize;
@@ -317,7 +360,10 @@ pub fn run_impulse(
     let sample_rate_hz = settings.sample_rate.unwrap_or(1.0 / h);
     let spectrum = spectrum::amplitude_spectrum(&signal, sample_rate_hz, &settings.spectrum)?;
     let peaks = spectrum::find_peaks(&spectrum, &peak_settings(&modal, &settings.peaks));
-    let first_bending = identify_first_bending(&modal, &spectrum, settings)?;
+    let first_bending = match &sight {
+        Some(s) if s.blind() => None,
+        _ => identify_first_bending(&modal, &spectrum, settings)?,
+    };
     let damping = damping_band(&modal, &transient)?
         .and_then(|band| identify_damping(&force, &signal, sample_rate_hz, &band));
     let frf = frf_h1(&force, &signal, sample_rate_hz, &settings.spectrum).ok();
@@ -336,6 +382,8 @@ pub fn run_impulse(
         damping,
         frf,
         modal,
+        sight,
+        equilibrium_iterations: equilibrium.map(|eq| eq.iterations),
         stats,
         settings: settings.clone(),
     })

@@ -68,6 +68,7 @@ mod branch;
 pub mod design_path;
 pub mod prestress;
 mod reduced_tangent;
+pub mod start;
 
 use crate::error::AnalysisError;
 pub use crate::error::LoadPath;

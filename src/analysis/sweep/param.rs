@@ -13,6 +13,10 @@
 //!   "pre-stress" factor. It only acts through a static equilibrium, so a
 //!   sweep with it linearizes there.
 //!
+//! A load's force, a spring's preload and gravity act through the static
+//! equilibrium as `load_scale:` does, so a sweep over one of them
+//! linearizes there too.
+//!
 //! `NAME+=…` adds the values to the model's number instead (an offset).
 //!
 //! Values are SI, like the model file. Each point gets its own copy of the
@@ -57,7 +61,8 @@ pub struct Parameter {
     /// `load_scale:loads[i],…`; two names of the same number agree here.
     pub target: String,
     pub axis: Axis,
-    /// Whether this is a `load_scale:` (pre-stress) parameter.
+    /// Whether it changes what pre-stresses the model: `load_scale:`, a
+    /// load's force, a spring's preload or gravity ([`pre_stresses`]).
     pub scales_loads: bool,
     edits: Vec<Edit>,
 }
@@ -133,7 +138,8 @@ impl Parameter {
                         },
                         e => e,
                     })?;
-                (target, vec![Edit { path, op, integer }], false)
+                let stresses = pre_stresses(&path.to_string());
+                (target, vec![Edit { path, op, integer }], stresses)
             }
         };
         Ok(Parameter {
@@ -255,6 +261,15 @@ fn unknown_or_path(e: PathError) -> SweepError {
     }
 }
 
+/// Whether the number at the canonical JSON `path` is one of what
+/// pre-stresses a model: a load's force (`loads[i].force[j]`), a spring's
+/// preload (`springs[i].preload`) or gravity (`gravity[j]`).
+pub fn pre_stresses(path: &str) -> bool {
+    (path.starts_with("loads[") && path.contains("].force"))
+        || (path.starts_with("springs[") && path.ends_with("].preload"))
+        || path.starts_with("gravity")
+}
+
 /// The names `load_scale:` accepts for the model's loads: the id, or
 /// `loads[i]` for a load without one.
 pub fn load_labels(model: &Model) -> Vec<String> {
@@ -370,6 +385,9 @@ mod tests {
             );
         }
         assert_eq!(resolve("gravity[1]").unwrap().target, "gravity[1]");
+        assert!(resolve("gravity[1]").unwrap().scales_loads);
+        assert!(resolve("loads[0].force[1]").unwrap().scales_loads);
+        assert!(!resolve("height").unwrap().scales_loads);
         assert_eq!(
             resolve("load_scale:loads[0]").unwrap().target,
             "load_scale:loads[0]"

@@ -28,6 +28,7 @@
 use super::error::{PointError, SweepError};
 use crate::analysis::modal::{modal, ModalResult, ModalSettings};
 use crate::analysis::simulate::{simulate, SimulationSettings};
+use crate::analysis::statics::start::Start;
 use crate::analysis::statics::{solve_equilibrium, StaticSettings};
 use crate::analysis::switch_off::{run_switch_off_from, SwitchOffSettings};
 use crate::analysis::transient::TransientSettings;
@@ -272,7 +273,7 @@ pub fn evaluate(
                         damping: model.damping,
                         ..TransientSettings::default()
                     },
-                    from_equilibrium: settings.prestress,
+                    start: Start::Equilibrium,
                     sample_rate: 0.0,
                     keep_partial: false,
                 },

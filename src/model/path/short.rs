@@ -9,6 +9,7 @@
 //! | `inertia` | | a rigid body (about its centre of mass) | kg m² |
 //! | `torsion_stiffness` | | a pin joint's torsion spring | N m/rad |
 //! | `stiffness` | | a translational spring | N/m |
+//! | `force_x`, `force_y` | | a load's force, one component | N |
 //!
 //! `ID` is the element's id (`blade.height`, `slot.mass`), or `joints[i]` /
 //! `springs[i]` for elements without one; it may be left out when exactly
@@ -40,6 +41,8 @@ pub const PROPERTIES: &[Property] = &[
     prop("inertia", None, "kg m²"),
     prop("torsion_stiffness", None, "N m/rad"),
     prop("stiffness", None, "N/m"),
+    prop("force_x", None, "N"),
+    prop("force_y", None, "N"),
 ];
 
 const fn prop(name: &'static str, group: Option<&'static str>, unit: &'static str) -> Property {
@@ -68,6 +71,8 @@ pub enum Target {
     TorsionStiffness(usize),
     /// Stiffness of spring `i` [SI: N/m].
     SpringStiffness(usize),
+    /// Component `axis` (0: x, 1: y) of load `i`'s force [SI: N].
+    LoadForce(usize, usize),
 }
 
 impl Target {
@@ -82,6 +87,8 @@ impl Target {
             Target::RigidInertia(_) => "inertia",
             Target::TorsionStiffness(_) => "torsion_stiffness",
             Target::SpringStiffness(_) => "stiffness",
+            Target::LoadForce(_, 0) => "force_x",
+            Target::LoadForce(_, _) => "force_y",
         };
         PROPERTIES
             .iter()
@@ -106,6 +113,7 @@ impl Target {
             Target::PointMass(i) => model.point_masses[i].mass,
             Target::TorsionStiffness(i) => model.joints[i].torsion_stiffness.unwrap_or(0.0),
             Target::SpringStiffness(i) => model.springs[i].stiffness,
+            Target::LoadForce(i, axis) => model.loads[i].force[axis],
         }
     }
 
@@ -121,12 +129,21 @@ impl Target {
             Target::PointMass(i) => model.point_masses[i].mass = value,
             Target::TorsionStiffness(i) => model.joints[i].torsion_stiffness = Some(value),
             Target::SpringStiffness(i) => model.springs[i].stiffness = value,
+            Target::LoadForce(i, axis) => model.loads[i].force[axis] = value,
         }
     }
 
     /// The number's path in the model file, elements by index
     /// (`beams[0].section.height`).
     pub fn path(self) -> NumberPath {
+        if let Target::LoadForce(i, axis) = self {
+            return NumberPath::new(vec![
+                Step::Key("loads".into()),
+                Step::Index(i),
+                Step::Key("force".into()),
+                Step::Index(axis),
+            ]);
+        }
         let (list, i) = match self {
             Target::BeamHeight(i)
             | Target::BeamWidth(i)
@@ -136,6 +153,7 @@ impl Target {
             Target::PointMass(i) => ("point_masses", i),
             Target::TorsionStiffness(i) => ("joints", i),
             Target::SpringStiffness(i) => ("springs", i),
+            Target::LoadForce(i, _) => ("loads", i),
         };
         let p = self.property();
         let mut steps = vec![Step::Key(list.into()), Step::Index(i)];
@@ -174,6 +192,11 @@ pub fn available_names(model: &Model) -> Vec<String> {
     }
     for (label, _) in candidates(model, "stiffness", false) {
         out.push(format!("{label}.stiffness"));
+    }
+    for p in ["force_x", "force_y"] {
+        for (label, _) in candidates(model, p, false) {
+            out.push(format!("{label}.{p}"));
+        }
     }
     out
 }
@@ -215,6 +238,15 @@ fn candidates(model: &Model, prop: &str, by_id: bool) -> Vec<(String, Target)> {
                 if by_id || j.torsion_stiffness.is_some() {
                     let label = labelled(j.id.as_ref(), "joints", i);
                     out.push((label, Target::TorsionStiffness(i)));
+                }
+            }
+        }
+        "force_x" | "force_y" => {
+            let axis = usize::from(prop == "force_y");
+            for (i, l) in model.loads.iter().enumerate() {
+                if by_id || l.force[axis] != 0.0 {
+                    let label = labelled(l.id.as_ref(), "loads", i);
+                    out.push((label, Target::LoadForce(i, axis)));
                 }
             }
         }
