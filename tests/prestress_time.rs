@@ -289,3 +289,27 @@ fn a_transient_that_fails_keeps_what_it_computed() {
     let run = ancf_modal::commands::transient::run(&input(string(80.0, 20)), &settled).unwrap();
     assert!(run.simulation.failure.is_none());
 }
+
+#[test]
+fn plain_modal_of_the_tensioned_string_says_it_left_the_tension_out() {
+    use ancf_modal::commands::modal::{run, ModalRequest};
+    let text = string(80.0, 20);
+    let plain = run(&input(text.clone()), &ModalRequest::default()).unwrap();
+    let said: Vec<&String> = plain
+        .document
+        .own_warnings()
+        .iter()
+        .filter(|w| w.contains("constant loads") && w.contains("8.000e1 N"))
+        .collect();
+    assert_eq!(said.len(), 1, "{:?}", plain.document.own_warnings());
+    let prestressed = ModalRequest {
+        prestress: true,
+        ..ModalRequest::default()
+    };
+    let run = run(&input(text), &prestressed).unwrap();
+    assert!(!run
+        .document
+        .own_warnings()
+        .iter()
+        .any(|w| w.contains("constant loads")));
+}

@@ -95,7 +95,7 @@ fn the_height_in_millimetres_asks_for_metres() {
 #[test]
 fn young_in_kilopascal_scale_and_density_in_grams_ask_for_si_units() {
     // E = 127e3 Pa (MPa meant) is inside 1e5–1e13 Pa, but √(E/ρ) =
-    // 3.769 m/s is below 5 m/s.
+    // 3.769 m/s is below 10 m/s.
     let (json, _) = modal_warnings(&leaf(0.3e-3, 127e3, 8940.0));
     let speed = format!("{:.3}", (127e3_f64 / 8940.0).sqrt());
     assert_eq!(json.len(), 1, "{json:?}");
@@ -103,7 +103,12 @@ fn young_in_kilopascal_scale_and_density_in_grams_ask_for_si_units() {
         json[0].contains("wave speed") && json[0].contains(&speed) && json[0].contains("SI units"),
         "{json:?}"
     );
-    // E = 5e4 Pa is below 1e5 Pa (and √(E/ρ) = 2.4 m/s below 5 m/s).
+    // Steel in MPa (210,000 at 7850 kg/m³): √(E/ρ) = 5.17 m/s is below
+    // 10 m/s, the softest solid's (a gel, 1e5 Pa at 1000 kg/m³).
+    let (json, _) = modal_warnings(&leaf(0.3e-3, 210e3, 7850.0));
+    assert_eq!(json.len(), 1, "{json:?}");
+    assert!(json[0].contains("wave speed"), "{json:?}");
+    // E = 5e4 Pa is below 1e5 Pa (and √(E/ρ) = 2.4 m/s below 10 m/s).
     let (json, _) = modal_warnings(&leaf(0.3e-3, 5e4, 8940.0));
     assert_eq!(json.len(), 2, "{json:?}");
     assert!(json[0].contains("beams[0].material.young") && json[0].contains("SI units"));

@@ -79,7 +79,7 @@ TRANSIENT = dict(end_time=2e-3, step=1e-5)
 
 @pytest.mark.parametrize(
     "name, extra",
-    [("rcbo_free_free", {}), ("rcbo_prestressed", {}), ("rcbo_prestressed", {"from_reference": True})],
+    [("rcbo_free_free", {}), ("rcbo_prestressed", {}), ("cantilever", {"from_reference": True})],
 )
 def test_transient_is_the_command_lines(cli, name, extra):
     args = {**TRANSIENT, **extra}

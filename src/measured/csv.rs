@@ -86,13 +86,18 @@ fn column(
 }
 
 /// The default force column, 1-based: the one column after time whose name
-/// holds `force` (any case), else 2; several such columns are an error.
+/// holds `force` (any case) and is not a contact's (`contact_…`: a
+/// reaction the structure makes, as `transient --csv` names it, not the
+/// excitation), else 2; several such columns are an error.
 fn default_force(file: &Path, line: usize, names: &[&str]) -> Result<usize, MeasuredError> {
     let named: Vec<usize> = names
         .iter()
         .enumerate()
         .skip(1)
-        .filter(|(_, h)| h.to_lowercase().contains("force"))
+        .filter(|(_, h)| {
+            let h = h.to_lowercase();
+            h.contains("force") && !h.starts_with("contact_")
+        })
         .map(|(i, _)| i + 1)
         .collect();
     match named.as_slice() {

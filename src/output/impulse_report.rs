@@ -102,9 +102,20 @@ pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f
                     r.sensor, mode.frequency_hz, sight.ratio, sight.best_point
                 );
             }
-            _ => {
-                let _ = writeln!(s, "no bending peak identified (the model has no bending mode, or no peak stands in its band)");
-            }
+            _ => match crate::analysis::impulse::first_bending_band(&r.modal) {
+                Some((eigen, lo, hi)) => {
+                    let _ = writeln!(
+                        s,
+                        "first bending frequency: not identified: no peak of the spectrum stands in the band of the eigenvalue {eigen:.3} Hz at the state struck ({lo:.3}–{hi:.3} Hz)"
+                    );
+                }
+                None => {
+                    let _ = writeln!(
+                        s,
+                        "first bending frequency: not identified: the model has no bending mode among the modes computed"
+                    );
+                }
+            },
         },
     }
     if let Some(d) = &r.damping {

@@ -3,7 +3,9 @@
 //! `step_s`, `end_time_s`, `steps`, `time_s`, `sensors` {id: samples},
 //! `contacts` [{`id`, `max_penetration_m`, `max_force_n`, `impacts`,
 //! `dissipated_j`, `force_n` (the normal force at the sample times [SI: N])}],
-//! `energy`. The CSV has a column `contact_<id>_force_n` per contact.
+//! `energy`. The CSV has a column `load_<label>_force_n` per time-varying
+//! load (its magnitude [SI: N], the force `frf` reads back) and
+//! `contact_<id>_force_n` per contact.
 
 use crate::analysis::simulate::{Simulation, SimulationSettings};
 use crate::mechanics::load::load_magnitudes;
@@ -29,7 +31,7 @@ pub fn transient_table(model: &str, settings: &SimulationSettings, sim: &Simulat
         s,
         "model {model}: {} steps to {:.4e} s (step {:.2e} s, shortest {:.2e} s), {:.2} Newton iterations/step{}",
         sim.stats.steps,
-        settings.transient.end_time,
+        sim.step_time.last().copied().unwrap_or(0.0),
         settings.transient.step,
         sim.min_step,
         sim.stats.newton_iterations as f64 / sim.stats.steps.max(1) as f64,
@@ -114,6 +116,10 @@ pub fn transient_csv(sim: &Simulation) -> String {
     for (id, _) in &sim.sensors {
         let _ = write!(s, ",{id}");
     }
+    let loads = load_magnitudes(&sim.loads, &sim.time);
+    for (label, _) in &loads {
+        let _ = write!(s, ",load_{label}_force_n");
+    }
     for c in &sim.contacts {
         let _ = write!(s, ",contact_{}_force_n", c.id);
     }
@@ -121,6 +127,9 @@ pub fn transient_csv(sim: &Simulation) -> String {
     for (k, t) in sim.time.iter().enumerate() {
         let _ = write!(s, "{t:.9e}");
         for (_, v) in &sim.sensors {
+            let _ = write!(s, ",{:.9e}", v[k]);
+        }
+        for (_, v) in &loads {
             let _ = write!(s, ",{:.9e}", v[k]);
         }
         for c in &sim.contacts {

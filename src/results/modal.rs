@@ -151,6 +151,29 @@ pub fn reference_warnings(result: &ModalResult) -> Vec<String> {
     result.warnings("the reference configuration")
 }
 
+/// The warning of a plain (reference) analysis of a model whose loads the
+/// reference does not balance: the linearization leaves the applied loads
+/// out (they act only through an equilibrium), so the modes are the
+/// unstressed ones. `None` when the reference balances them, or when the
+/// result already says it is not an equilibrium (gravity, preloads).
+pub fn loads_left_out(system: &crate::System, result: &ModalResult) -> Option<String> {
+    use crate::analysis::statics::balance::{unbalanced_force, BALANCE_TOLERANCE};
+    if !result.equilibrium.balanced {
+        return None;
+    }
+    // The loads that act before a run (a step at t = 0 is an excitation,
+    // not a pre-stress).
+    let start = crate::analysis::statics::start::START_TIME;
+    let b = unbalanced_force(system, &system.q0, None, start, 1.0);
+    (!b.is_balanced(BALANCE_TOLERANCE)).then(|| {
+        format!(
+            "the reference does not balance the model's constant loads (unbalanced {:.3e} N on {}): the modes at the reference leave the loads out, so these are the unstressed modes; the pre-stressed analysis (prestress) linearizes at the loads' static equilibrium",
+            b.unbalanced,
+            system.dof_label(b.worst_dof)
+        )
+    })
+}
+
 /// The warnings of a pre-stressed analysis: the equilibrium's (unstable,
 /// or not an equilibrium by the independent check) and the reference's.
 pub fn prestressed_warnings(r: &PrestressedModal) -> Vec<String> {

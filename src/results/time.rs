@@ -133,7 +133,7 @@ impl ImpulseOutput {
                 .as_ref()
                 .filter(|s| s.blind())
                 .map(|s| s.best_point.clone()),
-            eigen_first_bending_hz: fb.map(|f| f.eigen_hz),
+            eigen_first_bending_hz: r.modal.first_bending().map(|m| m.frequency_hz),
             raw_vs_eigen: fb.map(|f| f.raw_error()),
             corrected_vs_eigen: fb.map(|f| f.corrected_error()),
             damping: r.damping.map(|d| DampingSummary {

@@ -424,7 +424,7 @@ fn peak_settings(modal: &ModalResult, settings: &PeakSettings) -> PeakSettings {
 
 /// The first bending eigenfrequency and its band, half-way to its elastic
 /// neighbours [SI: Hz].
-fn first_bending_band(modal: &ModalResult) -> Option<(f64, f64, f64)> {
+pub fn first_bending_band(modal: &ModalResult) -> Option<(f64, f64, f64)> {
     let elastic: Vec<f64> = modal
         .modes
         .iter()

@@ -127,6 +127,7 @@ pub fn run(input: &ModelInput, request: &ModalRequest) -> Result<ModalRun, Comma
         let (r, mut output) =
             crate::results::modal::modal(model, &system, &settings).map_err(fail)?;
         let mut own = crate::results::modal::reference_warnings(&r);
+        own.extend(crate::results::modal::loads_left_out(&system, &r));
         own.extend(crate::analysis::shear::beam_theory_warnings(&r));
         if let Some(other) = &request.mac {
             output.mac = Some(mac_against(&system, &r, other, &settings)?);

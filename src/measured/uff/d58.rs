@@ -404,7 +404,10 @@ pub fn write(out: &mut String, f: &Function) {
         f.ordinate.len(),
         1,
         fmt_e(f.x_min, 13, 5),
-        fmt_e(f.dx, 13, 5),
+        // Seven significant digits (the field's 13 columns with its
+        // leading blank, dx being positive): 1/51,200 s and 1/10,240 s are
+        // written exactly, so a record read back has its rate.
+        fmt_e(f.dx, 13, 6),
         fmt_e(0.0, 13, 5)
     );
     let axis = |out: &mut String, t: SpecDataType, label: &str, units: &str| {
