@@ -153,14 +153,16 @@ fn written_58_reads_back_at_the_written_precision() {
     };
     let mut text = String::new();
     d58::write(&mut text, &f);
-    // The layout of DESIGN §9: record 6 and 7 widths, 4 values a line.
+    // The layout of DESIGN §9: record 6 and 7 widths, 4 values a line
+    // (record 7's step with seven digits in its 13 columns, so 1/51,200 s
+    // is written exactly).
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines[0], "    -1");
     assert_eq!(lines[1], "    58");
     assert_eq!(lines[7].len(), 80);
     assert_eq!(
         lines[8],
-        "         6       101         1  0.00000e+00  5.00000e+00  0.00000e+00"
+        "         6       101         1  0.00000e+00 5.000000e+00  0.00000e+00"
     );
     assert_eq!(lines[13].len(), 80);
     let back = uff::read_functions(Path::new("w.uff"), &text).unwrap();

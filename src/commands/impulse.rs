@@ -19,6 +19,7 @@ use crate::output::impulse_report::{impulse_table, signal_csv, spectrum_csv};
 use crate::output::plot::PlotSize;
 use crate::output::records_uff::time_records_uff;
 use crate::results::ImpulseOutput;
+use crate::signal::resample::AntiAlias;
 use crate::signal::Window;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -137,7 +138,8 @@ pub fn run_with_progress(
         .map_err(|e| CommandError::impulse(input.label(), e))?;
     let reference = reference_hz(&input.model);
     let output = ImpulseOutput::new(&input.model.name, &result, reference);
-    let own = blind_warning(&result);
+    let mut own: Vec<String> = blind_warning(&result).into_iter().collect();
+    own.extend(scale_warnings(&result));
     Ok(ImpulseRun {
         model: input.model.clone(),
         document: Run::of(input, output).warn(input, own),
@@ -155,6 +157,74 @@ fn blind_warning(r: &ImpulseResult) -> Option<String> {
         "the sensor `{}` does not see the first bending mode ({:.3} Hz): it reads {:.1e} of the mode's largest motion, so no first bending frequency is identified; {} moves most, along ({dx:.3}, {dy:.3}): a sensor there would see it",
         r.sensor, mode.frequency_hz, sight.ratio, sight.best_point
     ))
+}
+
+/// Fewer steps per period of the first bending mode than this is a warning.
+pub const MIN_STEPS_PER_PERIOD: f64 = 20.0;
+
+/// Fewer periods of the first bending mode in the record than this is a
+/// warning.
+pub const MIN_PERIODS: f64 = 20.0;
+
+/// The warnings of settings that do not fit the model's scale (the
+/// defaults are the paper's 4.6 kHz contact's): a first bending mode above
+/// the acquisition's pass band, a step that barely resolves its period, a
+/// record that holds few of its periods. Each names a setting that fits.
+pub fn scale_warnings(r: &ImpulseResult) -> Vec<String> {
+    let Some(f1) = r.modal.first_bending().map(|m| m.frequency_hz) else {
+        return Vec::new();
+    };
+    let settings = &r.settings;
+    let mut w = Vec::new();
+    let pass = AntiAlias::default().pass;
+    if let Some(rate) = settings.sample_rate {
+        if f1 > pass * rate {
+            w.push(format!(
+                "the first bending mode ({f1:.4e} Hz) lies above the acquisition's pass band ({pass} × the sample rate {rate} Hz): the anti-aliasing low-pass takes it out of the record; a sample rate of {:e} Hz or more records it",
+                nice_up(1.25 * f1 / pass)
+            ));
+        }
+    }
+    let period = 1.0 / f1;
+    let h = settings.transient.step;
+    if h * MIN_STEPS_PER_PERIOD > period {
+        w.push(format!(
+            "the step {h:e} s takes {:.1} steps per period of the first bending mode ({f1:.4e} Hz), fewer than {MIN_STEPS_PER_PERIOD}: the integrator's numerical damping takes the mode; a step of {:e} s (100 per period) resolves it",
+            period / h,
+            nice_down(period / 100.0)
+        ));
+    }
+    let end = settings.transient.end_time;
+    if end < MIN_PERIODS * period {
+        w.push(format!(
+            "the record lasts {end:e} s, {:.1} periods of the first bending mode ({f1:.4e} Hz), fewer than {MIN_PERIODS}: its spectral lines are {:.3e} Hz apart; an end time of {:e} s ({} periods) resolves the mode's peak",
+            end / period,
+            1.0 / end,
+            nice_up(100.0 * period),
+            100
+        ));
+    }
+    w
+}
+
+/// The smallest of 1, 2, 5 × 10ᵏ at or above `x` (> 0).
+fn nice_up(x: f64) -> f64 {
+    let decade = 10f64.powf(x.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * decade)
+        .find(|&v| v >= x * (1.0 - 1e-12))
+        .unwrap_or(10.0 * decade)
+}
+
+/// The largest of 1, 2, 5 × 10ᵏ at or below `x` (> 0).
+fn nice_down(x: f64) -> f64 {
+    let decade = 10f64.powf(x.log10().floor());
+    [5.0, 2.0, 1.0]
+        .iter()
+        .map(|m| m * decade)
+        .find(|&v| v <= x * (1.0 + 1e-12))
+        .unwrap_or(decade)
 }
 
 /// The experiment's first bending frequency in the model's `reference`
