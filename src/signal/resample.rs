@@ -180,8 +180,15 @@ pub fn resample(x: &[f64], f_in: f64, f_out: f64, design: &AntiAlias) -> Vec<f64
     if x.is_empty() {
         return Vec::new();
     }
-    let n_out = ((x.len() - 1) as f64 * f_out / f_in).floor() as usize + 1;
-    filter_onto(x, None, f_in, f_out, design, 0, n_out)
+    filter_onto(
+        x,
+        None,
+        f_in,
+        f_out,
+        design,
+        0,
+        output_count(x.len(), f_in, f_out),
+    )
 }
 
 /// A record that starts at rest, resampled as an acquisition system with a
@@ -203,7 +210,6 @@ pub fn resample_from_rest(
     if x.is_empty() {
         return Vec::new();
     }
-    let n_out = ((x.len() - 1) as f64 * f_out / f_in).floor() as usize + 1;
     filter_onto(
         x,
         Some(rest),
@@ -211,15 +217,24 @@ pub fn resample_from_rest(
         f_out,
         design,
         pre_trigger(design, f_out),
-        n_out,
+        output_count(x.len(), f_in, f_out),
     )
+}
+
+/// floor((n − 1)·f_out/f_in) + 1 output samples of `n` inputs, the ratio
+/// taken a few ulps up: a duration that is a whole number of output
+/// periods in exact arithmetic (15 ms at 500 kHz) gives its last sample
+/// whatever the rounding of the rates (as at every scale of a model).
+fn output_count(n: usize, f_in: f64, f_out: f64) -> usize {
+    ((n - 1) as f64 * f_out / f_in * (1.0 + 4.0 * f64::EPSILON)).floor() as usize + 1
 }
 
 /// Samples ahead of t = 0 that [`resample_from_rest`] records: the
 /// kernel's half length in output samples, rounded up (29 at the default
 /// design, whatever the rate).
 pub fn pre_trigger(design: &AntiAlias, f_out: f64) -> usize {
-    (design.half_length(f_out) * f_out).ceil() as usize
+    // A few ulps down: a whole number of samples stays whole at any rate.
+    (design.half_length(f_out) * f_out * (1.0 - 4.0 * f64::EPSILON)).ceil() as usize
 }
 
 /// `n_out` samples of `x` behind the low-pass at t_m = (m − lead)/f_out;
