@@ -166,6 +166,21 @@ fn calibrate_prestress_fits_the_tensioned_frequency() {
         .iter()
         .any(|w| w.contains("pre-stressed")));
 
+    // The slack string's first mode cannot reach 110 Hz by its height:
+    // the refusal names the pre-stress.
+    let out_of_reach = CalibrateRequest {
+        targets_hz: vec![110.0],
+        prestress: false,
+        ..CalibrateRequest::default()
+    };
+    let e =
+        ancf_modal::commands::calibrate::run(&input(string(80.0, 20)), &out_of_reach).unwrap_err();
+    let text = ancf_modal::error::chain_text(&e);
+    assert!(
+        text.contains("unstressed modes of a pre-stressed model"),
+        "{text}"
+    );
+
     // The load's value as the parameter: pre-stressed without asking.
     let by_load = CalibrateRequest {
         targets_hz: vec![150.0],

@@ -203,7 +203,9 @@ pub fn run(input: &ModelInput, request: &CalibrateRequest) -> Result<CalibrateRu
         ..CalibrationSettings::default()
     };
     let result = match request.method {
-        Method::Eigen => calibrate(model, &fit, &settings).map_err(fail)?,
+        Method::Eigen => {
+            calibrate(model, &fit, &settings).map_err(|e| fail(with_prestress_hint(model, e)))?
+        }
         Method::Impulse => {
             request.experiment.check()?;
             let eval =
@@ -220,6 +222,24 @@ pub fn run(input: &ModelInput, request: &CalibrateRequest) -> Result<CalibrateRu
         result,
         document: Run::of(input, output).warn(input, own),
     })
+}
+
+/// `e` with the pre-stress named when an unreachable target was sought
+/// among the unstressed modes of a pre-stressed model (the fit was not
+/// asked to be pre-stressed, and the reference does not balance the
+/// loads).
+fn with_prestress_hint(
+    model: &crate::model::ValidModel,
+    mut e: CalibrationError,
+) -> CalibrationError {
+    if let CalibrationError::Unreachable {
+        unstressed_of_prestressed,
+        ..
+    } = &mut e
+    {
+        *unstressed_of_prestressed = !reference_balances(&crate::System::new(model));
+    }
+    e
 }
 
 /// The warning of a fit to the unstressed modes of a model whose

@@ -80,7 +80,7 @@ pub enum CalibrationError {
         frequency_hz: f64,
         relative_sensitivity: f64,
     },
-    #[error("target {target_hz} Hz is out of reach for `{parameter}` in [{lower:e}, {upper:e}]: the mode goes from {lower_hz:.3} Hz to {upper_hz:.3} Hz there (the bounds must be widened)")]
+    #[error("target {target_hz} Hz is out of reach for `{parameter}` in [{lower:e}, {upper:e}]: the mode goes from {lower_hz:.3} Hz to {upper_hz:.3} Hz there ({})", if *unstressed_of_prestressed { "these are the unstressed modes of a pre-stressed model: the pre-stressed fit (prestress) fits the modes of its static equilibrium; or the bounds must be widened" } else { "the bounds must be widened" })]
     Unreachable {
         parameter: String,
         target_hz: f64,
@@ -88,6 +88,9 @@ pub enum CalibrationError {
         upper: f64,
         lower_hz: f64,
         upper_hz: f64,
+        /// The fit was to the unstressed modes of a model whose reference
+        /// does not balance its loads (set by the command, which knows).
+        unstressed_of_prestressed: bool,
     },
     #[error("the targets {targets_hz:?} Hz cannot be met within the bounds: the closest fit gives {achieved_hz:?} Hz at {}", parameters.iter().map(|(n, v)| format!("{n} = {v:e}")).collect::<Vec<_>>().join(", "))]
     NotReached {

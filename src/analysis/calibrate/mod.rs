@@ -412,6 +412,7 @@ fn fit_one(
                 upper: p.upper,
                 lower_hz: fl,
                 upper_hz: fu,
+                unstressed_of_prestressed: false,
             });
         }
     };
