@@ -2,9 +2,11 @@
 //! (spectral radius ρ∞ [–]) over `end_time` [s] in steps of `step` [s],
 //! shortened at contact onsets; from rest at the static equilibrium under
 //! the loads at t = 0⁻ (released supports let go; the reference when it
-//! balances them) or at the reference configuration. The sensors [m, m/s or m/s²] are resampled at
-//! `sample_rate` [Hz]; the contacts' forces [N] and the energy balance [J]
-//! come with them ([`crate::analysis::simulate`]).
+//! balances them) or at the reference configuration. The sensors [m, m/s
+//! or m/s²] are resampled at `sample_rate` [Hz]; the contacts' forces [N]
+//! and the energy balance [J] come with them
+//! ([`crate::analysis::simulate`]). A run that fails keeps what it computed
+//! up to its last accepted step, and says so.
 
 use super::{CommandError, ModelInput, Run};
 use crate::analysis::impulse::ACQUISITION_RATE_HZ;
