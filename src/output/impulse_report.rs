@@ -58,6 +58,14 @@ pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f
         crate::model::number::significant(r.sample_rate_hz, 7),
         r.spectrum.window
     );
+    if r.settings.sample_rate.is_some() {
+        if let Some(&t0) = r.time.first() {
+            let _ = writeln!(
+                s,
+                "acquisition: force and sensor behind the same zero-phase anti-aliasing low-pass (no delay between or on them), from {t0:.4e} s (a pre-trigger ahead of the blow)"
+            );
+        }
+    }
     let _ = writeln!(s, "spectrum peaks:");
     let _ = writeln!(s, "  {:>12}  {:>12}", "f [Hz]", "magnitude");
     for p in &r.peaks {
