@@ -138,25 +138,13 @@ pub fn run_with_progress(
         .map_err(|e| CommandError::impulse(input.label(), e))?;
     let reference = reference_hz(&input.model);
     let output = ImpulseOutput::new(&input.model.name, &result, reference);
-    let mut own: Vec<String> = blind_warning(&result).into_iter().collect();
+    let mut own: Vec<String> = result.blind_sentence().into_iter().collect();
     own.extend(scale_warnings(&result));
     Ok(ImpulseRun {
         model: input.model.clone(),
         document: Run::of(input, output).warn(input, own),
         result,
     })
-}
-
-/// The warning of a sensor that does not see the first bending mode
-/// ([`crate::analysis::impulse::sight`]): where a sensor would.
-fn blind_warning(r: &ImpulseResult) -> Option<String> {
-    let sight = r.sight.as_ref().filter(|s| s.blind())?;
-    let mode = r.modal.first_bending()?;
-    let [dx, dy] = sight.best_direction;
-    Some(format!(
-        "the sensor `{}` does not see the first bending mode ({:.3} Hz): it reads {:.1e} of the mode's largest motion, so no first bending frequency is identified; {} moves most, along ({dx:.3}, {dy:.3}): a sensor there would see it",
-        r.sensor, mode.frequency_hz, sight.ratio, sight.best_point
-    ))
 }
 
 /// Fewer steps per period of the first bending mode than this is a warning.

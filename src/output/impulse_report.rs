@@ -101,16 +101,11 @@ pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f
                 );
             }
         }
-        None => match (&r.sight, r.modal.first_bending()) {
-            (Some(sight), Some(mode)) if sight.blind() => {
-                let [dx, dy] = sight.best_direction;
-                let _ = writeln!(
-                    s,
-                    "first bending frequency: not identified: the sensor `{}` does not see the first bending mode ({:.3} Hz): it reads {:.1e} of the mode's largest motion; {} moves most, along ({dx:.3}, {dy:.3}), and a sensor there would see it",
-                    r.sensor, mode.frequency_hz, sight.ratio, sight.best_point
-                );
+        None => match r.blind_sentence() {
+            Some(blind) => {
+                let _ = writeln!(s, "first bending frequency: {blind}");
             }
-            _ => match crate::analysis::impulse::first_bending_band(&r.modal) {
+            None => match crate::analysis::impulse::first_bending_band(&r.modal) {
                 Some((eigen, lo, hi)) => {
                     let _ = writeln!(
                         s,

@@ -175,13 +175,14 @@ impl EigenFrequencies {
         let mass = system.mass_matrix();
         let picked = track(&system, &mass, &result, &self.reference);
         let mut freqs = Vec::with_capacity(picked.len());
-        let mut sens = set.map(|_| Vec::with_capacity(picked.len()));
+        // Analytic sensitivities at the reference; the pre-stressed ones by
+        // differences below.
+        let mut sens = set
+            .filter(|_| !self.prestress)
+            .map(|_| Vec::with_capacity(picked.len()));
         for &(i, _) in &picked {
             let mode = &result.modes[i];
             freqs.push(mode.frequency_hz);
-            if self.prestress {
-                continue;
-            }
             if let (Some(set), Some(rows)) = (set, sens.as_mut()) {
                 let mut dl = vec![0.0; set.len()];
                 eigenvalue_sensitivities(

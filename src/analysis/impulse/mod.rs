@@ -242,6 +242,20 @@ pub struct ImpulseResult {
     pub settings: ImpulseSettings,
 }
 
+impl ImpulseResult {
+    /// When the sensor does not see the first bending mode ([`sight`]):
+    /// the sentence that says so, and where a sensor would see it.
+    pub fn blind_sentence(&self) -> Option<String> {
+        let sight = self.sight.as_ref().filter(|s| s.blind())?;
+        let mode = self.modal.first_bending()?;
+        let [dx, dy] = sight.best_direction;
+        Some(format!(
+            "the sensor `{}` does not see the first bending mode ({:.3} Hz): it reads {:.1e} of the mode's largest motion, so no first bending frequency is identified; {} moves most, along ({dx:.3}, {dy:.3}): a sensor there would see it",
+            self.sensor, mode.frequency_hz, sight.ratio, sight.best_point
+        ))
+    }
+}
+
 /// Apply the command-line overrides to the model's pulse loads.
 fn with_overrides(model: &Model, s: &ImpulseSettings) -> Result<Model, ImpulseError> {
     let mut m = model.clone();
