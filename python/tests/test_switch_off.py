@@ -27,7 +27,7 @@ def test_the_tracked_point_travels_the_distance_at_the_reported_time(run):
 
 def test_energy_balance(run):
     energy = run.to_dict()["energy"]
-    # README: the balance error is 4e-6 of the stored energy.
+    # README: the balance error is 8e-6 of the stored energy.
     assert abs(energy["error_j"]) < 1e-4 * energy["stored_j"]
 
 

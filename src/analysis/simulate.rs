@@ -6,17 +6,20 @@
 //!
 //! Energy balance [SI: J]: with T = ½q̇ᵀMq̇, U the strain energy of beams,
 //! springs and contacts, V = −f_gᵀq the gravity potential (the generalized
-//! gravity force f_g is constant), W = ∫Q_loadsᵀq̇ dt the work of the
-//! applied loads (trapezoidal rule over the steps) and D the energy the
-//! contacts and the model's Rayleigh damping dissipated, the balance error
-//! is (T + U + V)(t) − (T + U + V)(0) − W + D: what the integrator's
-//! numerical damping (ρ∞ < 1) and the Newton tolerance leave.
+//! gravity force f_g is constant), W = Σ ½(Q₀ + Q₁)ᵀΔq the work of the
+//! applied loads over the steps, D the energy the contacts and the
+//! model's damping dissipated and D_num the energy the integrator removed
+//! (ρ∞ < 1; [`super::transient::ledger`]), the balance error is
+//! (T + U + V)(t) − (T + U + V)(0) − W + D + D_num. The terms are the
+//! scheme's own discrete work, so for linear forces and joints the error
+//! is round-off; what it holds is the quadrature's error on nonlinear
+//! forces, the joints' work and the Newton tolerance.
 
 use super::impulse::sensor::SensorProbe;
 use super::statics::start::{starting_equilibrium, Start};
 use super::statics::Equilibrium;
 use super::transient::contacts::ContactStats;
-use super::transient::{Integrator, RunStats, State, TransientSettings};
+use super::transient::{Integrator, RunStats, State, TransientSettings, RELEASE_LOAD_TIME};
 use crate::error::{SimulationError, TransientError};
 use crate::linalg::vector::dot;
 use crate::mechanics::anchor::Anchor;
@@ -69,9 +72,13 @@ pub struct EnergyBalance {
     pub load_work_j: f64,
     /// Dissipated by the contacts (damping and friction).
     pub contact_dissipation_j: f64,
-    /// Dissipated by the model's Rayleigh damping, ∫q̇ᵀCq̇ dt.
+    /// Dissipated by the model's damping (the springs' dampers and the
+    /// Rayleigh damping C q̇), Σ ½(D₀ + D₁)ᵀΔq.
     pub damping_dissipation_j: f64,
-    /// (T + U + V)(end) − (T + U + V)(0) − W + D.
+    /// Removed by the integrator itself, the numerical damping of a
+    /// spectral radius below 1 (0 at 1): Σ ½(a₀ + a₁)ᵀMΔq − ½(v₀ + v₁)ᵀMΔv.
+    pub numerical_dissipation_j: f64,
+    /// (T + U + V)(end) − (T + U + V)(0) − W + D + D_num.
     pub error_j: f64,
     /// The elastic energy stored at the start, U(0) (beams, springs,
     /// contacts): the scale of the error.
@@ -159,13 +166,56 @@ fn check_sample_rate(settings: &SimulationSettings) -> Result<(), SimulationErro
     }
 }
 
-/// Power of the applied loads Q_loads(q, t)ᵀq̇ [SI: W].
-fn load_power(sys: &System, st: &State, scratch: &mut [f64]) -> f64 {
-    scratch.fill(0.0);
-    for l in &sys.loads {
-        l.add_generalized_force(&st.q, st.t, 1.0, scratch);
+/// The applied loads' work over the steps, Σ ½(Q₀ + Q₁)ᵀΔq [SI: J]:
+/// the trapezoidal rule in q, as the integrator's energy books
+/// ([`super::transient::ledger`]).
+struct LoadWork {
+    /// Q_loads and q at the last state observed.
+    force: Vec<f64>,
+    /// The time the first state's loads are taken at: the one its
+    /// accelerations were computed with.
+    first_load_time: f64,
+    q: Vec<f64>,
+    scratch: Vec<f64>,
+    observed: bool,
+    work: f64,
+}
+
+impl LoadWork {
+    fn new(n: usize, first_load_time: f64) -> Self {
+        LoadWork {
+            force: vec![0.0; n],
+            first_load_time,
+            q: vec![0.0; n],
+            scratch: vec![0.0; n],
+            observed: false,
+            work: 0.0,
+        }
     }
-    dot(scratch, &st.v)
+
+    fn observe(&mut self, sys: &System, st: &State) {
+        let now = &mut self.scratch;
+        now.fill(0.0);
+        let t = if self.observed {
+            st.t
+        } else {
+            self.first_load_time
+        };
+        for l in &sys.loads {
+            l.add_generalized_force(&st.q, t, 1.0, now);
+        }
+        if self.observed {
+            self.work += now
+                .iter()
+                .zip(&self.force)
+                .zip(st.q.iter().zip(&self.q))
+                .map(|((f1, f0), (q1, q0))| 0.5 * (f0 + f1) * (q1 - q0))
+                .sum::<f64>();
+        }
+        self.observed = true;
+        std::mem::swap(&mut self.force, &mut self.scratch);
+        self.q.copy_from_slice(&st.q);
+    }
 }
 
 /// Run a simulation of `sys`, tracking the material points `points`
@@ -225,21 +275,22 @@ pub fn simulate_from(
         .collect();
     let mut gravity = vec![0.0; n];
     sys.add_gravity(&mut gravity);
-    let mut scratch = vec![0.0; n];
     let initial = energies(sys, &gravity, &state);
     let mut step_time = Vec::new();
     let mut readings: Vec<Vec<f64>> = vec![Vec::new(); probes.len()];
     let mut tracks: Vec<[Vec<f64>; 2]> = vec![[Vec::new(), Vec::new()]; points.len()];
-    let mut work = 0.0;
-    let mut last: Option<(f64, f64)> = None;
+    // The first state's loads as its accelerations took them (from an
+    // equilibrium, released supports already let go).
+    let first_load_time = if from_equilibrium {
+        RELEASE_LOAD_TIME
+    } else {
+        0.0
+    };
+    let mut work = LoadWork::new(n, first_load_time);
     let mut min_step = f64::INFINITY;
     let mut forces: Vec<Vec<f64>> = vec![Vec::new(); sys.contacts.len()];
     let mut observe = |st: &State, contact_force: &[f64]| {
-        let p = load_power(sys, st, &mut scratch);
-        if let Some((t0, p0)) = last {
-            work += 0.5 * (st.t - t0) * (p + p0);
-        }
-        last = Some((st.t, p));
+        work.observe(sys, st);
         step_time.push(st.t);
         for (r, probe) in readings.iter_mut().zip(&probes) {
             r.push(probe.read(st));
@@ -275,14 +326,18 @@ pub fn simulate_from(
     }
     let stats = integ.stats;
     let end = energies(sys, &gravity, &state);
-    let dissipated: f64 = integ.contacts.stats.iter().map(|c| c.dissipated).sum();
+    let dissipated = (integ.contacts.stats.iter()).fold(0.0, |d, c| d + c.dissipated);
     let energy = EnergyBalance {
         initial,
         end,
-        load_work_j: work,
+        load_work_j: work.work,
         contact_dissipation_j: dissipated,
         damping_dissipation_j: stats.damping_dissipation,
-        error_j: end.total() - initial.total() - work + dissipated + stats.damping_dissipation,
+        numerical_dissipation_j: stats.numerical_dissipation,
+        error_j: end.total() - initial.total() - work.work
+            + dissipated
+            + stats.damping_dissipation
+            + stats.numerical_dissipation,
         stored_j: initial.strain_j + initial.spring_j,
     };
     // Samples: linear interpolation between the steps at the sample rate,

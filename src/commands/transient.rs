@@ -139,7 +139,7 @@ pub fn energy_warning(e: &EnergyBalance, spectral_radius: f64) -> Option<String>
     } else if e.error_j > 0.0 {
         ("gains", "a run at half the step tells whether it converges")
     } else {
-        ("loses", "the integrator's numerical damping (spectral radius below 1) or a coarse step takes it: a run at half the step or a spectral radius nearer 1 tells which")
+        ("loses", "the integrator's own dissipation is booked apart, so a coarse step or the joints take it: a run at half the step tells whether it converges")
     };
     Some(format!(
         "energy balance: the run {verb} {:.3e} J unaccounted for, {} the {:.4e} J put in (energy at the start, load work, gravity): {help}",

@@ -111,9 +111,11 @@ pub fn switch_off_table(r: &SwitchOffResult) -> String {
     );
     let _ = writeln!(
         s,
-        "load work {:.4e} J, contact dissipation {:.4e} J, balance error {:.3e} J ({:.2e} of the stored {:.4e} J)",
+        "load work {:.4e} J, dissipated by the contacts {:.4e} J, the damping {:.4e} J and the integrator {:.4e} J, balance error {:.3e} J ({:.2e} of the stored {:.4e} J)",
         e.load_work_j,
         e.contact_dissipation_j,
+        e.damping_dissipation_j,
+        e.numerical_dissipation_j,
         e.error_j,
         e.error_j.abs() / e.stored_j.max(f64::MIN_POSITIVE),
         e.stored_j

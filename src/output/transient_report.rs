@@ -67,21 +67,21 @@ pub fn transient_table(model: &str, settings: &SimulationSettings, sim: &Simulat
     let e = &sim.energy;
     let _ = writeln!(
         s,
-        "energy balance: error {:.3e} J, {:.2e} of the {:.4e} J put in (at the start {:.4e} J, load work {:.4e} J); contact dissipation {:.4e} J",
+        "energy balance: error {:.3e} J, {:.2e} of the {:.4e} J put in (at the start {:.4e} J, load work {:.4e} J)",
         e.error_j,
         e.relative_error(),
         e.put_in_j(),
         e.initial.kinetic_j + e.initial.strain_j + e.initial.spring_j,
         e.load_work_j,
+    );
+    let _ = writeln!(
+        s,
+        "dissipated: integrator (spectral radius {}) {:.4e} J, damping {:.4e} J, contacts {:.4e} J",
+        crate::model::number::significant(settings.transient.spectral_radius, 4),
+        e.numerical_dissipation_j,
+        e.damping_dissipation_j,
         e.contact_dissipation_j
     );
-    if e.damping_dissipation_j != 0.0 {
-        let _ = writeln!(
-            s,
-            "Rayleigh damping dissipated {:.4e} J",
-            e.damping_dissipation_j
-        );
-    }
     s
 }
 

@@ -43,6 +43,7 @@
 pub mod contacts;
 pub mod dispersion;
 pub mod frame;
+pub mod ledger;
 pub mod rayleigh;
 mod scaling;
 mod settings;
@@ -56,6 +57,7 @@ use crate::system::{Linearization, System};
 use contacts::{add_contact_dissipation, ContactTracker};
 use dispersion::GenAlpha;
 use frame::RotatingFrame;
+use ledger::StepLedger;
 use rayleigh::RayleighForce;
 use solver::{DenseLu, FactorFailure, Factorization, Placed, Positions, Product, SparseLu};
 
@@ -105,12 +107,17 @@ pub struct Integrator<'s> {
     pub contacts: ContactTracker,
     /// The model's Rayleigh damping, if any.
     rayleigh: Option<RayleighForce>,
-    /// q̇ᵀCq̇ at the last accepted state [SI: W].
-    damping_power: f64,
+    /// Scratch for each step's energy terms ([`ledger`]).
+    ledger: StepLedger,
     /// The state before a step that contact step control may repeat.
     saved: State,
     pub stats: RunStats,
 }
+
+/// The time the loads of a state started by
+/// [`Integrator::state_after_release`] are evaluated at: the smallest
+/// positive time, the time functions' right limit at 0.
+pub const RELEASE_LOAD_TIME: f64 = f64::MIN_POSITIVE;
 
 /// Shortest step the contact control may take, as a fraction of the
 /// settings' step.
@@ -200,7 +207,7 @@ impl<'s> Integrator<'s> {
             t_next: 0.0,
             contacts: ContactTracker::new(sys, &sys.q0),
             rayleigh,
-            damping_power: 0.0,
+            ledger: StepLedger::new(n),
             stats: RunStats::default(),
         })
     }
@@ -258,7 +265,7 @@ impl<'s> Integrator<'s> {
         q: Vec<f64>,
         v: Vec<f64>,
     ) -> Result<State, TransientError> {
-        self.consistent_state(q, v, f64::MIN_POSITIVE)
+        self.consistent_state(q, v, RELEASE_LOAD_TIME)
     }
 
     /// The state at t = 0 with the applied loads evaluated at `load_time`.
@@ -286,9 +293,7 @@ impl<'s> Integrator<'s> {
         self.sys
             .add_damping(&q, &v, &mut damping, None::<&mut Positions>);
         if let Some(r) = &mut self.rayleigh {
-            let mut rayleigh = vec![0.0; n];
-            self.damping_power = r.power(self.sys, &q, &v, &mut rayleigh);
-            damping.iter_mut().zip(&rayleigh).for_each(|(d, f)| *d += f);
+            r.add_force(self.sys, &q, &v, &mut damping);
         }
         for ((r, f), d) in rhs.iter_mut().zip(&self.force).zip(&damping) {
             *r -= f + d;
@@ -517,11 +522,12 @@ impl<'s> Integrator<'s> {
         }
         self.eta = self.eta.max(1e-3);
         std::mem::swap(state, &mut self.next);
-        if let Some(r) = &mut self.rayleigh {
-            let p = r.power(self.sys, &state.q, &state.v, &mut self.force);
-            self.stats.damping_dissipation += 0.5 * h * (p + self.damping_power);
-            self.damping_power = p;
-        }
+        // `next` now holds the state the step left.
+        let (sys, left) = (self.sys, &self.next);
+        self.stats.numerical_dissipation += self.ledger.numerical_dissipation(sys, left, state);
+        self.stats.damping_dissipation +=
+            self.ledger
+                .damping_dissipation(sys, self.rayleigh.as_mut(), left, state);
         self.stats.steps += 1;
         self.since_factor += 1;
         // `work[..m]` still holds C(q) of the accepted iterate, from the
@@ -571,7 +577,10 @@ impl<'s> Integrator<'s> {
             self.t_next = self.time_after(state.t, h);
             self.contacts.begin_step(self.sys, &state.q, &state.v);
             self.saved.clone_from(state);
-            let damping = (self.stats.damping_dissipation, self.damping_power);
+            let books = (
+                self.stats.damping_dissipation,
+                self.stats.numerical_dissipation,
+            );
             let result = self.step(state);
             let retry = match &result {
                 Err(TransientError::NewtonFailure { .. }) => Some(0.5 * h),
@@ -583,7 +592,10 @@ impl<'s> Integrator<'s> {
                     if result.is_ok() {
                         self.stats.steps -= 1;
                     }
-                    (self.stats.damping_dissipation, self.damping_power) = damping;
+                    (
+                        self.stats.damping_dissipation,
+                        self.stats.numerical_dissipation,
+                    ) = books;
                     state.clone_from(&self.saved);
                     h = shorter;
                 }

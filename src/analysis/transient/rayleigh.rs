@@ -31,7 +31,6 @@
 use super::frame::RotatingFrame;
 use super::solver::Placed;
 use crate::linalg::sparse::{mul_vec, Triplets};
-use crate::linalg::vector::dot;
 use crate::linalg::Scatter;
 use crate::model::RayleighDamping;
 use crate::system::{Linearization, System};
@@ -96,14 +95,6 @@ impl RayleighForce {
                 *o += self.beta * f;
             }
         }
-    }
-
-    /// The power the damping absorbs, q̇ᵀC q̇ [SI: W], at (q, v);
-    /// `scratch` (length n) receives the force.
-    pub fn power(&mut self, sys: &System, q: &[f64], v: &[f64], scratch: &mut [f64]) -> f64 {
-        scratch.fill(0.0);
-        self.add_force(sys, q, v, scratch);
-        dot(scratch, v)
     }
 
     /// out += scale·(αM + βK_t(at.q)), K_t the elastic tangent (no load

@@ -119,7 +119,12 @@ pub struct RunStats {
     pub max_length_residual: f64,
     /// Largest |C(q)| of angular constraint equations (welds) [rad].
     pub max_angle_residual: f64,
-    /// Energy the Rayleigh damping absorbed, ∫q̇ᵀCq̇ dt (trapezoidal rule
-    /// over the steps) [SI: J]; 0 without damping.
+    /// Energy the model's damping absorbed (the springs' dampers and the
+    /// Rayleigh damping), Σ ½(D₀ + D₁)ᵀΔq over the steps [SI: J]; 0
+    /// without damping.
     pub damping_dissipation: f64,
+    /// Energy the integrator itself removed, Σ ½(a₀ + a₁)ᵀMΔq −
+    /// ½(v₀ + v₁)ᵀMΔv over the steps [SI: J]: 0 at a spectral radius of 1,
+    /// positive below ([`super::ledger`]).
+    pub numerical_dissipation: f64,
 }
