@@ -99,8 +99,8 @@ fn stated_share(warning: &str) -> f64 {
 /// (5.7e-5 of it, measured, the integrator's own 7e-12 J booked apart) and nothing is said.
 #[test]
 fn the_slider_crank_at_a_spectral_radius_of_one_says_it_gains() {
-    let text = r#"{"name": "slider_crank", "rigid_bodies": [{"id": "crank", "mass": 0.02, "inertia": 2e-05, "position": [0.0, 0.0125]}, {"id": "slider", "mass": 0.05, "inertia": 1e-05, "position": [0.09682458365518543, 0.0]}], "beams": [{"id": "coupler", "start": [0.0, 0.025], "angle_deg": -14.477512185929925, "length": 0.1, "elements": 8, "section": {"height": 0.004, "width": 0.01}, "material": {"young": 70000000000.0, "density": 2700}}], "joints": [{"id": "hub", "type": "pin", "a": {"ground": [0.0, 0.0]}, "b": {"body": "crank", "local": [0.0, -0.0125]}, "torsion_stiffness": 5.0}, {"id": "wrist", "type": "pin", "a": {"body": "crank", "local": [0.0, 0.0125]}, "b": {"beam": "coupler", "s": 0.0}}, {"id": "gudgeon", "type": "pin", "a": {"beam": "coupler", "s": 0.1}, "b": {"body": "slider", "local": [0.0, 0.0]}}, {"id": "rail", "type": "slider", "a": {"ground": [0.09682458365518543, 0.0]}, "b": {"body": "slider"}, "axis": [1.0, 0.0]}], "loads": [{"id": "push", "at": {"body": "slider"}, "force": [10.0, 0.0], "time": {"half_sine": {"duration": 0.0002}}}], "sensors": [{"id": "slider_v", "at": {"body": "slider"}, "quantity": "velocity", "frame": "global", "direction": [1.0, 0.0]}, {"id": "mid_v", "at": {"beam": "coupler", "s": 0.05}, "quantity": "velocity", "frame": "global", "direction": [0.0, 1.0]}]}"#;
-    let input = ModelInput::parse(text, ancf_modal::error::Source::BuiltIn).unwrap();
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/slider_crank.json");
+    let input = ModelInput::from_file(&path).unwrap();
     let at = |rho: f64| {
         let request = TransientRequest {
             end_time: 0.06,
