@@ -12,16 +12,21 @@
 //! 1 µs steps a mode at 3 kHz with ζ = 0.16 % is 1.2e-3 off three
 //! bandwidths from its peak (measured; the 1e-3 of the issue needs the
 //! step that makes (ωh)²/12 small against ζ). The record lasts 1 s at
-//! 10,240 Hz so that the first mode has died out (no leakage).
+//! 10,240 Hz so that the first mode has died out (no leakage). At the
+//! resonances the poles `frf` fits are the model's ([`Deviations::poles`]).
 
 mod common;
 
+use ancf_modal::analysis::impulse::ImpulseResult;
+use ancf_modal::analysis::transient::dispersion::GenAlpha;
 use ancf_modal::commands::frf::{run as frf, FrfRecords, FrfRequest};
 use ancf_modal::commands::impulse::{run as impulse, ImpulseRequest};
 use ancf_modal::commands::ModelInput;
 use ancf_modal::error::Source;
+use ancf_modal::signal::fit::FittedMode;
 use proptest::prelude::*;
 use serde_json::json;
+use std::f64::consts::PI;
 
 /// A clamped strip of `length` [m] with a tip mass, Rayleigh-damped, struck
 /// by a half-sine near the clamp and read by a velocity sensor at the tip.
@@ -63,10 +68,22 @@ fn allowed(f: f64, modes: &[(f64, f64)], step: f64) -> f64 {
     1e-3 + shift
 }
 
-/// Largest |H1 − H_model| / |H_model| over the lines away from every
-/// resonance and inside the pass band, as a fraction of what is allowed
-/// there ([`allowed`]).
-fn worst_deviation(input: &ModelInput, request: &ImpulseRequest) -> f64 {
+/// The worst of a simulated record's comparisons with its model, each as
+/// a fraction of what is allowed (under 1 passes).
+struct Deviations {
+    /// |H1 − H_model| / |H_model| over the lines away from every
+    /// resonance and inside the pass band ([`allowed`]).
+    h1: f64,
+    /// The poles `frf` fits at the resonances: the frequency, the
+    /// integrator's period error taken back
+    /// ([`GenAlpha::true_frequency_from_observed`]), against the
+    /// eigenfrequency within 5e-5 (measured 2.5e-6 … 1.6e-5: a fit on
+    /// lines 1 Hz apart), and the damping ratio against the Rayleigh
+    /// formula α/(2ω) + βω/2 within 1 % (measured 2e-5 … 3.9e-3).
+    poles: f64,
+}
+
+fn worst_deviation(input: &ModelInput, request: &ImpulseRequest) -> Deviations {
     let run = impulse(input, request).unwrap();
     let r = &run.result;
     let damping = input.model.damping.unwrap();
@@ -108,6 +125,52 @@ fn worst_deviation(input: &ModelInput, request: &ImpulseRequest) -> f64 {
         worst = worst.max(e / allowed(*f, &modes, request.step));
     }
     assert!(compared > 100, "{compared} lines compared");
+    Deviations {
+        h1: worst,
+        poles: worst_pole(
+            r,
+            &a.fit.modes,
+            a.band,
+            (damping.alpha, damping.beta),
+            request,
+        ),
+    }
+}
+
+/// The worst identified pole against its model mode, as a fraction of
+/// what is allowed ([`Deviations::poles`]); every mode in the fit band is
+/// compared with the fitted pole nearest it.
+fn worst_pole(
+    r: &ImpulseResult,
+    fitted: &[FittedMode],
+    (lo, hi): (f64, f64),
+    (alpha, beta): (f64, f64),
+    request: &ImpulseRequest,
+) -> f64 {
+    let scheme = GenAlpha::from_spectral_radius(request.spectral_radius).unwrap();
+    let mut worst = 0.0f64;
+    let mut compared = 0;
+    for m in r.modal.modes.iter().filter(|m| !m.kind.is_zero()) {
+        let (f, w) = (m.frequency_hz, 2.0 * PI * m.frequency_hz);
+        if f < lo || f > hi {
+            continue;
+        }
+        let zeta = alpha / (2.0 * w) + beta * w / 2.0;
+        let distance = |x: &&FittedMode| (x.frequency_hz - f).abs();
+        let found = fitted
+            .iter()
+            .min_by(|a, b| distance(a).total_cmp(&distance(b)))
+            .unwrap_or_else(|| panic!("no pole near {f} Hz"));
+        let undamped = scheme
+            .true_frequency_from_observed(2.0 * PI * found.frequency_hz, request.step)
+            .unwrap()
+            / (2.0 * PI);
+        compared += 1;
+        worst = worst
+            .max((undamped / f - 1.0).abs() / 5e-5)
+            .max((found.damping_ratio / zeta - 1.0).abs() / 1e-2);
+    }
+    assert!(compared >= 2, "{compared} modes in the band {lo}..{hi} Hz");
     worst
 }
 
@@ -121,8 +184,14 @@ fn h1_of_a_damped_strip_is_the_model_frf() {
     };
     let worst = worst_deviation(&input, &request);
     assert!(
-        worst < 1.0,
-        "H1 against the model's FRF: {worst:e} of the allowed"
+        worst.h1 < 1.0,
+        "H1 against the model's FRF: {:e} of the allowed",
+        worst.h1
+    );
+    assert!(
+        worst.poles < 1.0,
+        "the poles against the model's: {:e} of the allowed",
+        worst.poles
     );
 }
 
@@ -142,6 +211,7 @@ proptest! {
             ..ImpulseRequest::default()
         };
         let worst = worst_deviation(&input, &request);
-        prop_assert!(worst < 1.0, "H1 against the model's FRF: {:e} of the allowed", worst);
+        prop_assert!(worst.h1 < 1.0, "H1 against the model's FRF: {:e} of the allowed", worst.h1);
+        prop_assert!(worst.poles < 1.0, "the poles against the model's: {:e} of the allowed", worst.poles);
     }
 }
