@@ -83,15 +83,6 @@ fn switch_off_at(lambda: f64) -> ancf_modal::analysis::switch_off::SwitchOffResu
     run(&switch_off_model(lambda), &request).unwrap().result
 }
 
-/// Largest |a − b·scale| against the largest |b·scale|.
-fn off(a: &[f64], b: &[f64], scale: f64) -> f64 {
-    let peak = b.iter().fold(0.0f64, |m, v| m.max((v * scale).abs()));
-    a.iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y * scale).abs()))
-        / peak
-}
-
 proptest! {
     #![proptest_config(common::fixed_cases(3, "SWITCH_OFF_SIMILARITY_SEED", 35))]
 
@@ -103,12 +94,12 @@ proptest! {
         prop_assert!((t - t1 * lambda).abs() <= 1e-9 * t1 * lambda, "{t:e} s against {:e} s", t1 * lambda);
         prop_assert_eq!(r.steps, one.steps);
         prop_assert_eq!(r.time_s.len(), one.time_s.len());
-        prop_assert!(off(&r.time_s, &one.time_s, lambda) < 1e-12);
+        prop_assert!(common::scaled_off(&r.time_s, &one.time_s, lambda) < 1e-12);
         for (a, b) in [(&r.x_m, &one.x_m), (&r.y_m, &one.y_m)] {
-            prop_assert!(off(a, b, lambda) < 1e-9, "path off by {:e}", off(a, b, lambda));
+            prop_assert!(common::scaled_off(a, b, lambda) < 1e-9, "path off by {:e}", common::scaled_off(a, b, lambda));
         }
         for (c, c1) in r.contacts.iter().zip(&one.contacts) {
-            let f = off(&c.force_n, &c1.force_n, lambda * lambda);
+            let f = common::scaled_off(&c.force_n, &c1.force_n, lambda * lambda);
             prop_assert!(f < 1e-9, "contact {} force off by {:e}", c.id, f);
         }
         let (e, e1) = (&r.energy, &one.energy);

@@ -77,15 +77,6 @@ fn records(lambda: f64) -> (Vec<f64>, Vec<Vec<f64>>) {
     (s.time, s.sensors.into_iter().map(|(_, v)| v).collect())
 }
 
-/// Largest |a − b·scale| against the largest |a|.
-fn off(a: &[f64], b: &[f64], scale: f64) -> f64 {
-    let peak = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    a.iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y * scale).abs()))
-        / peak
-}
-
 proptest! {
     #![proptest_config(common::fixed_cases(6, "TIME_SIMILARITY_SEED", 35))]
 
@@ -96,9 +87,9 @@ proptest! {
         let (t, r) = records(lambda);
         prop_assert_eq!(t.len(), t1.len());
         // Times ×λ, velocity ×1, displacement ×λ.
-        prop_assert!(off(&t, &t1, lambda) < 1e-12);
-        prop_assert!(off(&r[0], &r1[0], 1.0) < 1e-9, "velocity off by {:e}", off(&r[0], &r1[0], 1.0));
-        prop_assert!(off(&r[1], &r1[1], lambda) < 1e-9, "displacement off by {:e}", off(&r[1], &r1[1], lambda));
+        prop_assert!(common::scaled_off(&t, &t1, lambda) < 1e-12);
+        prop_assert!(common::scaled_off(&r[0], &r1[0], 1.0) < 1e-9, "velocity off by {:e}", common::scaled_off(&r[0], &r1[0], 1.0));
+        prop_assert!(common::scaled_off(&r[1], &r1[1], lambda) < 1e-9, "displacement off by {:e}", common::scaled_off(&r[1], &r1[1], lambda));
     }
 
     #[test]
@@ -204,7 +195,7 @@ proptest! {
         let lambda = 10f64.powf(log_lambda);
         let (one, r) = (impulse_at(1.0), impulse_at(lambda));
         prop_assert_eq!(r.signal.len(), one.signal.len());
-        prop_assert!(off(&r.signal, &one.signal, 1.0) < 1e-9, "velocity off by {:e}", off(&r.signal, &one.signal, 1.0));
+        prop_assert!(common::scaled_off(&r.signal, &one.signal, 1.0) < 1e-9, "velocity off by {:e}", common::scaled_off(&r.signal, &one.signal, 1.0));
         let (f, f1) = (r.first_bending.unwrap(), one.first_bending.unwrap());
         for (a, b) in [(f.raw_hz, f1.raw_hz), (f.corrected_hz, f1.corrected_hz), (f.eigen_hz, f1.eigen_hz)] {
             prop_assert!((a * lambda - b).abs() <= 1e-9 * b, "{:e} Hz × λ against {:e} Hz", a, b);

@@ -110,3 +110,13 @@ pub fn fixed_cases(cases: u32, var: &str, default: u64) -> proptest::prelude::Pr
         ..proptest::prelude::ProptestConfig::default()
     }
 }
+
+/// Largest |a − b·scale| against the largest |b·scale|: how far a record
+/// is from a scaled one (similarity tests).
+pub fn scaled_off(a: &[f64], b: &[f64], scale: f64) -> f64 {
+    let peak = b.iter().fold(0.0f64, |m, v| m.max((v * scale).abs()));
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y * scale).abs()))
+        / peak
+}
