@@ -110,7 +110,7 @@ fn two_sines_found_in_order() {
     let one = find_peaks(
         &spec,
         &PeakSettings {
-            max_peaks: 1,
+            max_peaks: Some(1),
             ..Default::default()
         },
     );

@@ -132,8 +132,10 @@ pub struct PeakSettings {
     /// Peaks below this frequency (Hz) are ignored. The main lobe around
     /// 0 Hz (`main_lobe_half_width_bins / T`) is always skipped.
     pub min_frequency_hz: f64,
-    /// Keep at most this many peaks (the strongest ones).
-    pub max_peaks: usize,
+    /// Keep at most this many peaks (the strongest ones); `None` keeps
+    /// every peak above the threshold: the default, so that a weak low
+    /// mode is not left out behind stronger high ones.
+    pub max_peaks: Option<usize>,
 }
 
 impl Default for PeakSettings {
@@ -141,7 +143,7 @@ impl Default for PeakSettings {
         PeakSettings {
             threshold_db: -60.0,
             min_frequency_hz: 0.0,
-            max_peaks: 16,
+            max_peaks: None,
         }
     }
 }
@@ -313,7 +315,7 @@ fn interpolate_peak(spec: &Spectrum, k: usize) -> Peak {
 /// A bin counts as a peak only if it is the largest within ± one main-lobe
 /// half width of the window (`main_lobe_half_width_bins / T`), which rejects
 /// the window's own side lobes; two tones closer than that are not resolved.
-/// If more than `max_peaks` qualify, the strongest are kept.
+/// If more than `max_peaks` (when given) qualify, the strongest are kept.
 ///
 /// # Sub-bin accuracy
 ///
@@ -331,7 +333,7 @@ fn interpolate_peak(spec: &Spectrum, k: usize) -> Peak {
 pub fn find_peaks(spec: &Spectrum, settings: &PeakSettings) -> Vec<Peak> {
     let m = &spec.magnitude;
     let len = m.len().min(spec.frequency_hz.len());
-    if len < 3 || settings.max_peaks == 0 || spec.df.is_nan() || spec.df <= 0.0 {
+    if len < 3 || settings.max_peaks == Some(0) || spec.df.is_nan() || spec.df <= 0.0 {
         return Vec::new();
     }
     let lobe_hz = spec.window.main_lobe_half_width_bins() * spec.resolution_hz;
@@ -357,9 +359,9 @@ pub fn find_peaks(spec: &Spectrum, settings: &PeakSettings) -> Vec<Peak> {
         })
         .map(|k| interpolate_peak(spec, k))
         .collect();
-    if peaks.len() > settings.max_peaks {
+    if let Some(most) = settings.max_peaks.filter(|&most| peaks.len() > most) {
         peaks.sort_by(|a, b| b.magnitude.total_cmp(&a.magnitude));
-        peaks.truncate(settings.max_peaks);
+        peaks.truncate(most);
     }
     peaks.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
     peaks
