@@ -430,12 +430,14 @@ class FrfResult:
     @property
     def peaks(self) -> List[Dict[str, Any]]:
         """Identified modes: frequency_hz [Hz], damping_ratio [–],
-        magnitude, residue."""
+        magnitude, residue, damping_upper_bound (the largest ζ the records
+        allow when they do not resolve it, else None)."""
     @property
     def rejected(self) -> List[Dict[str, Any]]:
         """Stable poles not reported as modes: dicts with frequency_hz [Hz],
         damping_ratio [–], reason (``outside_band``, ``left_band``,
-        ``not_significant``, ``failed_refinement``) and why (in words)."""
+        ``not_significant``, ``redundant``, ``unresolved_damping``,
+        ``failed_refinement``, ``harmonic``) and why (in words)."""
     @property
     def stabilization(self) -> List[Dict[str, Any]]:
         """The stabilization diagram's poles."""

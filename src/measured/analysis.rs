@@ -301,6 +301,12 @@ pub fn analyse(
         Some(e) => super::cut_off::tie_residues(&mut fit, &records, e),
         None => Vec::new(),
     };
+    let mut untied: Vec<_> = undetermined.iter().map(|&j| fit.modes[j]).collect();
+    // The tied residues tell a nonlinear response's terms from modes.
+    if let Some(e) = &est {
+        fit.set_apart_harmonics(e.df());
+        untied.retain(|u| fit.modes.iter().any(|m| m.pole == u.pole));
+    }
     let found: Vec<f64> = fit.modes.iter().map(|m| m.frequency_hz).collect();
     let mut rejected = fit.rejected.clone();
     rejected.extend(outside_band(
@@ -318,7 +324,6 @@ pub fn analyse(
             && (a.frequency_hz - b.frequency_hz).abs() <= 1e-6 * b.frequency_hz
             && (a.damping_ratio - b.damping_ratio).abs() <= 1e-4 * b.damping_ratio
     });
-    let untied: Vec<_> = undetermined.iter().map(|&j| fit.modes[j]).collect();
     notes.extend(record_notes(
         &records,
         est.as_ref(),

@@ -74,13 +74,28 @@ fn mode_rows(s: &mut String, a: &FrfAnalysis) {
         "mode", "frequency [Hz]", "damping ratio %", "|H| at peak"
     );
     for (i, m) in a.fit.modes.iter().enumerate() {
+        let zeta = match m.damping_bound {
+            Some(bound) => format!("< {:.4}", 100.0 * bound),
+            None => format!("{:.4}", 100.0 * m.damping_ratio),
+        };
         let _ = writeln!(
             s,
-            "{:>4}  {:>14.3}  {:>15.4}  {:>12.4e}",
+            "{:>4}  {:>14.3}  {:>15}  {:>12.4e}",
             i + 1,
             m.frequency_hz,
-            100.0 * m.damping_ratio,
+            zeta,
             m.magnitude
+        );
+    }
+    let ringing: Vec<String> = (a.fit.modes.iter().enumerate())
+        .filter(|(_, m)| m.damping_bound.is_some())
+        .map(|(i, _)| (i + 1).to_string())
+        .collect();
+    if !ringing.is_empty() {
+        let _ = writeln!(
+            s,
+            "damping not resolved for mode {}: it rings past the records' end with no decay they can measure, so only a bound is given (ζ + 3 standard errors); longer records, or an exponential window, measure it",
+            ringing.join(", ")
         );
     }
     if let Some(e) = &a.estimate {

@@ -126,6 +126,10 @@ pub struct FittedPeak {
     pub magnitude: f64,
     /// The mode's residue, real and imaginary part [FRF unit × rad/s].
     pub residue: [f64; 2],
+    /// The largest damping ratio the records allow [–], when they do not
+    /// resolve it (the mode rings past their end with no decay they can
+    /// measure; `damping_ratio` is then no measurement); null when they do.
+    pub damping_upper_bound: Option<f64>,
 }
 
 /// A pole the fit found and did not report.
@@ -322,6 +326,7 @@ impl FrfOutput {
                     damping_ratio: m.damping_ratio,
                     magnitude: m.magnitude,
                     residue: [m.residue.re, m.residue.im],
+                    damping_upper_bound: m.damping_bound,
                 })
                 .collect(),
             rejected: a

@@ -118,6 +118,12 @@ pub struct FittedMode {
     pub cut_off: Complex64,
     /// |H| of the fitted model at the damped frequency.
     pub magnitude: f64,
+    /// When the records do not resolve the mode's damping (it rings past
+    /// their end with no measurable decay,
+    /// [`lsfd::RINGING_SIGNIFICANCE`]): the largest damping ratio they
+    /// allow, ζ + 3 standard errors [–]; `damping_ratio` is then no
+    /// measurement. `None` for a resolved damping.
+    pub damping_bound: Option<f64>,
 }
 
 /// Why a pole stable over the orders is not among the modes.
@@ -141,6 +147,9 @@ pub enum RejectReason {
     /// The nonlinear refinement made it unstable, damped it beyond
     /// [`MAX_DAMPING`] or moved it off the positive frequencies.
     FailedRefinement,
+    /// A harmonic or a combination tone (sum or difference) of stronger
+    /// modes: a response that is not quite linear ([`super::harmonics`]).
+    Harmonic,
 }
 
 impl RejectReason {
@@ -161,6 +170,9 @@ impl RejectReason {
             RejectReason::FailedRefinement => {
                 "the refinement made it unstable or damped beyond 30 %"
             }
+            RejectReason::Harmonic => {
+                "it lies at 2 or 3 times a mode's frequency, or at the sum or difference of two modes' frequencies, decays as they do together, and is ten times weaker: a harmonic or combination tone of a response that is not quite linear, not a mode"
+            }
         }
     }
 }
@@ -180,6 +192,10 @@ pub struct ModalFit {
     pub modes: Vec<FittedMode>,
     /// Stable poles that are not modes (module doc).
     pub rejected: Vec<RejectedPole>,
+    /// Harmonics and combination tones of the modes
+    /// ([`super::harmonics`]): in the fitted model (they are in the
+    /// records) and in `rejected`, not among the modes.
+    pub harmonics: Vec<FittedMode>,
     pub diagram: Vec<DiagramPole>,
     /// Residual terms U (FRF unit) and L (FRF unit × 1/s²).
     pub upper_residual: f64,
@@ -193,13 +209,12 @@ impl ModalFit {
     /// The fitted FRF at `f_hz` (modes and residual terms), as measured:
     /// with the window's decay on the poles.
     pub fn evaluate(&self, f_hz: f64) -> Complex64 {
-        let poles: Vec<Complex64> = self
-            .modes
-            .iter()
+        let all = || self.modes.iter().chain(&self.harmonics);
+        let poles: Vec<Complex64> = all()
             .map(|m| m.pole - self.settings.window_decay_rate)
             .collect();
         let fitted = lsfd::Residues {
-            residues: self.modes.iter().map(|m| m.residue).collect(),
+            residues: all().map(|m| m.residue).collect(),
             truncation: Vec::new(),
             upper: self.upper_residual,
             lower: self.lower_residual,
@@ -360,6 +375,7 @@ fn fit_with(
     let mut result = ModalFit {
         modes: Vec::new(),
         rejected: Vec::new(),
+        harmonics: Vec::new(),
         diagram: Vec::new(),
         upper_residual: 0.0,
         lower_residual: 0.0,
@@ -461,12 +477,15 @@ fn fit_with(
     result.upper_residual = u;
     result.residual_powers = powers;
     result.lower_residual = l;
+    let bounds = lsfd::unresolved_decay_bounds(bins, &kept);
     result.modes = kept
         .iter()
         .zip(&res)
+        .zip(bounds)
         .enumerate()
-        .map(|(j, (&raw, &residue))| {
+        .map(|(j, ((&raw, &residue), bound))| {
             let (frequency_hz, damping_ratio) = physical(raw);
+            let omega = (raw + sigma_w).norm();
             FittedMode {
                 frequency_hz,
                 damping_ratio,
@@ -474,14 +493,42 @@ fn fit_with(
                 residue,
                 cut_off: cut.get(j).copied().unwrap_or_default(),
                 magnitude: 0.0,
+                damping_bound: bound.map(|sigma| (sigma - sigma_w).max(0.0) / omega),
             }
         })
         .collect();
+    // With records, their residues are tied to the decays cut off first
+    // (`measured::cut_off`), and the caller sets the combinations apart.
+    if records.is_none() {
+        let line_hz = (band[band.len() - 1].0 - band[0].0) / (band.len() - 1) as f64;
+        result.set_apart_harmonics(line_hz);
+    }
     result.update_magnitudes();
     result
 }
 
 impl ModalFit {
+    /// Moves the modes that are harmonics or combination tones of others
+    /// ([`super::harmonics`]) to `harmonics`, each listed in `rejected`;
+    /// `line_hz` is the FRF's line spacing [Hz].
+    pub fn set_apart_harmonics(&mut self, line_hz: f64) {
+        let which =
+            super::harmonics::combinations(&self.modes, line_hz, self.settings.window_decay_rate);
+        let modes = std::mem::take(&mut self.modes);
+        for (m, combination) in modes.into_iter().zip(which) {
+            if combination {
+                self.rejected.push(RejectedPole {
+                    frequency_hz: m.frequency_hz,
+                    damping_ratio: m.damping_ratio,
+                    reason: RejectReason::Harmonic,
+                });
+                self.harmonics.push(m);
+            } else {
+                self.modes.push(m);
+            }
+        }
+    }
+
     /// Sets each mode's `magnitude` to |the fitted model| at its damped
     /// frequency ([`ModalFit::evaluate`]).
     pub fn update_magnitudes(&mut self) {

@@ -21,6 +21,9 @@
 //!   sampled, filtered);
 //! * [`residual_search`] — modes the LSCF seeds missed, found where the fit
 //!   residual stands above the noise;
+//! * [`harmonics`] — poles at multiples, sums and differences of stronger
+//!   modes' frequencies: a nonlinear response's harmonics and combination
+//!   tones, not modes;
 //! * [`lm`] — the one bounded Levenberg–Marquardt loop (the calibration of
 //!   model parameters and the pole refinement both use it);
 //! * [`mac`] — the modal assurance criterion between two mode sets.
@@ -31,6 +34,7 @@
 
 pub mod fit;
 pub mod frf;
+pub mod harmonics;
 pub mod lm;
 pub mod lsfd;
 pub mod mac;

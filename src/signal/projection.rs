@@ -117,6 +117,8 @@ fn measured(band: Band<'_>) -> DVector<f64> {
 
 /// The least-squares fit of the coefficients of `poles` to `band`
 /// (module doc).
+const PROJ_RCOND: f64 = 1e-6;
+
 pub fn project(band: Band<'_>, poles: &[Complex64]) -> Projection {
     let a = design(band, poles);
     let b = measured(band);
@@ -130,7 +132,7 @@ pub fn project(band: Band<'_>, poles: &[Complex64]) -> Projection {
     let qr = scaled().qr();
     let r = qr.r();
     let largest = r.diagonal().iter().fold(0.0_f64, |mx, d| mx.max(d.abs()));
-    let regular = r.diagonal().iter().all(|d| d.abs() > 1e-10 * largest);
+    let regular = r.diagonal().iter().all(|d| d.abs() > PROJ_RCOND * largest);
     let solved = if regular {
         let mut qtb = b.clone();
         qr.q_tr_mul(&mut qtb);
@@ -143,7 +145,7 @@ pub fn project(band: Band<'_>, poles: &[Complex64]) -> Projection {
         // Near singular (rare): the scaled columns again, for the SVD.
         scaled()
             .svd(true, true)
-            .solve(&b, 1e-12)
+            .solve(&b, PROJ_RCOND * largest)
             .unwrap_or_else(|_| DVector::zeros(k))
     });
     let mut x = DVector::zeros(cols);
