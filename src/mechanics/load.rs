@@ -66,7 +66,17 @@ impl PointLoad {
 
     /// Adds the generalized force at (q, t), scaled by `scale`, into `out` (global).
     pub fn add_generalized_force(&self, q: &[f64], t: f64, scale: f64, out: &mut [f64]) {
-        let f = self.force_at(t) * scale;
+        self.add_force_of(q, self.force_at(t) * scale, out);
+    }
+
+    /// Adds the generalized force of the amplitude F₀ (its time function
+    /// at 1) at q into `out`: where and how the load pushes.
+    pub fn add_amplitude_force(&self, q: &[f64], out: &mut [f64]) {
+        self.add_force_of(q, self.force, out);
+    }
+
+    /// Adds Jᵀf, the generalized force of `f` [SI: N] at the anchor, at q.
+    fn add_force_of(&self, q: &[f64], f: Vector2<f64>, out: &mut [f64]) {
         if f == Vector2::zeros() {
             return;
         }

@@ -66,8 +66,14 @@ pub struct ImpulseOutput {
     /// largest motion [–] (below 1e-3 the sensor does not see it, and no
     /// first bending frequency is identified); null without a bending mode.
     pub first_bending_sight: Option<f64>,
+    /// The hammer's work on the first bending mode over its force times
+    /// the mode's largest motion [–] (below 1e-3 the hammer does not
+    /// excite it, and no first bending frequency is identified); null
+    /// without a bending mode.
+    pub first_bending_reach: Option<f64>,
     /// Where the first bending mode moves most, when the sensor does not
-    /// see it (a sensor there would); else null.
+    /// see it or the hammer does not excite it (a sensor or a blow there
+    /// would); else null.
     pub first_bending_seen_at: Option<String>,
     /// The eigenvalue analysis's first bending frequency at the state
     /// struck [Hz].
@@ -128,6 +134,7 @@ impl ImpulseOutput {
             first_bending_hz: fb.map(|f| f.corrected_hz),
             first_bending_raw_hz: fb.map(|f| f.raw_hz),
             first_bending_sight: r.sight.as_ref().map(|s| s.ratio),
+            first_bending_reach: r.sight.as_ref().map(|s| s.reach),
             first_bending_seen_at: r
                 .sight
                 .as_ref()

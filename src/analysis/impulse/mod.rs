@@ -243,15 +243,38 @@ pub struct ImpulseResult {
 }
 
 impl ImpulseResult {
-    /// When the sensor does not see the first bending mode ([`sight`]):
-    /// the sentence that says so, and where a sensor would see it.
+    /// When the record cannot show the first bending mode ([`sight`]):
+    /// the sentence that says so (the sensor does not see it, or the
+    /// hammer does not excite it), and where a sensor or a blow would.
     pub fn blind_sentence(&self) -> Option<String> {
         let sight = self.sight.as_ref().filter(|s| s.blind())?;
         let mode = self.modal.first_bending()?;
         let [dx, dy] = sight.best_direction;
+        let (what, fraction, place) = if sight.sensor_blind() {
+            (
+                format!("the sensor `{}` does not see", self.sensor),
+                format!("it reads {:.1e} of the mode's largest motion", sight.ratio),
+                "a sensor there would see it",
+            )
+        } else {
+            (
+                format!(
+                    "the hammer (load {}) does not excite",
+                    (self.excitation_loads.iter())
+                        .map(|l| format!("`{l}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                format!(
+                    "its force does {:.1e} of its work on the mode's largest motion",
+                    sight.reach
+                ),
+                "a blow there would excite it",
+            )
+        };
         Some(format!(
-            "the sensor `{}` does not see the first bending mode ({:.3} Hz): it reads {:.1e} of the mode's largest motion, so no first bending frequency is identified; {} moves most, along ({dx:.3}, {dy:.3}): a sensor there would see it",
-            self.sensor, mode.frequency_hz, sight.ratio, sight.best_point
+            "{what} the first bending mode ({:.3} Hz): {fraction}, so no first bending frequency is identified; {} moves most, along ({dx:.3}, {dy:.3}): {place}",
+            mode.frequency_hz, sight.best_point
         ))
     }
 }
@@ -346,9 +369,13 @@ pub fn run_impulse(
     };
     let probe = SensorProbe::new(&system, point);
     let struck = equilibrium.as_ref().map_or(&system.q0, |eq| &eq.q);
+    let (kind, excitation_loads) = excitation(model)?;
+    let hammer: Vec<&crate::mechanics::load::PointLoad> = (system.loads.iter())
+        .filter(|l| kind.matches(&l.time))
+        .collect();
     let sight = modal
         .first_bending()
-        .map(|m| sight::sight(&system, &probe, struck, &m.shape));
+        .map(|m| sight::sight(&system, &probe, &hammer, struck, &m.shape));
     let h = settings.transient.step;
     let transient = TransientSettings {
         damping: settings.transient.damping.or(model.damping),
@@ -369,7 +396,6 @@ pub fn run_impulse(
             progress(done as f64 / total as f64);
         }
     })?;
-    let (kind, excitation_loads) = excitation(model)?;
     let (time, signal, force) = recorder.finish(|t| pulse_magnitude(&system, kind, t));
     let sample_rate_hz = settings.sample_rate.unwrap_or(1.0 / h);
     let spectrum = spectrum::amplitude_spectrum(&signal, sample_rate_hz, &settings.spectrum)?;
