@@ -59,10 +59,19 @@ fn a_mode_the_hammer_does_not_excite_is_not_identified() {
     assert!(!sight.sensor_blind(), "sight {}", sight.ratio);
     assert!(sight.reach < 1e-9, "reach {}", sight.reach);
     assert!(r.first_bending.is_none(), "{:?}", r.first_bending);
-    let said = run.document.warnings.iter().find(|w| w.contains("does not excite"));
+    let said = run
+        .document
+        .warnings
+        .iter()
+        .find(|w| w.contains("does not excite"));
     let said = said.unwrap_or_else(|| panic!("{:?}", run.document.warnings));
-    assert!(said.contains("load `blow`") && said.contains("a blow there would excite it"), "{said}");
-    assert!(run.text().contains("does not excite the first bending mode"));
+    assert!(
+        said.contains("load `blow`") && said.contains("a blow there would excite it"),
+        "{said}"
+    );
+    assert!(run
+        .text()
+        .contains("does not excite the first bending mode"));
     let doc = run.document.document();
     assert!(doc["first_bending_reach"].as_f64().unwrap() < 1e-9);
     assert!(doc["first_bending_hz"].is_null());
@@ -76,5 +85,9 @@ fn struck_where_the_mode_moves_it_is_identified() {
     assert!(!sight.blind() && sight.reach > 0.1, "{sight:?}");
     let fb = r.first_bending.expect("the sway identified");
     assert!(fb.corrected_error().abs() < 1e-4, "{fb:?}");
-    assert!(run.document.warnings.iter().all(|w| !w.contains("does not excite")));
+    assert!(run
+        .document
+        .warnings
+        .iter()
+        .all(|w| !w.contains("does not excite")));
 }

@@ -180,6 +180,21 @@ fn calibrate_prestress_fits_the_tensioned_frequency() {
         text.contains("unstressed modes of a pre-stressed model"),
         "{text}"
     );
+    // Asked for the pre-stressed fit, an unreachable target is refused
+    // without that hint (the trial's pendulum was told its pre-stressed
+    // modes were unstressed).
+    let stressed_out_of_reach = CalibrateRequest {
+        targets_hz: vec![1e6],
+        prestress: true,
+        ..CalibrateRequest::default()
+    };
+    let e = ancf_modal::commands::calibrate::run(&input(string(80.0, 20)), &stressed_out_of_reach)
+        .unwrap_err();
+    let text = ancf_modal::error::chain_text(&e);
+    assert!(
+        text.contains("out of reach") && !text.contains("unstressed"),
+        "{text}"
+    );
 
     // The load's value as the parameter: pre-stressed without asking.
     let by_load = CalibrateRequest {

@@ -203,9 +203,8 @@ pub fn run(input: &ModelInput, request: &CalibrateRequest) -> Result<CalibrateRu
         ..CalibrationSettings::default()
     };
     let result = match request.method {
-        Method::Eigen => {
-            calibrate(model, &fit, &settings).map_err(|e| fail(with_prestress_hint(model, e)))?
-        }
+        Method::Eigen => calibrate(model, &fit, &settings)
+            .map_err(|e| fail(with_prestress_hint(model, &fit, e)))?,
         Method::Impulse => {
             request.experiment.check()?;
             let eval =
@@ -230,6 +229,7 @@ pub fn run(input: &ModelInput, request: &CalibrateRequest) -> Result<CalibrateRu
 /// loads).
 fn with_prestress_hint(
     model: &crate::model::ValidModel,
+    fit: &CalibrationRequest,
     mut e: CalibrationError,
 ) -> CalibrationError {
     if let CalibrationError::Unreachable {
@@ -237,7 +237,15 @@ fn with_prestress_hint(
         ..
     } = &mut e
     {
-        *unstressed_of_prestressed = !reference_balances(&crate::System::new(model));
+        // A pre-stressed fit asked for, or implied by a load's force among
+        // the parameters, sought the pre-stressed modes.
+        let asked = crate::analysis::calibrate::params::ParameterSet::resolve(
+            model,
+            &fit.parameters,
+            fit.keep_mass,
+        )
+        .map_or(fit.prestress, |set| fit.prestressed(&set));
+        *unstressed_of_prestressed = !asked && !reference_balances(&crate::System::new(model));
     }
     e
 }
