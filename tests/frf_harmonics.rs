@@ -34,7 +34,7 @@ fn fit(n: usize, response: impl Fn(&[f64]) -> Vec<f64>) -> FrfRun {
             force: vec![force],
             fs: FS,
         },
-        response_quantity: ResponseQuantity::Displacement,
+        response_quantity: Some(ResponseQuantity::Displacement),
         ..FrfRequest::default()
     };
     frf(None, &request).unwrap()

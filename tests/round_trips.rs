@@ -182,3 +182,48 @@ fn transient_records_read_back_as_they_were_in_memory() {
     }
     assert!(compared >= 2, "the hammered models compared");
 }
+
+/// What the response measures is read back too: `impulse` names its CSV
+/// column `<sensor>_<quantity>` and writes the UFF record's ordinate type,
+/// and `frf` with default options takes the FRF's unit from them (the
+/// trial's acceleration records were labelled m/s/N).
+#[test]
+fn the_response_quantity_is_read_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("models/cantilever.json"),
+    )
+    .unwrap();
+    for (quantity, unit) in [
+        ("displacement", "m/N"),
+        ("velocity", "m/s/N"),
+        ("acceleration", "m/s²/N"),
+    ] {
+        let mut model: serde_json::Value = serde_json::from_str(&text).unwrap();
+        model["loads"][0]["time"] = serde_json::json!({"half_sine": {"duration": 1e-4}});
+        model["sensors"][0]["quantity"] = serde_json::json!(quantity);
+        let input =
+            ModelInput::parse(&model.to_string(), ancf_modal::error::Source::BuiltIn).unwrap();
+        let run = impulse(
+            &input,
+            &ImpulseRequest {
+                end_time: 0.02,
+                ..ImpulseRequest::default()
+            },
+        )
+        .unwrap();
+        let csv = dir.path().join(format!("{quantity}.csv"));
+        let uff = dir.path().join(format!("{quantity}.uff"));
+        run.write_csv(&csv).unwrap();
+        std::fs::write(&uff, run.uff()).unwrap();
+        for file in [csv, uff] {
+            let request = FrfRequest {
+                records: FrfRecords::Files(vec![file.clone()]),
+                ..FrfRequest::default()
+            };
+            let read = frf(None, &request).unwrap();
+            assert_eq!(read.quantity.name(), quantity, "{}", file.display());
+            assert_eq!(read.document.document()["frf_unit"], unit);
+        }
+    }
+}

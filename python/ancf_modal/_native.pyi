@@ -598,7 +598,7 @@ def frf(
     estimator: Literal["h1", "h2"] = "h1",
     band: Optional[Tuple[float, float]] = None,
     max_order: int = 40,
-    response_quantity: Literal["displacement", "velocity", "acceleration"] = "velocity",
+    response_quantity: Optional[Literal["displacement", "velocity", "acceleration"]] = None,
     model: Optional[Model] = None,
     at: Optional[str] = None,
 ) -> FrfResult:
@@ -616,7 +616,7 @@ def frf_files(
     estimator: Literal["h1", "h2"] = "h1",
     band: Optional[Tuple[float, float]] = None,
     max_order: int = 40,
-    response_quantity: Literal["displacement", "velocity", "acceleration"] = "velocity",
+    response_quantity: Optional[Literal["displacement", "velocity", "acceleration"]] = None,
     model: Optional[Model] = None,
     at: Optional[str] = None,
 ) -> FrfResult:

@@ -22,7 +22,7 @@ struct Options<'a> {
     estimator: &'a str,
     band: Option<(f64, f64)>,
     max_order: i64,
-    response_quantity: &'a str,
+    response_quantity: Option<&'a str>,
     at: Option<String>,
 }
 
@@ -39,14 +39,19 @@ impl Options<'_> {
             "h2" => Estimator::H2,
             _ => Estimator::H1,
         };
-        let response_quantity = match choice(
-            "response_quantity",
-            self.response_quantity,
-            &["displacement", "velocity", "acceleration"],
-        )? {
-            "displacement" => ResponseQuantity::Displacement,
-            "acceleration" => ResponseQuantity::Acceleration,
-            _ => ResponseQuantity::Velocity,
+        let response_quantity = match self.response_quantity {
+            None => None,
+            Some(q) => Some(
+                match choice(
+                    "response_quantity",
+                    q,
+                    &["displacement", "velocity", "acceleration"],
+                )? {
+                    "displacement" => ResponseQuantity::Displacement,
+                    "acceleration" => ResponseQuantity::Acceleration,
+                    _ => ResponseQuantity::Velocity,
+                },
+            ),
         };
         Ok(FrfRequest {
             records,
@@ -113,7 +118,7 @@ fn run(py: Python<'_>, model: Option<&PyModel>, request: FrfRequest) -> PyResult
 /// diagram; `model` and its sensor `at`: the model's FRF beside the
 /// measured one.
 #[pyfunction]
-#[pyo3(signature = (force, response, fs, window = "rect", estimator = "h1", band = None, max_order = 40, response_quantity = "velocity", model = None, at = None))]
+#[pyo3(signature = (force, response, fs, window = "rect", estimator = "h1", band = None, max_order = 40, response_quantity = None, model = None, at = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn frf(
     py: Python<'_>,
@@ -124,7 +129,7 @@ pub fn frf(
     estimator: &str,
     band: Option<(f64, f64)>,
     max_order: i64,
-    response_quantity: &str,
+    response_quantity: Option<&str>,
     model: Option<PyRef<'_, PyModel>>,
     at: Option<String>,
 ) -> PyResult<PyFrfResult> {
@@ -160,7 +165,7 @@ fn channel(name: &str, c: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Channel>
 /// UFF 58 time records or an FRF.
 /// Several files are hits, averaged.
 #[pyfunction]
-#[pyo3(signature = (paths, force = None, response = None, window = "rect", estimator = "h1", band = None, max_order = 40, response_quantity = "velocity", model = None, at = None))]
+#[pyo3(signature = (paths, force = None, response = None, window = "rect", estimator = "h1", band = None, max_order = 40, response_quantity = None, model = None, at = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn frf_files(
     py: Python<'_>,
@@ -171,7 +176,7 @@ pub fn frf_files(
     estimator: &str,
     band: Option<(f64, f64)>,
     max_order: i64,
-    response_quantity: &str,
+    response_quantity: Option<&str>,
     model: Option<PyRef<'_, PyModel>>,
     at: Option<String>,
 ) -> PyResult<PyFrfResult> {

@@ -31,9 +31,11 @@ pub struct FrfArgs {
     /// first column after time that is not the force).
     #[arg(long, value_name = "COL")]
     pub response: Option<Channel>,
-    /// What the response measures (the FRF's unit).
-    #[arg(long, value_enum, default_value_t = FrfRequest::default().response_quantity.into())]
-    pub response_quantity: Quantity,
+    /// What the response measures (the FRF's unit) (default: what the
+    /// response column's name ends with, as `impulse --csv` writes it,
+    /// else velocity).
+    #[arg(long, value_enum)]
+    pub response_quantity: Option<Quantity>,
     /// rect, hann, flattop, blackman, force:P (keep the first fraction P of
     /// the force record), exponential:P (decay to P at the end; its damping
     /// is removed).
@@ -133,7 +135,7 @@ pub fn run(args: FrfArgs) -> Result<Warnings> {
         records: FrfRecords::Files(args.files),
         force: args.force,
         response: args.response,
-        response_quantity: args.response_quantity.into(),
+        response_quantity: args.response_quantity.map(Into::into),
         window: args.window,
         estimator: args.estimator.into(),
         band: args.band,

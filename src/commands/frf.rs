@@ -52,8 +52,11 @@ pub struct FrfRequest {
     /// The response channel of the files; `None`: the first column after
     /// time that is not the force.
     pub response: Option<Channel>,
-    /// What the response measures (the FRF's unit).
-    pub response_quantity: ResponseQuantity,
+    /// What the response measures (the FRF's unit); `None`: what the
+    /// response channels' names say (`…_displacement`, `…_velocity`,
+    /// `…_acceleration`, as `impulse` and `transient` write them), else
+    /// velocity.
+    pub response_quantity: Option<ResponseQuantity>,
     /// The window of the time records.
     pub window: Window,
     /// The estimator the modal fit uses.
@@ -75,7 +78,7 @@ impl Default for FrfRequest {
             records: FrfRecords::Files(Vec::new()),
             force: None,
             response: None,
-            response_quantity: ResponseQuantity::Velocity,
+            response_quantity: None,
             window: Window::Rectangular,
             estimator: settings.estimator,
             band: None,
@@ -248,7 +251,9 @@ pub fn run(model: Option<&ModelInput>, request: &FrfRequest) -> Result<FrfRun, C
     let (measurements, mut notes) = request.measurements()?;
     let analysis = analyse(measurements, settings)?;
     notes.extend(analysis.warnings());
-    let q = request.response_quantity;
+    let q = request
+        .response_quantity
+        .unwrap_or_else(|| named_quantity(&analysis.channels));
     let overlay = match at {
         Some((m, sensor)) => {
             let (overlay, h) = ModelOverlay::new(&m.model, sensor, q, &analysis.frequency_hz)
@@ -278,6 +283,28 @@ pub fn run(model: Option<&ModelInput>, request: &FrfRequest) -> Result<FrfRun, C
         overlay,
         document,
     })
+}
+
+/// What the response channels' names say they measure, when they all say
+/// the same: `impulse` and `transient` name a sensor's CSV column
+/// `<sensor>_<quantity>`, and a UFF record's name carries its ordinate
+/// type's (`tip (velocity)`). Velocity otherwise.
+fn named_quantity(channels: &[[String; 2]]) -> ResponseQuantity {
+    let said = |name: &str| {
+        let name = name.trim_end_matches(')').to_ascii_lowercase();
+        [
+            ResponseQuantity::Displacement,
+            ResponseQuantity::Velocity,
+            ResponseQuantity::Acceleration,
+        ]
+        .into_iter()
+        .find(|q| name.ends_with(q.name()))
+    };
+    let mut names = channels.iter().map(|[_, response]| said(response));
+    match names.next() {
+        Some(Some(first)) if names.all(|q| q == Some(first)) => first,
+        _ => ResponseQuantity::Velocity,
+    }
 }
 
 impl FrfRun {

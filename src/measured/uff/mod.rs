@@ -497,7 +497,24 @@ fn measurement_of(
         force: force.ordinate.real_parts(),
         response: response.ordinate.real_parts(),
         force_label: force.id[0].trim().to_string(),
-        response_label: response.id[0].trim().to_string(),
+        response_label: labelled(response),
         lines,
     }))
+}
+
+/// A response record's name, with what it measures when its ordinate type
+/// says and its name does not: `tip (velocity)`.
+fn labelled(response: &Function) -> String {
+    let id = response.id[0].trim();
+    let quantity = match response.ordinate_type {
+        SpecDataType::DISPLACEMENT => "displacement",
+        SpecDataType::VELOCITY => "velocity",
+        SpecDataType::ACCELERATION => "acceleration",
+        _ => return id.to_string(),
+    };
+    if id.to_ascii_lowercase().ends_with(quantity) {
+        id.to_string()
+    } else {
+        format!("{id} ({quantity})")
+    }
 }
