@@ -302,3 +302,31 @@ fn a_user_release_along_y_reads_right() {
     assert_eq!(doc["tracked_point"], "body lever");
     assert_eq!(doc["calibrated"], json!([]));
 }
+
+/// A drawn guide sits where the run crosses it, whichever way it travels:
+/// the lever mirrored (spring above, hold upwards) turns down, tracked
+/// along (0, −1); the distance line on the y panel is at −ARM·sin θ (it
+/// was drawn at +ARM·sin θ, where the run never goes), and the y record
+/// meets it at the time marker.
+#[test]
+fn the_distance_line_sits_where_a_run_travelling_backwards_crosses_it() {
+    let mut mirrored = lever(&[]);
+    mirrored["loads"][0]["force"] = json!([0.0, PRELOAD]);
+    mirrored["springs"][0]["a"] = json!({"ground": [ARM, 0.01]});
+    let settings = SwitchOffSettings {
+        direction: [0.0, -1.0],
+        ..lever_settings(6e-4)
+    };
+    let r = run_switch_off(&model(mirrored), &settings).unwrap();
+    let t = r.flexible.time_to_distance_s.expect("θ reached downwards");
+    let fig = time_figure(&r);
+    let y = &fig.panels[1];
+    assert_eq!(y.hlines.len(), 1);
+    let at = y.hlines[0].at;
+    assert!((at + ARM * THETA.sin()).abs() < 1e-15, "drawn at {at}");
+    // The record between the samples bracketing the marker crosses it.
+    let s = &y.series[0];
+    let k = s.x.iter().position(|&x| x >= t).unwrap();
+    let (lo, hi) = (s.y[k - 1].min(s.y[k]), s.y[k - 1].max(s.y[k]));
+    assert!(lo <= at && at <= hi, "{lo}..{hi} against {at}");
+}

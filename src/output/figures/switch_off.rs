@@ -45,6 +45,15 @@ fn travel_axis(result: &SwitchOffResult) -> ([f64; 2], Option<usize>) {
     (dir, axis)
 }
 
+/// Where the travel distance lies on the panel `axis` of
+/// [`travel_axis`] [SI: m]: the distance times the direction's component
+/// on x or y (−5 mm for a travel along (−1, 0)), or the distance along an
+/// oblique direction.
+fn distance_coordinate(result: &SwitchOffResult, axis: Option<usize>) -> f64 {
+    let (dir, _) = travel_axis(result);
+    result.settings.distance * axis.map_or(1.0, |k| dir[k])
+}
+
 /// x(t) and y(t) of the tracked point (Figs. 7 and 8), with the travel
 /// distance and the time it is reached on the panel of the travel
 /// direction (a third panel of the displacement along an oblique
@@ -71,7 +80,7 @@ pub fn time_figure(result: &SwitchOffResult) -> LineFigure {
             panel.series.push(series);
         }
     }
-    let d = result.settings.distance;
+    let d = distance_coordinate(result, axis);
     let mut panels = vec![x, y];
     let travel = match axis {
         Some(k) => k,
@@ -148,7 +157,7 @@ pub fn trajectory_figure(result: &SwitchOffResult) -> LineFigure {
     // The distance line where it is a coordinate: along x a vertical
     // line, along y a horizontal one.
     let (_, axis) = travel_axis(result);
-    let d = result.settings.distance;
+    let d = distance_coordinate(result, axis);
     let guide = Guide::reference(d, format!("{:.3} mm", d * 1e3));
     match axis {
         Some(0) => p.vlines.push(guide),
