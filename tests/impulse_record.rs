@@ -32,6 +32,19 @@ fn force_record_holds_the_whole_impulse_of_the_blow() {
             "force at rest: {}",
             r.force[0]
         );
+        // And the response: nothing arrives before the blow beyond the
+        // filter's reach ahead of it (its stated half-length), on either
+        // channel.
+        let reach = ancf_modal::signal::resample::AntiAlias::default().half_length(rate);
+        let peak = r.signal.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (k, &t) in r.time.iter().enumerate().filter(|&(_, &t)| t <= -reach) {
+            assert!(
+                r.signal[k].abs() <= 1e-9 * peak && r.force[k].abs() < 1e-6 * f0,
+                "{rate} Hz: response {} at t = {t:e} s, ahead of the filter's reach {reach:e} s",
+                r.signal[k]
+            );
+        }
+        assert!(r.time[0] <= -reach, "the record starts beyond the reach");
         let sum: f64 = r.force.iter().sum::<f64>() * dt;
         assert!(
             (sum - impulse).abs() <= 1e-3 * impulse,
