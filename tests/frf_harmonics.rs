@@ -177,6 +177,18 @@ fn the_paper_assemblys_undamped_record_gives_its_modes() {
                 "{window}: {f} Hz against {e} Hz"
             );
         }
+        // Every rejected pole is in the table: on a line of its own, or
+        // counted on a comb's ("N stable poles from A to B Hz").
+        let text = run.text();
+        let listed: usize = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("not reported: "))
+            .map(|l| {
+                l.split_once(" stable poles from ")
+                    .map_or(1, |(n, _)| n.parse::<usize>().unwrap())
+            })
+            .sum();
+        assert_eq!(listed, run.analysis.rejected.len(), "{window}: {text}");
         let twice = 2.0 * found[0];
         assert!(
             harmonics(&run)

@@ -12,7 +12,7 @@ use crate::measured::uff::{d58, Function, FunctionType, Ordinate, SpecDataType};
 use crate::output::plot::{
     Guide, Legend, LineFigure, MarkerShape, Panel, PointMarker, Scale, Series, SeriesStyle,
 };
-use crate::signal::fit::Stability;
+use crate::signal::fit::{RejectedPole, Stability};
 
 pub use crate::measured::ResponseQuantity;
 
@@ -54,16 +54,78 @@ pub fn frf_table(a: &FrfAnalysis, q: ResponseQuantity) -> String {
     } else {
         mode_rows(&mut s, a);
     }
-    for r in &a.rejected {
+    for run in combs(&a.rejected) {
+        let (first, last) = (&run[0], &run[run.len() - 1]);
+        if run.len() < COMB {
+            for r in run {
+                let _ = writeln!(
+                    s,
+                    "not reported: a stable pole at {:.3} Hz, ζ {:.4} %: {}",
+                    r.frequency_hz,
+                    100.0 * r.damping_ratio,
+                    r.reason.describe()
+                );
+            }
+            continue;
+        }
+        let zeta = |f: fn(f64, f64) -> f64| {
+            100.0
+                * run
+                    .iter()
+                    .map(|r| r.damping_ratio)
+                    .fold(first.damping_ratio, f)
+        };
+        let gaps: Vec<f64> = run
+            .windows(2)
+            .map(|w| w[1].frequency_hz - w[0].frequency_hz)
+            .collect();
+        let gap = |f: fn(f64, f64) -> f64| gaps.iter().copied().fold(gaps[0], f);
+        let apart = if gap(f64::max) - gap(f64::min) <= 1e-3 * gap(f64::max) {
+            format!("{:.3} Hz", gap(f64::max))
+        } else {
+            format!("{:.3} to {:.3} Hz", gap(f64::min), gap(f64::max))
+        };
         let _ = writeln!(
             s,
-            "not reported: a stable pole at {:.3} Hz, ζ {:.4} %: {}",
-            r.frequency_hz,
-            100.0 * r.damping_ratio,
-            r.reason.describe()
+            "not reported: {} stable poles from {:.3} to {:.3} Hz, {apart} apart (ζ {:.4} to {:.4} %), each: {}",
+            run.len(),
+            first.frequency_hz,
+            last.frequency_hz,
+            zeta(f64::min),
+            zeta(f64::max),
+            first.reason.describe()
         );
     }
     s
+}
+
+/// Fewest rejected poles of one reason, evenly spaced, listed on one line.
+const COMB: usize = 3;
+
+/// The rejected poles (by frequency) in runs: a comb of poles of one
+/// reason whose spacings lie within a factor 2 of its first is one run (a
+/// fit's artefact spread over a band: the paper's undamped record shows
+/// five 30 Hz apart), every other pole a run of its own.
+fn combs(rejected: &[RejectedPole]) -> Vec<&[RejectedPole]> {
+    let mut runs = Vec::new();
+    let mut start = 0;
+    while start < rejected.len() {
+        let mut end = start + 1;
+        while end < rejected.len() && rejected[end].reason == rejected[start].reason {
+            let gap = rejected[end].frequency_hz - rejected[end - 1].frequency_hz;
+            let first = rejected[start + 1].frequency_hz - rejected[start].frequency_hz;
+            if !(0.5 * first..=2.0 * first).contains(&gap) {
+                break;
+            }
+            end += 1;
+        }
+        if end - start < COMB {
+            end = start + 1;
+        }
+        runs.push(&rejected[start..end]);
+        start = end;
+    }
+    runs
 }
 
 /// The table rows of the identified modes.
