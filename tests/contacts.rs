@@ -438,3 +438,60 @@ fn bad_contacts_are_clear_errors() {
         assert_eq!(err.lines().count(), 1, "one line: {err}");
     }
 }
+
+/// A 0.5 kg pendulum bob on a 10 mm steel leaf (0.1 × 5 mm), pushed aside
+/// by 0.3 N under gravity: its lateral stiffness is about mg/L = 19 N/m.
+/// With `stop_at` [m], a Hunt–Crossley stop (K = 1e8 N/m^1.5) on a vertical
+/// line that far to the right of the bob.
+fn pushed_pendulum(stop_at: Option<f64>) -> ValidModel {
+    let mut v = json!({
+        "name": "pendulum",
+        "gravity": [0.0, -9.81],
+        "beams": [{"id": "leaf", "start": [0.0, 0.0], "angle_deg": -90.0, "length": 0.01,
+                   "elements": 8, "section": {"height": 1e-4, "width": 5e-3},
+                   "material": {"young": 2e11, "density": 7850.0}}],
+        "rigid_bodies": [{"id": "bob", "mass": 0.5, "inertia": 1e-3, "position": [0.0, -0.26]}],
+        "joints": [
+            {"id": "clamp", "type": "weld", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "leaf", "s": 0.0}},
+            {"id": "fix", "type": "weld", "a": {"beam": "leaf", "s": 0.01}, "b": {"body": "bob"}}],
+        "loads": [{"id": "push", "at": {"body": "bob"}, "force": [0.3, 0.0]}]
+    });
+    if let Some(x) = stop_at {
+        v["contacts"] = json!([{
+            "id": "stop", "type": "point_line", "point": {"body": "bob"}, "radius": 0.01,
+            "line": {"ground": true, "from": [x, -0.28], "to": [x, -0.24]}, "side": "left",
+            "law": {"model": "hunt_crossley", "stiffness": 1e8, "exponent": 1.5, "restitution": 0.8}
+        }]);
+    }
+    model(v)
+}
+
+/// An open contact does not change the equilibrium (outside-eyes trial: a
+/// stop 190 mm from the pendulum's bob made `static` and `switch-off` fail,
+/// the open contact's regularizing stiffness, 4.7e5 N/m, swamping the
+/// bob's 19 N/m). Whatever the stop's distance, the equilibrium is the
+/// stop-free one to 1e-12 of the bob's travel.
+#[test]
+fn an_open_contact_leaves_a_soft_structures_equilibrium_alone() {
+    let free = {
+        let m = pushed_pendulum(None);
+        solve_equilibrium(&System::new(&m), &StaticSettings::default()).unwrap()
+    };
+    let n = free.q.len();
+    let travel = free.q[n - 3].abs();
+    assert!(travel > 5e-3, "the bob moves {travel} m");
+    for stop in [0.05, 0.2, 1.0] {
+        let m = pushed_pendulum(Some(stop));
+        let sys = System::new(&m);
+        let eq = solve_equilibrium(&sys, &StaticSettings::default()).unwrap();
+        assert!(
+            sys.contacts[0].penetration(&eq.q) <= 0.0,
+            "open at {stop} m"
+        );
+        let off =
+            eq.q.iter()
+                .zip(&free.q)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(off <= 1e-12 * travel, "stop at {stop} m: off by {off:e} m");
+    }
+}

@@ -254,11 +254,15 @@ pub(crate) struct State {
 /// The Newton solves a load step tries, in turn, while the previous one
 /// stalls: whole steps, then a line search, then a line search with the
 /// closed contacts' exact tangents (a stiff contact closed at a small
-/// force, where the regularized matrix converges only linearly).
-const NEWTON_MODES: [(Damping, Regularize); 3] = [
+/// force, where the regularized matrix converges only linearly), then,
+/// where there are contacts, whole steps on the exact tangent (an open
+/// contact's regularization can swamp a soft structure's stiffness); that
+/// last solve's outcome counts only when it converges.
+const NEWTON_MODES: [(Damping, Regularize); 4] = [
     (Damping::Full, Regularize::OpenOnly),
     (Damping::LineSearch, Regularize::OpenOnly),
     (Damping::LineSearch, Regularize::OpenAndBarelyClosed),
+    (Damping::Full, Regularize::Never),
 ];
 
 /// How Newton steps are damped.
@@ -545,9 +549,17 @@ impl<'a> Solver<'a> {
                 residual: f64::INFINITY,
             });
             for (damping, contacts) in NEWTON_MODES {
-                trial = state.clone();
-                set(&mut trial, at(t_try));
-                outcome = self.newton(&mut trial, damping, contacts);
+                let exact = contacts == Regularize::Never;
+                if exact && self.system.contacts.is_empty() {
+                    break;
+                }
+                let mut attempt = state.clone();
+                set(&mut attempt, at(t_try));
+                let result = self.newton(&mut attempt, damping, contacts);
+                if exact && result.is_err() {
+                    break;
+                }
+                (trial, outcome) = (attempt, result);
                 if !matches!(outcome, Err(NewtonFailure::Stalled { .. })) {
                     break;
                 }
