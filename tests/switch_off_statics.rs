@@ -132,6 +132,7 @@ fn the_corners_of_the_design_space_are_found_or_have_no_closed_equilibrium() {
         equilibrium_along, on_state_equilibrium, DesignPathError,
     };
     let mut report = Vec::new();
+    let mut unfound = 0;
     for ct in [0.2, 1000.0] {
         for dy in [-2e-3, 2e-3] {
             for s in [0.5, 3.0] {
@@ -158,8 +159,23 @@ fn the_corners_of_the_design_space_are_found_or_have_no_closed_equilibrium() {
                         ((f - g) / f).abs() < 1e-6,
                         "{p:?}: pad {f} N on the geometric path, {g} N on the straight one"
                     );
+                    // Solved from its own reference without a path: the
+                    // same state wherever it is found with the pad on.
+                    let own = match solve_equilibrium(&sys, &path_settings()) {
+                        Ok(own) if fixed_contact_force(&sys, &own.q) > 0.0 => {
+                            let off = (own.q.iter().zip(&eq.q))
+                                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+                            assert!(off <= 1e-8 * 0.025, "{p:?}: {off:e} m from the path's");
+                            "found from the reference too"
+                        }
+                        Ok(_) => "from the reference: another branch, the pad off",
+                        Err(_) => {
+                            unfound += 1;
+                            "not found from the reference"
+                        }
+                    };
                     forces.push(f);
-                    report.push(format!("{p:?}: pad {f:.4} N ({steps} steps)"));
+                    report.push(format!("{p:?}: pad {f:.4} N ({steps} steps); {own}"));
                 }
                 // Statically determinate: the pad force does not depend on
                 // the contact's stiffness.
@@ -169,7 +185,10 @@ fn the_corners_of_the_design_space_are_found_or_have_no_closed_equilibrium() {
             }
         }
     }
-    eprintln!("{}", report.join("\n"));
+    eprintln!(
+        "{}\nnot found from the reference: {unfound} of 16",
+        report.join("\n")
+    );
     // The spring's preload alone raised by a factor 1 + τ: the balance
     // about the pin takes the spring's extra moment from the pad, whose
     // force falls linearly, F(τ) = F(0) − τ·2(F(0) − F(½)); with the
@@ -203,20 +222,18 @@ fn the_corners_of_the_design_space_are_found_or_have_no_closed_equilibrium() {
 }
 
 /// The command line at a corner whose ON state the load-factor
-/// continuation from the reference does not find (c_t = 0.2 N m/rad,
-/// ground −2 mm, pre-stress × 0.5, K = 1e11: "a mechanism"): `switch-off`
-/// on the model file and a one-point `sweep` from the built-in model both
-/// start from the equilibrium the design path finds (the pad force at
-/// t = 0 is the library's) and reach 2 mm at the same time.
+/// continuation from the reference once did not find (c_t = 0.2 N m/rad,
+/// ground −2 mm, pre-stress × 0.5, K = 1e11: "a mechanism"; since the
+/// statics tries the exact tangent of far-open contacts it does, and both
+/// must agree): `switch-off` on the model file and a one-point `sweep`
+/// from the built-in model both start from the equilibrium the design path
+/// finds (the pad force at t = 0 is the library's) and reach 2 mm at the
+/// same time.
 #[test]
 fn the_command_line_continues_a_changed_design_from_the_built_in_one() {
     let p = [0.2, -2e-3, 0.5, 1e11];
     let corner = design(1.0, p);
     let sys = System::new(&corner);
-    assert!(
-        solve_equilibrium(&sys, &StaticSettings::default()).is_err(),
-        "the corner is not found from the reference (else this test shows nothing)"
-    );
     let on = ancf_modal::analysis::statics::design_path::on_state_equilibrium(
         &corner,
         &Model::switch_off_builtin(),
@@ -224,6 +241,17 @@ fn the_command_line_continues_a_changed_design_from_the_built_in_one() {
         &StaticSettings::default(),
     )
     .unwrap();
+    if let Ok(own) = solve_equilibrium(&sys, &StaticSettings::default()) {
+        let off = own
+            .q
+            .iter()
+            .zip(&on.q)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(
+            off <= 1e-8 * 0.025,
+            "from its reference and along the design path: {off:e} m apart"
+        );
+    }
     let pad = fixed_contact_force(&sys, &on.q);
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("corner.json");

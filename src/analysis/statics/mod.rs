@@ -255,14 +255,15 @@ pub(crate) struct State {
 /// stalls: whole steps, then a line search, then a line search with the
 /// closed contacts' exact tangents (a stiff contact closed at a small
 /// force, where the regularized matrix converges only linearly), then,
-/// where there are contacts, whole steps on the exact tangent (an open
-/// contact's regularization can swamp a soft structure's stiffness); that
-/// last solve's outcome counts only when it converges.
+/// where there are contacts, whole steps with the open contacts far from
+/// touching left unregularized (their regularization can swamp a soft
+/// structure's stiffness); that last solve's outcome counts only when it
+/// converges.
 const NEWTON_MODES: [(Damping, Regularize); 4] = [
     (Damping::Full, Regularize::OpenOnly),
     (Damping::LineSearch, Regularize::OpenOnly),
     (Damping::LineSearch, Regularize::OpenAndBarelyClosed),
-    (Damping::Full, Regularize::Never),
+    (Damping::Full, Regularize::NearOnly),
 ];
 
 /// How Newton steps are damped.
@@ -549,14 +550,14 @@ impl<'a> Solver<'a> {
                 residual: f64::INFINITY,
             });
             for (damping, contacts) in NEWTON_MODES {
-                let exact = contacts == Regularize::Never;
-                if exact && self.system.contacts.is_empty() {
+                let last = contacts == Regularize::NearOnly;
+                if last && self.system.contacts.is_empty() {
                     break;
                 }
                 let mut attempt = state.clone();
                 set(&mut attempt, at(t_try));
                 let result = self.newton(&mut attempt, damping, contacts);
-                if exact && result.is_err() {
+                if last && result.is_err() {
                     break;
                 }
                 (trial, outcome) = (attempt, result);

@@ -363,12 +363,13 @@ pub enum Regularize {
     OpenAndBarelyClosed,
     /// Open contacts only.
     OpenOnly,
-    /// None: the exact tangent. An open contact far from a soft structure
-    /// adds, regularized, a stiffness along its normal that can swamp the
-    /// structure's own (a pendulum's 19 N/m against 4.7e5 N/m), and Newton
-    /// stalls; where the structure holds itself the exact tangent is
-    /// regular.
-    Never,
+    /// Open contacts within their own size of touching only. An open
+    /// contact farther away adds, regularized, a stiffness along its normal
+    /// that can swamp a soft structure's own (a pendulum's 19 N/m against
+    /// 4.7e5 N/m, the stop 190 mm away), and Newton stalls; nothing settles
+    /// onto it in one Newton step, and where the structure holds itself
+    /// the exact tangent is regular.
+    NearOnly,
 }
 
 impl ContactElement {
@@ -376,12 +377,21 @@ impl ContactElement {
     /// the law's tangent at a penetration of 1e-3 of the contact's own
     /// size (the clearance of a slot, the radius of a point, or 1 µm).
     pub fn regularizing_stiffness(&self) -> f64 {
+        self.law.elastic(1e-3 * self.size()).d_delta
+    }
+
+    /// The contact's own size [SI: m]: the clearance of a slot, the radius
+    /// of a point, or 1 µm.
+    fn size(&self) -> f64 {
         let size = match self.kind {
             ContactKind::PinSlot { clearance } => clearance,
             ContactKind::PointLine { radius, .. } => radius,
         };
-        let size = if size > 0.0 { size } else { 1e-6 };
-        self.law.elastic(1e-3 * size).d_delta
+        if size > 0.0 {
+            size
+        } else {
+            1e-6
+        }
     }
 
     /// Adds (k_r − F_e')⁺ ∇δ∇δᵀ, k_r the regularizing stiffness, into
@@ -395,12 +405,12 @@ impl ContactElement {
     /// only linearly, so [`Regularize::OpenOnly`] leaves a closed contact
     /// its exact tangent.
     pub fn regularization(&self, q: &[f64], which: Regularize, out: &mut PairHess) -> bool {
-        if which == Regularize::Never {
-            return false;
-        }
         let Some(g) = self.gap(q, None) else {
             return false;
         };
+        if which == Regularize::NearOnly && (g.delta > 0.0 || -g.delta > self.size()) {
+            return false;
+        }
         if which == Regularize::OpenOnly && g.delta > 0.0 {
             return false;
         }
