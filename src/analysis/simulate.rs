@@ -172,12 +172,13 @@ fn check_sample_rate(settings: &SimulationSettings) -> Result<(), SimulationErro
 struct LoadWork {
     /// Q_loads and q at the last state observed.
     force: Vec<f64>,
+    q: Vec<f64>,
+    scratch: Vec<f64>,
     /// The time the first state's loads are taken at: the one its
     /// accelerations were computed with.
     first_load_time: f64,
-    q: Vec<f64>,
-    scratch: Vec<f64>,
     observed: bool,
+    /// The work so far [SI: J].
     work: f64,
 }
 
@@ -185,9 +186,9 @@ impl LoadWork {
     fn new(n: usize, first_load_time: f64) -> Self {
         LoadWork {
             force: vec![0.0; n],
-            first_load_time,
             q: vec![0.0; n],
             scratch: vec![0.0; n],
+            first_load_time,
             observed: false,
             work: 0.0,
         }
