@@ -154,3 +154,43 @@ fn the_command_line_reports_the_estimate_and_warns_above_one_percent() {
         );
     }
 }
+
+/// Past the first-order estimate's reach (|Δf/f| > ½) the warning says
+/// only that beam theory does not hold: a height typed in millimetres once
+/// printed "would lower it by about 68775.5 %". At h/L = 4 the exact
+/// Timoshenko frequency (closed form above) is indeed below half the
+/// Euler–Bernoulli one.
+#[test]
+fn past_its_reach_the_estimate_says_more_than_half() {
+    let ratio = 4.0;
+    assert!(timoshenko(ratio, 1) < -0.5, "{}", timoshenko(ratio, 1));
+    let model = json!({
+        "name": "stub",
+        "beams": [{"id": "b", "start": [0.0, 0.0], "angle_deg": 0.0, "length": L, "elements": 8,
+                   "section": {"height": ratio * L, "width": 0.01},
+                   "material": {"young": 2.1e11, "density": 7850.0}}],
+        "joints": [
+            {"type": "pin", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "b", "s": 0.0}},
+            {"type": "pin", "a": {"ground": [L, 0.0]}, "b": {"beam": "b", "s": L}}
+        ]
+    });
+    let model = Model::from_json(&model.to_string(), Source::BuiltIn).unwrap();
+    let system = System::new(&model);
+    let mut result = modal_at_reference(&system, &ModalSettings::default()).unwrap();
+    annotate(&model, &system, &mut result);
+    let warnings = ancf_modal::analysis::shear::beam_theory_warnings(&result);
+    // The first warned mode is the first bending one (the stub's axial
+    // and rigid-looking modes come first).
+    let first = warnings.first().unwrap_or_else(|| panic!("no warning"));
+    assert!(
+        first.contains("does not hold") && first.contains("more than half"),
+        "{first}"
+    );
+    // A percentage is printed only within the estimate's reach.
+    for w in &warnings {
+        if let Some(rest) = w.split("by about ").nth(1) {
+            let pct: f64 = rest.split(' ').next().unwrap().parse().unwrap();
+            assert!(pct <= 50.0, "{w}");
+        }
+    }
+}

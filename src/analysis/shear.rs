@@ -35,6 +35,9 @@ pub const SHEAR_COEFFICIENT: f64 = 5.0 / 6.0;
 pub const DEFAULT_POISSON: f64 = 0.3;
 /// |Δf/f| above which the report warns that beam theory limits a mode.
 pub const WARNING_LEVEL: f64 = 0.01;
+/// |Δf/f| past which the first-order estimate says only that the mode is
+/// far beyond beam theory (a height typed in mm gave "68775.5 %").
+pub const FIRST_ORDER_REACH: f64 = 0.5;
 
 /// One sentence for each mode of `result` whose Euler–Bernoulli frequency
 /// is more than [`WARNING_LEVEL`] above Timoshenko theory's estimate.
@@ -44,13 +47,22 @@ pub fn beam_theory_warnings(result: &crate::analysis::ModalResult) -> Vec<String
         .iter()
         .filter_map(|m| {
             let e = m.shear_estimate.filter(|e| e.abs() > WARNING_LEVEL)?;
-            Some(format!(
-                "mode {} ({:.1} Hz): beam theory limits it: shear and rotary inertia (Timoshenko) would lower it by about {:.1} %, more than the {:.0} %",
-                m.index,
-                m.frequency_hz,
-                -100.0 * e,
-                100.0 * WARNING_LEVEL
-            ))
+            Some(if e.abs() > FIRST_ORDER_REACH {
+                format!(
+                    "mode {} ({:.1} Hz): beam theory does not hold for it: shear and rotary inertia (Timoshenko) would lower it by more than half (the first-order estimate, {:.3e} %, is past its reach); are the section's sizes in metres?",
+                    m.index,
+                    m.frequency_hz,
+                    -100.0 * e,
+                )
+            } else {
+                format!(
+                    "mode {} ({:.1} Hz): beam theory limits it: shear and rotary inertia (Timoshenko) would lower it by about {:.1} %, more than the {:.0} %",
+                    m.index,
+                    m.frequency_hz,
+                    -100.0 * e,
+                    100.0 * WARNING_LEVEL
+                )
+            })
         })
         .collect()
 }
