@@ -290,17 +290,9 @@ pub fn run(model: Option<&ModelInput>, request: &FrfRequest) -> Result<FrfRun, C
 /// `<sensor>_<quantity>`, and a UFF record's name carries its ordinate
 /// type's (`tip (velocity)`). Velocity otherwise.
 fn named_quantity(channels: &[[String; 2]]) -> ResponseQuantity {
-    let said = |name: &str| {
-        let name = name.trim_end_matches(')').to_ascii_lowercase();
-        [
-            ResponseQuantity::Displacement,
-            ResponseQuantity::Velocity,
-            ResponseQuantity::Acceleration,
-        ]
-        .into_iter()
-        .find(|q| name.ends_with(q.name()))
-    };
-    let mut names = channels.iter().map(|[_, response]| said(response));
+    let mut names = channels
+        .iter()
+        .map(|[_, response]| ResponseQuantity::named(response));
     match names.next() {
         Some(Some(first)) if names.all(|q| q == Some(first)) => first,
         _ => ResponseQuantity::Velocity,

@@ -13,6 +13,20 @@ pub enum ResponseQuantity {
 }
 
 impl ResponseQuantity {
+    /// Every quantity.
+    pub const ALL: [ResponseQuantity; 3] = [
+        ResponseQuantity::Displacement,
+        ResponseQuantity::Velocity,
+        ResponseQuantity::Acceleration,
+    ];
+
+    /// The quantity a channel's name ends with (`tip_velocity`,
+    /// `tip (velocity)`), any case.
+    pub fn named(name: &str) -> Option<ResponseQuantity> {
+        let name = name.trim_end_matches(')').to_ascii_lowercase();
+        Self::ALL.into_iter().find(|q| name.ends_with(q.name()))
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             ResponseQuantity::Displacement => "displacement",

@@ -34,7 +34,9 @@ use std::borrow::Cow;
 use std::fmt::Write;
 use std::path::Path;
 
-use super::{Channel, Channels, MeasuredError, MeasuredFrf, Measurement, TimeRecord};
+use super::{
+    Channel, Channels, MeasuredError, MeasuredFrf, Measurement, ResponseQuantity, TimeRecord,
+};
 
 pub use d55::{NodeCoordinates, NormalMode};
 pub use d58::{Function, FunctionType, Ordinate, SpecDataType};
@@ -506,15 +508,11 @@ fn measurement_of(
 /// says and its name does not: `tip (velocity)`.
 fn labelled(response: &Function) -> String {
     let id = response.id[0].trim();
-    let quantity = match response.ordinate_type {
-        SpecDataType::DISPLACEMENT => "displacement",
-        SpecDataType::VELOCITY => "velocity",
-        SpecDataType::ACCELERATION => "acceleration",
-        _ => return id.to_string(),
-    };
-    if id.to_ascii_lowercase().ends_with(quantity) {
-        id.to_string()
-    } else {
-        format!("{id} ({quantity})")
+    let typed = ResponseQuantity::ALL
+        .into_iter()
+        .find(|q| q.uff_type() == response.ordinate_type);
+    match typed {
+        Some(q) if ResponseQuantity::named(id) != Some(q) => format!("{id} ({})", q.name()),
+        _ => id.to_string(),
     }
 }
