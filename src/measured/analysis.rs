@@ -298,7 +298,7 @@ pub fn analyse(
     };
     let mut fit = fit;
     let undetermined = match &est {
-        Some(e) => super::cut_off::tie_residues(&mut fit, &records, e),
+        Some(e) => super::cut_off::tie_residues(&mut fit, &records, e, h),
         None => Vec::new(),
     };
     let mut untied: Vec<_> = undetermined.iter().map(|&j| fit.modes[j]).collect();

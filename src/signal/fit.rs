@@ -337,41 +337,94 @@ pub struct Records<'a> {
     pub duration_s: f64,
 }
 
+/// The bins of the fit band and what the records say of each: the
+/// equations [`fit_records`] fits, for a fit made after it (the residues
+/// tied to the records' cut-off decays, `measured::cut_off`).
+#[derive(Debug, Clone)]
+pub struct BandData {
+    /// Indices of the band's bins in the FRF.
+    pub in_band: Vec<usize>,
+    /// (f Hz, H) of those bins.
+    pub bins: Vec<(f64, Complex64)>,
+    /// Per bin, the truncation weight W (with records).
+    pub weights: Option<Vec<Complex64>>,
+    /// Per bin, √(Σ|F|²) over its mean in the band (with records).
+    pub rows: Option<Vec<f64>>,
+    /// Length of the records, s (0 without).
+    pub record_s: f64,
+}
+
+impl BandData {
+    /// The bins of `settings`' band in `h` (finite ones only), with what
+    /// `records` say of them.
+    pub fn new(
+        frequency_hz: &[f64],
+        h: &[Complex64],
+        records: Option<Records<'_>>,
+        settings: &FitSettings,
+    ) -> BandData {
+        let usable = |k: usize| {
+            let (f, h) = (frequency_hz[k], h[k]);
+            f >= settings.f_lo && f <= settings.f_hi && h.re.is_finite() && h.im.is_finite()
+        };
+        let in_band: Vec<usize> = (0..frequency_hz.len().min(h.len()))
+            .filter(|&k| usable(k))
+            .collect();
+        let bins = in_band.iter().map(|&k| (frequency_hz[k], h[k])).collect();
+        let weights = records.map(|r| {
+            in_band
+                .iter()
+                .map(|&k| {
+                    r.truncation
+                        .get(k)
+                        .copied()
+                        .unwrap_or(Complex64::new(0.0, 0.0))
+                })
+                .collect()
+        });
+        // √(Σ|F|²) per bin over its mean in the band.
+        let rows = records.and_then(|r| {
+            let root: Vec<f64> = in_band
+                .iter()
+                .map(|&k| r.force_power.get(k).copied().unwrap_or(0.0).max(0.0).sqrt())
+                .collect();
+            let mean = root.iter().sum::<f64>() / root.len().max(1) as f64;
+            (mean > 0.0).then(|| root.iter().map(|v| v / mean).collect())
+        });
+        BandData {
+            in_band,
+            bins,
+            weights,
+            rows,
+            record_s: records.map_or(0.0, |r| r.duration_s),
+        }
+    }
+
+    /// The band as the fit's equations in `basis`; `cut_off` keeps each
+    /// pole's free cut-off term (with records).
+    pub fn band(&self, basis: PoleBasis, cut_off: bool) -> Band<'_> {
+        Band {
+            bins: &self.bins,
+            basis,
+            truncation: if cut_off {
+                self.weights.as_deref()
+            } else {
+                None
+            },
+            record_s: self.record_s,
+            rows: self.rows.as_deref(),
+        }
+    }
+}
+
 fn fit_with(
     frequency_hz: &[f64],
     h: &[Complex64],
     records: Option<Records<'_>>,
     settings: &FitSettings,
 ) -> ModalFit {
-    let usable = |k: usize| {
-        let (f, h) = (frequency_hz[k], h[k]);
-        f >= settings.f_lo && f <= settings.f_hi && h.re.is_finite() && h.im.is_finite()
-    };
-    let in_band: Vec<usize> = (0..frequency_hz.len().min(h.len()))
-        .filter(|&k| usable(k))
-        .collect();
-    let band: Vec<(f64, Complex64)> = in_band.iter().map(|&k| (frequency_hz[k], h[k])).collect();
-    let weights: Option<Vec<Complex64>> = records.map(|r| {
-        in_band
-            .iter()
-            .map(|&k| {
-                r.truncation
-                    .get(k)
-                    .copied()
-                    .unwrap_or(Complex64::new(0.0, 0.0))
-            })
-            .collect()
-    });
-    // √(Σ|F|²) per bin over its mean in the band.
-    let rows: Option<Vec<f64>> = records.and_then(|r| {
-        let root: Vec<f64> = in_band
-            .iter()
-            .map(|&k| r.force_power.get(k).copied().unwrap_or(0.0).max(0.0).sqrt())
-            .collect();
-        let mean = root.iter().sum::<f64>() / root.len().max(1) as f64;
-        (mean > 0.0).then(|| root.iter().map(|v| v / mean).collect())
-    });
-    let record_s = records.map_or(0.0, |r| r.duration_s);
+    let data = BandData::new(frequency_hz, h, records, settings);
+    let band = &data.bins;
     let mut result = ModalFit {
         modes: Vec::new(),
         rejected: Vec::new(),
@@ -386,7 +439,7 @@ fn fit_with(
     if band.len() < 4 || n_max < 2 {
         return result;
     }
-    let (orders, all) = lscf_orders(&band, settings.f_lo, settings.f_hi, n_max);
+    let (orders, all) = lscf_orders(band, settings.f_lo, settings.f_hi, n_max);
     if orders.is_empty() {
         return result;
     }
@@ -437,13 +490,7 @@ fn fit_with(
         .candidates()
         .into_par_iter()
         .map(|basis| {
-            let bins = Band {
-                bins: &band,
-                basis,
-                truncation: weights.as_deref(),
-                record_s,
-                rows: rows.as_deref(),
-            };
+            let bins = data.band(basis, true);
             let (kept, rejected) = choose_poles(bins, &seeds, settings);
             let misfit = lsfd::misfit(bins, &kept);
             (misfit, bins, kept, rejected)

@@ -126,7 +126,14 @@ const PROJ_RCOND: f64 = 1e-6;
 /// The least-squares fit of the coefficients of `poles` to `band`
 /// (module doc).
 pub fn project(band: Band<'_>, poles: &[Complex64]) -> Projection {
-    let a = design(band, poles);
+    solve(band, poles.len(), design(band, poles))
+}
+
+/// The least-squares fit of the coefficients of a design `a` of `np`
+/// poles, laid out as [`design`]'s, to `band`: for a design whose pole
+/// columns were changed (the residues tied to their cut-off decays,
+/// `measured::cut_off`).
+pub(crate) fn solve(band: Band<'_>, np: usize, a: DMatrix<f64>) -> Projection {
     let b = measured(band);
     let cols = a.ncols();
     let used: Vec<(usize, f64)> = (0..cols)
@@ -163,7 +170,7 @@ pub fn project(band: Band<'_>, poles: &[Complex64]) -> Projection {
         .map(|q| Complex64::new(b[2 * q] - fit[2 * q], b[2 * q + 1] - fit[2 * q + 1]))
         .collect();
     Projection {
-        fitted: coefficients(band, poles.len(), &x),
+        fitted: coefficients(band, np, &x),
         residual,
         factors,
         used,
