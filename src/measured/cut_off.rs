@@ -84,7 +84,9 @@ pub fn tie_residues(
         return Vec::new();
     }
     let basis = fit.settings.basis;
-    let band = data.band(basis, false);
+    // The residual terms the fit ended with.
+    let powers: Vec<i32> = fit.residual_powers.iter().map(|(n, _)| *n).collect();
+    let band = data.band(basis, false, &powers);
     let poles: Vec<Complex64> = fit
         .modes
         .iter()

@@ -4,7 +4,7 @@
 //! **Linear part.** For given poles the model Ĥ = A c is linear in its
 //! coefficients c: per pole (Re R, Im R) and, with records, (Re D, Im D) of
 //! the cut-off decay, then U, L and the other residual terms
-//! ([`RESIDUAL_POWERS`]). The rows of A are (Re, Im) per bin, weighted as
+//! ([`Band::powers`]). The rows of A are (Re, Im) per bin, weighted as
 //! the band weighs its bins ([`Band::rows`]). c is the least-squares
 //! solution by Householder QR of A with its columns scaled to unit norm
 //! (zero columns left out, their coefficients 0), or by SVD when R is near
@@ -28,7 +28,7 @@ use nalgebra::{DMatrix, DVector, Dyn, QR};
 use realfft::num_complex::Complex64;
 
 use super::lm;
-use super::lsfd::{Band, Residues, RESIDUAL_POWERS, TRUNCATION_FLOOR};
+use super::lsfd::{Band, Residues, TRUNCATION_FLOOR};
 use super::pole_basis::PoleFactor;
 
 /// A linear least-squares fit of the coefficients of given poles.
@@ -53,7 +53,7 @@ fn has_cutoff(band: Band<'_>, p: Complex64) -> bool {
 /// Im D_r) per pole with records, then the residual terms, U and L.
 pub(crate) fn design(band: Band<'_>, poles: &[Complex64]) -> DMatrix<f64> {
     let np = poles.len();
-    let cols = band.per_pole() * np + 2 + RESIDUAL_POWERS.len();
+    let cols = band.per_pole() * np + 2 + band.powers.len();
     let mut a = DMatrix::<f64>::zeros(2 * band.bins.len(), cols);
     let i = Complex64::new(0.0, 1.0);
     let factors: Vec<PoleFactor> = poles.iter().map(|p| band.basis.factor(*p)).collect();
@@ -88,9 +88,9 @@ pub(crate) fn design(band: Band<'_>, poles: &[Complex64]) -> DMatrix<f64> {
         a[(2 * k, cols - 1)] = if *f != 0.0 { -1.0 / (om * om) } else { 0.0 };
         if *f != 0.0 {
             let jw = Complex64::new(0.0, om);
-            for (q, n) in RESIDUAL_POWERS.into_iter().enumerate() {
-                let c = jw.powi(n);
-                let col = cols - 2 - RESIDUAL_POWERS.len() + q;
+            for (q, n) in band.powers.iter().enumerate() {
+                let c = jw.powi(*n);
+                let col = cols - 2 - band.powers.len() + q;
                 a[(2 * k, col)] = c.re;
                 a[(2 * k + 1, col)] = c.im;
             }
@@ -190,7 +190,9 @@ fn coefficients(band: Band<'_>, np: usize, x: &DVector<f64>) -> Residues {
         },
         upper: x[cols - 2],
         lower: x[cols - 1],
-        powers: std::array::from_fn(|q| x[cols - 2 - RESIDUAL_POWERS.len() + q]),
+        powers: (band.powers.iter().enumerate())
+            .map(|(q, n)| (*n, x[cols - 2 - band.powers.len() + q]))
+            .collect(),
     }
 }
 
@@ -267,7 +269,7 @@ fn projected_jacobian(
     let np = poles.len();
     // Position of each design column among the used ones; a pole's D
     // columns are used only when it has a cut-off term.
-    let mut slot = vec![None; band.per_pole() * np + 2 + RESIDUAL_POWERS.len()];
+    let mut slot = vec![None; band.per_pole() * np + 2 + band.powers.len()];
     for (c, (j, _)) in pr.used.iter().enumerate() {
         slot[*j] = Some(c);
     }

@@ -87,6 +87,7 @@ proptest! {
             basis,
             truncation: records.then_some(truncation.as_slice()),
             record_s: 0.02,
+            powers: &super::super::lsfd::RESIDUAL_POWERS,
             rows: records.then_some(rows.as_slice()),
         };
         // Poles a little off the data's, so the misfit is not zero.
