@@ -146,7 +146,7 @@ pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f
             None => {
                 let _ = writeln!(
                     s,
-                    "  (the model has no damping: the fit measures the record's truncation)"
+                    "  (the model has no damping: the fitted ratio is the integrator's and the record's, not compared)"
                 );
             }
         }
