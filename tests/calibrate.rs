@@ -476,8 +476,18 @@ fn bad_requests_are_typed_errors() {
     let e = calibrate(&m, &request(&["height"], &[50_000.0]), &s).unwrap_err();
     match e {
         CalibrationError::Unreachable {
-            lower_hz, upper_hz, ..
-        } => assert!(lower_hz < 4600.0 && upper_hz > 4600.0 && upper_hz < 50_000.0),
+            lower_hz,
+            upper_hz,
+            upper,
+            beyond,
+            ..
+        } => {
+            assert!(lower_hz < 4600.0 && upper_hz > 4600.0 && upper_hz < 50_000.0);
+            // A thousand times thicker, the blade's mode passes 50 kHz:
+            // the bounds, not the physics, kept the target out of reach.
+            let (x, f) = beyond.expect("the model solved past the upper bound");
+            assert!((x / upper - 1e3).abs() < 1e-9 && f > 50_000.0, "{x} {f}");
+        }
         e => panic!("{e}"),
     }
     let mut req = request(&["height"], &[4600.0]);
@@ -623,4 +633,49 @@ fn identify_reports_the_equivalent_height() {
     let exp = v["experiment_hz"].as_f64().unwrap();
     let f = c["achieved_hz"][0].as_f64().unwrap();
     assert!((f - exp).abs() <= 0.01, "{f} Hz vs experiment {exp} Hz");
+}
+
+/// A pendulum's frequency is capped whatever its inertia: the message says
+/// the target may be past a limit, not that the bounds must be widened
+/// (outside-eyes trial of issue 35: `calibrate --prestress` of a clock
+/// pendulum on a suspension leaf).
+#[test]
+fn a_target_past_the_modes_limit_is_said_so() {
+    let model = json!({
+        "name": "pendulum", "gravity": [0.0, -9.81],
+        "beams": [{"id": "leaf", "start": [0.0, 0.0], "angle_deg": -90.0, "length": 0.01,
+                   "elements": 8, "section": {"height": 0.0001, "width": 0.005},
+                   "material": {"young": 200e9, "density": 7850.0}}],
+        "rigid_bodies": [{"id": "bob", "mass": 0.5, "inertia": 0.001, "position": [0.0, -0.26],
+                          "angle_deg": 0.0}],
+        "joints": [{"type": "weld", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "leaf", "s": 0.0}},
+                   {"type": "weld", "a": {"beam": "leaf", "s": 0.01}, "b": {"body": "bob"}}]
+    });
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("pendulum.json");
+    std::fs::write(&path, model.to_string()).unwrap();
+    let o = bin()
+        .arg("calibrate")
+        .arg(&path)
+        .args(["--target", "1.5", "--param", "bob.inertia", "--prestress"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("short of the target"), "{err}");
+    assert!(!err.contains("widened"), "{err}");
+    // The probe's frequency, a thousand times lighter, is that of a bob
+    // without inertia: near √(g/d)/2π (d = 0.26 m less the leaf's bending),
+    // far under the target.
+    let f: f64 = err
+        .split("the mode is at ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("{err}"));
+    let point_mass = (9.81_f64 / 0.26).sqrt() / (2.0 * std::f64::consts::PI);
+    assert!(
+        (f / point_mass - 1.0).abs() < 0.05,
+        "{f} against {point_mass}"
+    );
 }

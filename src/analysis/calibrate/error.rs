@@ -80,7 +80,7 @@ pub enum CalibrationError {
         frequency_hz: f64,
         relative_sensitivity: f64,
     },
-    #[error("target {target_hz} Hz is out of reach for `{parameter}` in [{lower:e}, {upper:e}]: the mode goes from {lower_hz:.3} Hz to {upper_hz:.3} Hz there ({})", if *unstressed_of_prestressed { "these are the unstressed modes of a pre-stressed model: the pre-stressed fit (prestress) fits the modes of its static equilibrium; or the bounds must be widened" } else { "the bounds must be widened" })]
+    #[error("target {target_hz} Hz is out of reach for `{parameter}` in [{lower:e}, {upper:e}]: the mode goes from {lower_hz:.3} Hz to {upper_hz:.3} Hz there ({})", unreachable_hint(*unstressed_of_prestressed, parameter, *target_hz, (*lower_hz, *upper_hz), *beyond))]
     Unreachable {
         parameter: String,
         target_hz: f64,
@@ -91,6 +91,9 @@ pub enum CalibrationError {
         /// The fit was to the unstressed modes of a model whose reference
         /// does not balance its loads (set by the command, which knows).
         unstressed_of_prestressed: bool,
+        /// (p, f Hz): the mode at [`BEYOND_BOUNDS`] times past the bound
+        /// nearer the target, when the model can be solved there.
+        beyond: Option<(f64, f64)>,
     },
     #[error("the targets {targets_hz:?} Hz cannot be met within the bounds: the closest fit gives {achieved_hz:?} Hz at {}", parameters.iter().map(|(n, v)| format!("{n} = {v:e}")).collect::<Vec<_>>().join(", "))]
     NotReached {
@@ -129,4 +132,42 @@ pub enum CalibrationError {
     NoImpulsePeak { at: String },
     #[error("the impulse method identifies the first bending mode only (asked for {kind} mode(s) {numbers:?}): the eigen method fits the others")]
     ImpulseMode { kind: ModeKind, numbers: Vec<usize> },
+}
+
+/// How far past the bound nearer an unreachable target the mode is probed,
+/// as a factor on the bound (module [`CalibrationError::Unreachable`]).
+pub const BEYOND_BOUNDS: f64 = 1e3;
+
+/// What an unreachable target's message advises: the pre-stress when the
+/// unstressed modes of a pre-stressed model were fitted, then what the
+/// mode does a factor [`BEYOND_BOUNDS`] past the bounds: wider bounds
+/// when it passes the target there, else that it may never (a pendulum's
+/// frequency is capped whatever its inertia: "widen the bounds" misled a
+/// user).
+fn unreachable_hint(
+    unstressed_of_prestressed: bool,
+    parameter: &str,
+    target_hz: f64,
+    (lower_hz, upper_hz): (f64, f64),
+    beyond: Option<(f64, f64)>,
+) -> String {
+    let nearer = if (lower_hz - target_hz).abs() < (upper_hz - target_hz).abs() {
+        lower_hz
+    } else {
+        upper_hz
+    };
+    let past = match beyond {
+        Some((p, f)) if (f - target_hz).signum() != (nearer - target_hz).signum() => {
+            format!("the bounds must be widened: at `{parameter}` = {p:e} the mode is at {f:.3} Hz")
+        }
+        Some((p, f)) => format!(
+            "even at `{parameter}` = {p:e} the mode is at {f:.3} Hz, short of the target: it may have a limit that no value of `{parameter}` passes"
+        ),
+        None => "the bounds must be widened".to_string(),
+    };
+    if unstressed_of_prestressed {
+        format!("these are the unstressed modes of a pre-stressed model: the pre-stressed fit (prestress) fits the modes of its static equilibrium; or {past}")
+    } else {
+        past
+    }
 }

@@ -405,6 +405,17 @@ fn fit_one(
                     relative_sensitivity: 0.0,
                 });
             }
+            // Past the bound nearer the target, where the model can be
+            // solved there: does the mode get there at all?
+            let x = if (fl - target).abs() < (fu - target).abs() {
+                p.lower / error::BEYOND_BOUNDS
+            } else {
+                p.upper * error::BEYOND_BOUNDS
+            };
+            let beyond = (x > 0.0 && p.lower > 0.0)
+                .then(|| run.eval(&[x]).ok())
+                .flatten()
+                .map(|e| (x, e.frequencies_hz[0]));
             return Err(CalibrationError::Unreachable {
                 parameter: p.name.clone(),
                 target_hz: target,
@@ -413,6 +424,7 @@ fn fit_one(
                 lower_hz: fl,
                 upper_hz: fu,
                 unstressed_of_prestressed: false,
+                beyond,
             });
         }
     };
