@@ -485,7 +485,7 @@ fn bad_requests_are_typed_errors() {
             assert!(lower_hz < 4600.0 && upper_hz > 4600.0 && upper_hz < 50_000.0);
             // A thousand times thicker, the blade's mode passes 50 kHz:
             // the bounds, not the physics, kept the target out of reach.
-            let (x, f) = beyond.expect("the model solved past the upper bound");
+            let (x, f) = *beyond.expect("the model solved past the upper bound");
             assert!((x / upper - 1e3).abs() < 1e-9 && f > 50_000.0, "{x} {f}");
         }
         e => panic!("{e}"),

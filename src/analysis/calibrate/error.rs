@@ -80,7 +80,7 @@ pub enum CalibrationError {
         frequency_hz: f64,
         relative_sensitivity: f64,
     },
-    #[error("target {target_hz} Hz is out of reach for `{parameter}` in [{lower:e}, {upper:e}]: the mode goes from {lower_hz:.3} Hz to {upper_hz:.3} Hz there ({})", unreachable_hint(*unstressed_of_prestressed, parameter, *target_hz, (*lower_hz, *upper_hz), *beyond))]
+    #[error("target {target_hz} Hz is out of reach for `{parameter}` in [{lower:e}, {upper:e}]: the mode goes from {lower_hz:.3} Hz to {upper_hz:.3} Hz there ({})", unreachable_hint(*unstressed_of_prestressed, parameter, *target_hz, (*lower_hz, *upper_hz), beyond.as_deref().copied()))]
     Unreachable {
         parameter: String,
         target_hz: f64,
@@ -93,7 +93,8 @@ pub enum CalibrationError {
         unstressed_of_prestressed: bool,
         /// (p, f Hz): the mode at [`BEYOND_BOUNDS`] times past the bound
         /// nearer the target, when the model can be solved there.
-        beyond: Option<(f64, f64)>,
+        /// (Boxed: the error is returned on every path.)
+        beyond: Option<Box<(f64, f64)>>,
     },
     #[error("the targets {targets_hz:?} Hz cannot be met within the bounds: the closest fit gives {achieved_hz:?} Hz at {}", parameters.iter().map(|(n, v)| format!("{n} = {v:e}")).collect::<Vec<_>>().join(", "))]
     NotReached {

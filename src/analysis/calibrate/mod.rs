@@ -415,7 +415,7 @@ fn fit_one(
             let beyond = (x > 0.0 && p.lower > 0.0)
                 .then(|| run.eval(&[x]).ok())
                 .flatten()
-                .map(|e| (x, e.frequencies_hz[0]));
+                .map(|e| Box::new((x, e.frequencies_hz[0])));
             return Err(CalibrationError::Unreachable {
                 parameter: p.name.clone(),
                 target_hz: target,
