@@ -470,3 +470,62 @@ fn prestressed_modal_pairs_the_column_below_buckling() {
         }
     }
 }
+
+/// A point mass held only by springs to the ground (outside-eyes trial of
+/// issue 33: a valve on a spring compressed by 50 N and a lateral guide).
+/// The joints let it translate, but the grounded springs resist: its
+/// reference, where the 50 N preload acts alone, is no equilibrium (and no
+/// free fall: it was called balanced with 0 N). At the static equilibrium
+/// both springs are relaxed to the solver's 1e-9 N: that balances, judged
+/// against the preload's 50 N, not against the 1e-9 N left.
+#[test]
+fn a_mass_held_by_grounded_springs_is_judged_by_its_springs() {
+    let valve = model(json!({
+        "name": "valve",
+        "point_masses": [{"id": "valve", "mass": 0.05, "position": [0.0, 0.05]}],
+        "springs": [
+            {"id": "main", "a": {"ground": [0.0, 0.0]}, "b": {"body": "valve"},
+             "stiffness": 9500.0, "preload": -50.0},
+            {"id": "guide", "a": {"ground": [0.1, 0.05]}, "b": {"body": "valve"},
+             "stiffness": 10000.0, "free_length": 0.1}
+        ]
+    }));
+    let system = System::new(&valve);
+    let (_, doc) =
+        ancf_modal::results::modal::modal(&valve, &system, &settings(2)).expect("modal succeeds");
+    let eq = &doc.equilibrium;
+    assert!(!eq.balanced && !eq.free_fall, "{eq:?}");
+    // The unbalanced force is the preload, along the spring (y).
+    assert!((eq.unbalanced_n - 50.0).abs() < 1e-9, "{eq:?}");
+    let r = prestressed_modal(&system, &StaticSettings::default(), &settings(2))
+        .expect("pre-stressed modal");
+    assert!(
+        r.prestressed.equilibrium.balanced,
+        "{:?}",
+        r.prestressed.equilibrium
+    );
+    assert!(!r.reference.equilibrium.balanced);
+    // At the equilibrium both springs are relaxed: the mass sits where the
+    // main spring's free length (its length less the preload's 50/9500 m)
+    // and the guide's 0.1 m meet; the two frequencies are those of the two
+    // springs along their own axes there, ω² the eigenvalues of
+    // Σ k n nᵀ/m.
+    let eq_q = solve_equilibrium(&system, &StaticSettings::default()).expect("equilibrium");
+    let p = nalgebra::Vector2::new(eq_q.q[0], eq_q.q[1]) + system.origin;
+    let l_main = 0.05 + 50.0 / 9500.0;
+    assert!((p.norm() - l_main).abs() < 1e-9, "{p}");
+    let to_guide = nalgebra::Vector2::new(0.1, 0.05) - p;
+    assert!((to_guide.norm() - 0.1).abs() < 1e-9, "{p}");
+    let (n1, n2) = (p.normalize(), to_guide.normalize());
+    let k = (n1 * n1.transpose()) * 9500.0 + (n2 * n2.transpose()) * 10000.0;
+    let eig = (k / 0.05).symmetric_eigenvalues();
+    let mut expected: Vec<f64> = eig.iter().map(|w2| w2.sqrt() / (2.0 * PI)).collect();
+    expected.sort_by(f64::total_cmp);
+    for (m, e) in r.prestressed.modes.iter().zip(&expected) {
+        assert!(
+            (m.frequency_hz / e - 1.0).abs() < 1e-9,
+            "{} against {e}",
+            m.frequency_hz
+        );
+    }
+}

@@ -19,16 +19,22 @@
 //! projection is taken in that metric: the free motions are those of
 //! [`NullSpace::scaled`] with positions in units of L).
 //!
-//! **Free fall.** An assembly that no joint ties to the ground can
-//! translate as a whole; under uniform gravity it falls without deforming,
-//! and in the falling frame it is in equilibrium. The uniform acceleration
+//! **Free fall.** An assembly that no joint, spring or contact ties to the
+//! ground can translate as a whole; under uniform gravity it falls without
+//! deforming, and in the falling frame it is in equilibrium. (A translation
+//! the joints allow but a grounded spring resists is no free fall: a mass
+//! held only by preloaded springs was called balanced, its 50 N preload
+//! fitted away as an acceleration.) The uniform acceleration
 //! a (the force M·(a along x and y) on every mass) is fitted with λ and not
 //! counted as unbalance. A free rigid rotation is not fitted (it is not a
 //! steady motion).
 //!
 //! **Verdict.** The state is balanced when ‖r‖∞ ≤ `tolerance` · F + noise
 //! and ‖C(q)‖∞ ≤ `tolerance` · L, with F ([`Balance::scale`]) the largest
-//! entry of Q_int, Q_ext and the joint forces C_qᵀλ, and the noise the
+//! entry of Q_int, Q_ext and the joint forces C_qᵀλ, and of Q_int at the
+//! reference (a spring's preload is the model's force even where the
+//! equilibrium relaxes it: without it, springs relaxed to 1e-9 N were
+//! judged against 1e-9 N), and the noise the
 //! larger of 256 ε · max EA, the rounding a straight, stress-free beam's
 //! elastic forces carry ([`NOISE_FACTOR`]), and the force a displacement
 //! of [`STEP_RESOLUTION`] × L makes in the stiffest element, EA/Le (the
@@ -136,7 +142,12 @@ pub fn unbalanced_force(
             .map(|(x, wi)| (x * wi).abs())
             .fold(0.0, f64::max)
     };
-    let mut scale = weighted_max(&internal).max(weighted_max(&external));
+    let mut at_reference = vec![0.0; n];
+    system.internal_force(&system.q0, &mut at_reference);
+    let mut scale = weighted_max(&internal)
+        .max(weighted_max(&external))
+        .max(weighted_max(&at_reference));
+    let noise = (NOISE_FACTOR * f64::EPSILON * system.stiffest_ea()).max(resolution_force(system));
     let mut cq = Triplets::new(m, n);
     system.add_constraint_jacobian(q, &mut cq);
     let mut free_fall = false;
@@ -165,7 +176,18 @@ pub fn unbalanced_force(
             } else {
                 project(&g)
             };
-            free_fall = remove_free_fall(system, &cq, &w, &project, &mut rw);
+            let translates = |t: &[f64]| {
+                // Internal forces unchanged by a translation by L (to the
+                // noise of the forces at hand; a grounded spring k changes
+                // them by k L): nothing grounded resists.
+                let step = length;
+                let moved: Vec<f64> = q.iter().zip(t).map(|(qi, ti)| qi + step * ti).collect();
+                let mut after = vec![0.0; n];
+                system.internal_force(&moved, &mut after);
+                let change: Vec<f64> = after.iter().zip(&internal).map(|(a, b)| a - b).collect();
+                weighted_max(&change) <= 1e-9 * scale + noise
+            };
+            free_fall = remove_free_fall(system, &cq, &w, &project, &translates, &mut rw);
             let joint: Vec<f64> = g.iter().zip(&rw).map(|(gi, ri)| ri - gi).collect();
             scale = scale.max(joint.iter().map(|x| x.abs()).fold(0.0, f64::max));
             rw.iter().zip(&w).map(|(x, wi)| x / wi).collect()
@@ -179,11 +201,10 @@ pub fn unbalanced_force(
     }
     let mut c = vec![0.0; m];
     system.constraint_residual(q, &mut c);
-    let max_ea = system.stiffest_ea();
     Balance {
         unbalanced,
         scale,
-        noise: (NOISE_FACTOR * f64::EPSILON * max_ea).max(resolution_force(system)),
+        noise,
         worst_dof,
         worst_force: r.get(worst_dof).copied().unwrap_or(0.0),
         constraint_violation: c.iter().map(|x| x.abs()).fold(0.0, f64::max),
@@ -194,12 +215,14 @@ pub fn unbalanced_force(
 
 /// Removes from the projected weighted residual `rw` its components along
 /// the forces of a uniform acceleration, when the constraints let the whole
-/// assembly translate; returns whether they did.
+/// assembly translate and nothing grounded resists it (`translates`);
+/// returns whether they did.
 fn remove_free_fall(
     system: &System,
     cq: &Triplets,
     w: &[f64],
     project: &dyn Fn(&[f64]) -> Vec<f64>,
+    translates: &dyn Fn(&[f64]) -> bool,
     rw: &mut [f64],
 ) -> bool {
     let n = system.ndof();
@@ -220,7 +243,7 @@ fn remove_free_fall(
             .iter()
             .zip(&size)
             .all(|(c, s)| c.abs() <= 1e-12 * s.max(f64::MIN_POSITIVE));
-        if !admissible {
+        if !admissible || !translates(&t) {
             return false;
         }
         let mut mt = vec![0.0; n];
