@@ -15,12 +15,25 @@
 //! of before: 1.2e-2 and −10 %), the others within 1e-3 and 3 %.
 //! A zoom band (400–750 Hz), whose LSCF normal equations cannot be solved
 //! past order 18, must find its four.
+//!
+//! Two modes closer than their half-power widths (outside-eyes trial of
+//! issue 33): 1000 and 1012 Hz at ζ 0.5 % (half-power bands 10 Hz wide)
+//! beside a 1500 Hz mode at 1 %, on 0.25 Hz lines to 2 kHz, with complex
+//! Gaussian noise of 0.1–2 % of the largest |H|. On the full band LSCF at
+//! order 40 gave one pole for the pair, rejected as not significant
+//! against its own misfit (the 1500 Hz mode then 5.7e-4 off in f); on a
+//! 900–1100 Hz zoom no mode was found even without noise. Every mode must
+//! be found, and nothing else, within the issue's tolerances for records
+//! with noise (1e-3 in f, 5 % in ζ; noise-free: 1e-5 and 0.5 %).
+
+mod measured_support;
 
 use ancf_modal::analysis::{modal_at_reference, ModalSettings};
 use ancf_modal::error::Source;
 use ancf_modal::model::Model;
 use ancf_modal::signal::fit::{fit, FitSettings, PoleBasis};
 use ancf_modal::system::System;
+use measured_support::Noise;
 use realfft::num_complex::Complex64;
 use serde_json::json;
 use std::f64::consts::PI;
@@ -68,11 +81,17 @@ fn portal_modes() -> Vec<(f64, f64, f64)> {
         .collect()
 }
 
-/// The accelerance Σ −ω² a/(ω_r² − ω² + 2iζ_r ω_r ω) at 0.25 Hz lines to
-/// 1000 Hz.
-fn accelerance(modes: &[(f64, f64, f64)]) -> (Vec<f64>, Vec<Complex64>) {
-    let f: Vec<f64> = (1..=4000).map(|k| 0.25 * k as f64).collect();
-    let h = f
+/// The accelerance Σ −ω² a/(ω_r² − ω² + 2iζ_r ω_r ω) of `modes` (f Hz, ζ,
+/// a) at `lines` lines 0.25 Hz apart, with complex Gaussian noise of
+/// `noise` × the largest |H| (seeded).
+fn accelerance(
+    modes: &[(f64, f64, f64)],
+    lines: usize,
+    noise: f64,
+    seed: u64,
+) -> (Vec<f64>, Vec<Complex64>) {
+    let f: Vec<f64> = (1..=lines).map(|k| 0.25 * k as f64).collect();
+    let clean: Vec<Complex64> = f
         .iter()
         .map(|fk| {
             let w = 2.0 * PI * fk;
@@ -85,17 +104,28 @@ fn accelerance(modes: &[(f64, f64, f64)]) -> (Vec<f64>, Vec<Complex64>) {
                 .sum()
         })
         .collect();
+    let peak = clean.iter().map(|h| h.norm()).fold(0.0, f64::max);
+    let mut rng = Noise::new(seed);
+    let sigma = noise * peak / 2f64.sqrt();
+    let h = clean
+        .into_iter()
+        .map(|h| h + Complex64::new(sigma * rng.gauss(), sigma * rng.gauss()))
+        .collect();
     (f, h)
 }
 
-/// Fits `band` and checks that it finds exactly the modes of `truth` with
-/// frequencies in it whose residue is at least 1 % of the band's largest;
-/// `weak` is the frequency of the weak shoulder.
-fn check(band: (f64, f64), truth: &[(f64, f64, f64)], weak: f64) {
-    let (f, h) = accelerance(truth);
+/// Fits `band` of (`f`, `h`) and checks that it finds exactly `expected`
+/// (f Hz, ζ), each within `tolerance(f)` = (relative f, relative ζ).
+fn check(
+    (f, h): &(Vec<f64>, Vec<Complex64>),
+    band: (f64, f64),
+    expected: &[(f64, f64)],
+    tolerance: impl Fn(f64) -> (f64, f64),
+    case: &str,
+) {
     let result = fit(
-        &f,
-        &h,
+        f,
+        h,
         &FitSettings {
             f_lo: band.0,
             f_hi: band.1,
@@ -104,15 +134,6 @@ fn check(band: (f64, f64), truth: &[(f64, f64, f64)], weak: f64) {
             basis: PoleBasis::Continuous,
         },
     );
-    let in_band: Vec<_> = truth
-        .iter()
-        .filter(|m| m.0 > band.0 && m.0 < band.1)
-        .collect();
-    let largest = in_band.iter().map(|m| m.2.abs()).fold(0.0, f64::max);
-    let expected: Vec<_> = in_band
-        .into_iter()
-        .filter(|m| m.2.abs() >= 0.01 * largest)
-        .collect();
     let found: Vec<(f64, f64)> = result
         .modes
         .iter()
@@ -121,18 +142,14 @@ fn check(band: (f64, f64), truth: &[(f64, f64, f64)], weak: f64) {
     assert_eq!(
         found.len(),
         expected.len(),
-        "band {band:?}: found {found:?}, expected {expected:?}"
+        "{case}, band {band:?}: found {found:?}, expected {expected:?}"
     );
-    for ((fr, z, _), (ff, zf)) in expected.iter().zip(&found) {
+    for ((fr, z), (ff, zf)) in expected.iter().zip(&found) {
         let (ef, ez) = ((ff - fr) / fr, (zf - z) / z);
-        let (tf, tz) = if (fr - weak).abs() < 1.0 {
-            (3e-3, 0.08)
-        } else {
-            (1e-3, 0.03)
-        };
+        let (tf, tz) = tolerance(*fr);
         assert!(
             ef.abs() < tf && ez.abs() < tz,
-            "band {band:?}: mode {fr:.3} Hz, ζ {z:.5}: fitted {ff:.3} Hz ({ef:+.1e}), ζ {zf:.5} ({ez:+.2e})"
+            "{case}, band {band:?}: mode {fr:.3} Hz, ζ {z:.5}: fitted {ff:.3} Hz ({ef:+.1e}), ζ {zf:.5} ({ez:+.2e})"
         );
     }
 }
@@ -145,6 +162,69 @@ fn a_weak_heavily_damped_shoulder_beside_a_strong_mode() {
         .find(|m| (m.0 - 592.4).abs() < 1.0)
         .expect("the portal's 592 Hz mode")
         .0;
-    check((0.5, 800.0), &truth, weak);
-    check((400.0, 750.0), &truth, weak);
+    let data = accelerance(&truth, 4000, 0.0, 1);
+    for band in [(0.5, 800.0), (400.0, 750.0)] {
+        // The modes in the band whose residue is at least 1 % of the
+        // band's largest.
+        let in_band: Vec<_> = (truth.iter())
+            .filter(|m| m.0 > band.0 && m.0 < band.1)
+            .collect();
+        let largest = in_band.iter().map(|m| m.2.abs()).fold(0.0, f64::max);
+        let expected: Vec<(f64, f64)> = (in_band.into_iter())
+            .filter(|m| m.2.abs() >= 0.01 * largest)
+            .map(|m| (m.0, m.1))
+            .collect();
+        let tolerance = |f: f64| {
+            if (f - weak).abs() < 1.0 {
+                (3e-3, 0.08)
+            } else {
+                (1e-3, 0.03)
+            }
+        };
+        check(&data, band, &expected, tolerance, "portal");
+    }
+}
+
+/// (f Hz, ζ, residue scale) of the close pair and its neighbour.
+const PAIR: [(f64, f64, f64); 3] = [
+    (1000.0, 0.005, 1e4),
+    (1012.0, 0.005, 8e3),
+    (1500.0, 0.01, 2e4),
+];
+
+#[test]
+fn a_close_pair_is_two_modes_on_the_full_band_and_on_a_zoom() {
+    for band in [(0.25, 1600.0), (900.0, 1100.0), (950.0, 1060.0)] {
+        let expected: Vec<(f64, f64)> = (PAIR.iter())
+            .filter(|m| m.0 > band.0 && m.0 < band.1)
+            .map(|m| (m.0, m.1))
+            .collect();
+        for (noise, seed) in [
+            (0.0, 1),
+            (0.001, 1),
+            (0.001, 2),
+            (0.003, 1),
+            (0.003, 2),
+            (0.01, 1),
+            (0.01, 2),
+            (0.02, 1),
+            (0.02, 2),
+        ] {
+            let tolerance = |_| {
+                if noise == 0.0 {
+                    (1e-5, 0.005)
+                } else {
+                    (1e-3, 0.05)
+                }
+            };
+            let data = accelerance(&PAIR, 8000, noise, seed);
+            check(
+                &data,
+                band,
+                &expected,
+                tolerance,
+                &format!("noise {noise}, seed {seed}"),
+            );
+        }
+    }
 }

@@ -43,6 +43,7 @@ pub mod projection;
 pub mod resample;
 pub mod residual_search;
 pub mod spectrum;
+pub mod split;
 pub mod window;
 
 pub use window::Window;
