@@ -128,6 +128,16 @@ fn a_ringing_mode_is_reported_with_its_dampings_bound() {
     assert!((fitted[1].frequency_hz / 2100.0 - 1.0).abs() < 1e-3);
     assert!((fitted[1].damping_ratio / 0.02 - 1.0).abs() < 5e-2);
     assert!(run.document.document()["peaks"][0]["damping_upper_bound"].is_number());
+    // |H| at the peak is only bounded below, and the bound holds the
+    // generator's peak |H(f_d)| (ζ = 1e-6: |R|/σ, far above it).
+    let lower = fitted[0].magnitude_lower_bound().expect("a bound");
+    let w = 2.0 * std::f64::consts::PI * 300.0;
+    let truth = measured_support::frf(&modes, FS, 300.0 * (1.0f64 - 1e-12).sqrt()).norm();
+    assert!(
+        lower > 0.0 && lower < truth,
+        "{lower} against {truth} (ω {w})"
+    );
+    assert!(run.document.document()["peaks"][0]["magnitude_lower_bound"].is_number());
 }
 
 /// The case: `frf` of the paper assembly's own undamped `impulse`

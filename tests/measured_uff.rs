@@ -3,10 +3,12 @@
 //! from the published layout parses to its values, and what we write reads
 //! back to the same numbers at the written precision.
 
+mod measured_support;
+
 use std::path::Path;
 
 use ancf_modal::measured::uff::d55::{read_modes, write_mode, write_nodes};
-use ancf_modal::measured::uff::{self, d58, Function, FunctionType, Ordinate, SpecDataType};
+use ancf_modal::measured::uff::{self, d58, FunctionType, Ordinate, SpecDataType};
 use ancf_modal::measured::uff::{NodeCoordinates, NormalMode};
 use realfft::num_complex::Complex64;
 
@@ -119,38 +121,10 @@ fn written_58_reads_back_at_the_written_precision() {
             Complex64::new(x.sin() * 1.234_567_890_123e-3, -x.cos() / 7.0)
         })
         .collect();
-    let f = Function {
-        id: [
-            "H1 tip / hammer".into(),
-            "ancf-modal".into(),
-            String::new(),
-            String::new(),
-            String::new(),
-        ],
-        function_type: FunctionType::Frf,
-        response_entity: "tip".into(),
-        response_node: 7,
-        response_direction: 2,
-        reference_entity: "hammer".into(),
-        reference_node: 1,
-        reference_direction: 2,
-        even: true,
-        x_min: 0.0,
-        dx: 5.0,
-        x: Vec::new(),
-        abscissa_type: SpecDataType::FREQUENCY,
-        abscissa_label: "Frequency".into(),
-        abscissa_units: "Hz".into(),
-        ordinate_type: SpecDataType::VELOCITY,
-        ordinate_label: "Velocity".into(),
-        ordinate_units: "m/s".into(),
-        denominator_type: SpecDataType::FORCE,
-        denominator_label: "Force".into(),
-        denominator_units: "N".into(),
-        ordinate: Ordinate::Complex(h.clone()),
-        data_line: 0,
-        lines: Vec::new(),
-    };
+    let mut f =
+        measured_support::frf_function(h.clone(), 5.0, (SpecDataType::VELOCITY, "Velocity", "m/s"));
+    f.id[1] = "ancf-modal".into();
+    f.response_node = 7;
     let mut text = String::new();
     d58::write(&mut text, &f);
     // The layout of DESIGN §9: record 6 and 7 widths, 4 values a line
@@ -244,4 +218,54 @@ fn a_dataset_of_an_unknown_type_is_skipped_and_listed() {
         uff::skipped_note(Path::new("x.uff"), &skipped).as_deref(),
         Some("x.uff: 1 UFF dataset this tool does not use was skipped: 9999 (line 18)")
     );
+}
+
+/// An FRF file says what its response measures (outside-eyes trial of
+/// issue 33: an accelerance, ordinate type 12, was labelled m/s/N): `frf`
+/// takes the unit from the ordinate type, unless told otherwise.
+#[test]
+fn an_frf_files_ordinate_type_is_its_unit() {
+    // One mode, 100 Hz at 1 %, as an accelerance on 1 Hz lines.
+    let h: Vec<Complex64> = (0..400)
+        .map(|k| {
+            let (w, wr) = (
+                2.0 * std::f64::consts::PI * k as f64,
+                2.0 * std::f64::consts::PI * 100.0,
+            );
+            -w * w / Complex64::new(wr * wr - w * w, 0.02 * wr * w)
+        })
+        .collect();
+    let f = measured_support::frf_function(
+        h,
+        1.0,
+        (SpecDataType::ACCELERATION, "Acceleration", "m/s^2"),
+    );
+    let mut text = String::new();
+    d58::write(&mut text, &f);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("acc.uff");
+    std::fs::write(&path, text).unwrap();
+    let run = |extra: &[&str]| -> serde_json::Value {
+        let o = assert_cmd::Command::cargo_bin("ancf-modal")
+            .unwrap()
+            .arg("frf")
+            .arg(&path)
+            .arg("--json")
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let doc = run(&[]);
+    assert_eq!(
+        doc["response_quantity"], "acceleration",
+        "{}",
+        doc["frf_unit"]
+    );
+    let told = run(&["--response-quantity", "velocity"]);
+    assert_eq!(told["response_quantity"], "velocity");
+    // The mode is the file's, whatever its unit is called.
+    let f0 = doc["peaks"][0]["frequency_hz"].as_f64().unwrap();
+    assert!((f0 - 100.0).abs() < 1e-6, "{f0}");
 }

@@ -17,7 +17,9 @@
 
 use std::path::{Path, PathBuf};
 
-use ancf_modal::measured::uff::{self, d58, Function, FunctionType, Ordinate, SpecDataType};
+mod measured_support;
+
+use ancf_modal::measured::uff::{self, d58, Function, SpecDataType};
 use ancf_modal::measured::{parse_measurement_noted, Channels, MeasuredError, Measurement};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, FileFailurePersistence, RngSeed};
@@ -108,38 +110,7 @@ fn frf_record() -> Vec<u8> {
             Complex64::new(1.0, 0.0) / Complex64::new(k - m * w * w, c * w)
         })
         .collect();
-    let f = Function {
-        id: [
-            "H1 tip / hammer".into(),
-            "NONE".into(),
-            "NONE".into(),
-            "NONE".into(),
-            "NONE".into(),
-        ],
-        function_type: FunctionType::Frf,
-        response_entity: "tip".into(),
-        response_node: 2,
-        response_direction: 2,
-        reference_entity: "hammer".into(),
-        reference_node: 1,
-        reference_direction: 2,
-        even: true,
-        x_min: 0.0,
-        dx: 5.0,
-        x: Vec::new(),
-        abscissa_type: SpecDataType::FREQUENCY,
-        abscissa_label: "Frequency".into(),
-        abscissa_units: "Hz".into(),
-        ordinate_type: SpecDataType::DISPLACEMENT,
-        ordinate_label: "tip".into(),
-        ordinate_units: "m".into(),
-        denominator_type: SpecDataType::FORCE,
-        denominator_label: "hammer".into(),
-        denominator_units: "N".into(),
-        ordinate: Ordinate::Complex(h),
-        data_line: 0,
-        lines: Vec::new(),
-    };
+    let f = measured_support::frf_function(h, 5.0, (SpecDataType::DISPLACEMENT, "tip", "m"));
     let mut text = String::new();
     d58::write(&mut text, &f);
     text.into_bytes()

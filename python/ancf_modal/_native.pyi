@@ -431,7 +431,9 @@ class FrfResult:
     def peaks(self) -> List[Dict[str, Any]]:
         """Identified modes: frequency_hz [Hz], damping_ratio [–],
         magnitude, residue, damping_upper_bound (the largest ζ the records
-        allow when they do not resolve it, else None)."""
+        allow when they do not resolve it, else None) and
+        magnitude_lower_bound (then the smallest |H| at the peak they
+        allow, else None)."""
     @property
     def rejected(self) -> List[Dict[str, Any]]:
         """Stable poles not reported as modes: dicts with frequency_hz [Hz],

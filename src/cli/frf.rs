@@ -32,8 +32,8 @@ pub struct FrfArgs {
     #[arg(long, value_name = "COL")]
     pub response: Option<Channel>,
     /// What the response measures (the FRF's unit) (default: what the
-    /// response column's name ends with, as `impulse --csv` writes it,
-    /// else velocity).
+    /// response column's name ends with, as `impulse --csv` writes it, or a
+    /// UFF FRF's ordinate type, else velocity).
     #[arg(long, value_enum)]
     pub response_quantity: Option<Quantity>,
     /// rect, hann, flattop, blackman, force:P (keep the first fraction P of

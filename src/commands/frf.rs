@@ -253,6 +253,7 @@ pub fn run(model: Option<&ModelInput>, request: &FrfRequest) -> Result<FrfRun, C
     notes.extend(analysis.warnings());
     let q = request
         .response_quantity
+        .or(analysis.file_quantity)
         .unwrap_or_else(|| named_quantity(&analysis.channels));
     let overlay = match at {
         Some((m, sensor)) => {

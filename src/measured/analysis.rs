@@ -83,6 +83,9 @@ pub struct FrfAnalysis {
     /// The spectral estimate (time records only).
     pub estimate: Option<FrfEstimate>,
     pub settings: AnalysisSettings,
+    /// What the response measures, as an FRF file says (none for records:
+    /// their channels' names say it).
+    pub file_quantity: Option<super::ResponseQuantity>,
     pub band: (f64, f64),
     /// What ended the band.
     pub band_end: BandEnd,
@@ -221,11 +224,13 @@ pub fn analyse(
         })
         .collect();
     let mut records = Vec::new();
+    let mut file_quantity = None;
     let (frequency_hz, h1, h2, coherence, est) =
         if measurements.len() == 1 && matches!(measurements[0], Measurement::Frf(_)) {
             let Some(Measurement::Frf(f)) = measurements.into_iter().next() else {
                 unreachable!("checked above")
             };
+            file_quantity = f.quantity;
             (f.frequency_hz, f.h, None, f.coherence, None)
         } else {
             records = Vec::with_capacity(measurements.len());
@@ -344,6 +349,7 @@ pub fn analyse(
         coherence,
         estimate: est,
         settings,
+        file_quantity,
         band,
         band_end,
         notes,

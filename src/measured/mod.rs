@@ -74,6 +74,9 @@ pub struct MeasuredFrf {
     pub frequency_hz: Vec<f64>,
     pub h: Vec<Complex64>,
     pub coherence: Option<Vec<f64>>,
+    /// What the response measures, when the file says (a UFF 58 FRF's
+    /// ordinate type: 8 displacement, 11 velocity, 12 acceleration).
+    pub quantity: Option<ResponseQuantity>,
 }
 
 /// What a measurement file holds.

@@ -136,17 +136,20 @@ fn mode_rows(s: &mut String, a: &FrfAnalysis) {
         "mode", "frequency [Hz]", "damping ratio %", "|H| at peak"
     );
     for (i, m) in a.fit.modes.iter().enumerate() {
-        let zeta = match m.damping_bound {
-            Some(bound) => format!("< {:.4}", 100.0 * bound),
-            None => format!("{:.4}", 100.0 * m.damping_ratio),
+        let (zeta, magnitude) = match (m.damping_bound, m.magnitude_lower_bound()) {
+            (Some(bound), Some(h)) => (format!("< {:.4}", 100.0 * bound), format!("> {h:.4e}")),
+            _ => (
+                format!("{:.4}", 100.0 * m.damping_ratio),
+                format!("{:.4e}", m.magnitude),
+            ),
         };
         let _ = writeln!(
             s,
-            "{:>4}  {:>14.3}  {:>15}  {:>12.4e}",
+            "{:>4}  {:>14.3}  {:>15}  {:>12}",
             i + 1,
             m.frequency_hz,
             zeta,
-            m.magnitude
+            magnitude
         );
     }
     let ringing: Vec<String> = (a.fit.modes.iter().enumerate())
@@ -156,7 +159,7 @@ fn mode_rows(s: &mut String, a: &FrfAnalysis) {
     if !ringing.is_empty() {
         let _ = writeln!(
             s,
-            "damping not resolved for mode {}: it rings past the records' end with no decay they can measure, so only a bound is given (ζ + 3 standard errors); longer records, or an exponential window, measure it",
+            "damping not resolved for mode {}: it rings past the records' end with no decay they can measure, so only a bound is given (ζ + 3 standard errors), and |H| at its peak, which goes as 1/ζ, only a lower bound; longer records, or an exponential window, measure them",
             ringing.join(", ")
         );
     }

@@ -130,6 +130,10 @@ pub struct FittedPeak {
     /// resolve it (the mode rings past their end with no decay they can
     /// measure; `damping_ratio` is then no measurement); null when they do.
     pub damping_upper_bound: Option<f64>,
+    /// The smallest |H| at the peak the records allow [FRF unit], when
+    /// they do not resolve the damping (|R|/(ζ_max ω): `magnitude` is then
+    /// no measurement); null when they do.
+    pub magnitude_lower_bound: Option<f64>,
 }
 
 /// A pole the fit found and did not report.
@@ -327,6 +331,7 @@ impl FrfOutput {
                     magnitude: m.magnitude,
                     residue: [m.residue.re, m.residue.im],
                     damping_upper_bound: m.damping_bound,
+                    magnitude_lower_bound: m.magnitude_lower_bound(),
                 })
                 .collect(),
             rejected: a

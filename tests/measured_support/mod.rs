@@ -188,3 +188,46 @@ pub fn write_csv_hits(
         })
         .collect()
 }
+
+/// A UFF 58 FRF record "H1 tip / hammer" (the tip's node 2 over the
+/// hammer's node 1, both along y) of `h` on lines `dx` Hz apart from 0,
+/// its response measuring `ordinate` (named `label`, in `units`) per N.
+pub fn frf_function(
+    h: Vec<Complex64>,
+    dx: f64,
+    (ordinate, label, units): (ancf_modal::measured::uff::SpecDataType, &str, &str),
+) -> ancf_modal::measured::uff::Function {
+    use ancf_modal::measured::uff::{Function, FunctionType, Ordinate, SpecDataType};
+    Function {
+        id: [
+            "H1 tip / hammer".into(),
+            "NONE".into(),
+            "NONE".into(),
+            "NONE".into(),
+            "NONE".into(),
+        ],
+        function_type: FunctionType::Frf,
+        response_entity: "tip".into(),
+        response_node: 2,
+        response_direction: 2,
+        reference_entity: "hammer".into(),
+        reference_node: 1,
+        reference_direction: 2,
+        even: true,
+        x_min: 0.0,
+        dx,
+        x: Vec::new(),
+        abscissa_type: SpecDataType::FREQUENCY,
+        abscissa_label: "Frequency".into(),
+        abscissa_units: "Hz".into(),
+        ordinate_type: ordinate,
+        ordinate_label: label.into(),
+        ordinate_units: units.into(),
+        denominator_type: SpecDataType::FORCE,
+        denominator_label: "hammer".into(),
+        denominator_units: "N".into(),
+        ordinate: Ordinate::Complex(h),
+        data_line: 0,
+        lines: Vec::new(),
+    }
+}

@@ -460,6 +460,9 @@ fn measurement_of(
             frequency_hz: h.abscissa(),
             h: h.ordinate.complex(),
             coherence,
+            quantity: ResponseQuantity::ALL
+                .into_iter()
+                .find(|q| q.uff_type() == h.ordinate_type),
         }));
     }
     let is_force = |f: &Function| f.ordinate_type == SpecDataType::FORCE;
