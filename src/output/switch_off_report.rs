@@ -22,6 +22,28 @@ fn ms(t: Option<f64>) -> String {
     )
 }
 
+/// Why the flexible run reports no time: how far the tracked point got
+/// along the direction within the run.
+fn short_of_distance(r: &SwitchOffResult) -> String {
+    let run = &r.flexible;
+    let [dx, dy] = r.settings.direction;
+    let norm = dx.hypot(dy);
+    let (x0, y0) = (run.x_m.first().copied(), run.y_m.first().copied());
+    let travel = match (x0, y0) {
+        (Some(x0), Some(y0)) => (run.x_m.iter().zip(&run.y_m))
+            .map(|(x, y)| ((x - x0) * dx + (y - y0) * dy) / norm)
+            .fold(f64::NEG_INFINITY, f64::max),
+        _ => 0.0,
+    };
+    let end = run.time_s.last().copied().unwrap_or(0.0);
+    format!(
+        "  not reached: the tracked point travels at most {:.4} mm of the {:.3} mm along the direction in the run's {:.4} ms",
+        travel * 1e3,
+        r.settings.distance * 1e3,
+        end * 1e3
+    )
+}
+
 /// The report printed by `switch-off`.
 pub fn switch_off_table(r: &SwitchOffResult) -> String {
     let mut s = String::new();
@@ -59,6 +81,9 @@ pub fn switch_off_table(r: &SwitchOffResult) -> String {
     }
     let flexible = r.flexible.time_to_distance_s;
     let _ = writeln!(s, "{:<34}{:>16}", "this tool, flexible", ms(flexible));
+    if flexible.is_none() {
+        let _ = writeln!(s, "{}", short_of_distance(r));
+    }
     if let Some(h) = r.half_step_time_s {
         let change = match (h, flexible) {
             (a, Some(b)) => format!(" ({:+.2e} relative)", (a - b) / b),
