@@ -14,7 +14,10 @@
 //! |r|² over the band divided by ln 2 (an exponential law's mean from its
 //! median). A pole (kept, or rejected as not significant) whose half-power
 //! band f_d ± max(ζf, 2Δf) has a mean |r|²/σ² over [`SPLIT_RATIO`] is
-//! replaced by two seeds at its half-power points, ω_d ± σ with half its
+//! replaced by two seeds at its half-power points (when that band spans
+//! at least [`MIN_HALF_POWER_BINS`] lines each side: two modes inside a
+//! narrower one are not told apart, and a mode ringing past the record's
+//! end leaves a misfit there that is no second mode), ω_d ± σ with half its
 //! decay, and the poles are chosen again ([`lsfd::select`]). The split is
 //! kept when more poles survive the choice than before, two of them within
 //! twice the pole's decay rate of it, no broader than twice its decay and
@@ -76,7 +79,7 @@ pub fn split_merged(
             .iter()
             .copied()
             .chain(not_significant)
-            .filter(|p| !tried.contains(p))
+            .filter(|p| !tried.contains(p) && -p.re / (2.0 * PI) >= MIN_HALF_POWER_BINS * line)
             .map(|p| (p, misfit(&p)))
             .max_by(|a, b| a.1.total_cmp(&b.1))
         else {
