@@ -46,7 +46,6 @@
 use std::f64::consts::PI;
 
 use realfft::num_complex::Complex64;
-
 use realfft::RealFftPlanner;
 
 use super::frf::FrfEstimate;
@@ -92,7 +91,13 @@ pub fn tie_residues(
         .iter()
         .map(|m| m.pole - estimate.window_decay_rate)
         .collect();
-    let forces = force_spectra(records, estimate, &data.in_band);
+    // The windowed forces v_i = F_i w_i of the records, once.
+    let weights = estimate.window.force_weights(n);
+    let windowed: Vec<Vec<f64>> = records
+        .iter()
+        .map(|r| r.force.iter().zip(&weights).map(|(x, w)| x * w).collect())
+        .collect();
+    let forces = force_spectra(&windowed, n, &data.in_band);
     let power: Vec<f64> = (0..data.in_band.len())
         .map(|k| forces.iter().map(|f| f[k].norm_sqr()).sum())
         .collect();
@@ -101,7 +106,7 @@ pub fn tie_residues(
     let mut tails_mean = Vec::with_capacity(poles.len());
     let i = Complex64::new(0.0, 1.0);
     for (r, s) in poles.iter().enumerate() {
-        let tails = tails(records, estimate, (*s * dt).exp());
+        let tails = tails(&windowed, (*s * dt).exp());
         tails_mean.push(tails.iter().sum::<Complex64>() / tails.len() as f64);
         let phi = |k: usize, conj: bool| -> Complex64 {
             if power[k] <= 0.0 {
@@ -152,21 +157,15 @@ pub fn tie_residues(
     undetermined
 }
 
-/// Per record, the DFT of its windowed force at the bins `in_band`:
-/// F_k = Σ v_i e^(−2πi k i/n), v_i = F_i w_i (unscaled, as H1's).
-fn force_spectra(
-    records: &[TimeRecord],
-    estimate: &FrfEstimate,
-    in_band: &[usize],
-) -> Vec<Vec<Complex64>> {
-    let n = estimate.samples;
-    let weights = estimate.window.force_weights(n);
+/// Per windowed force record v (n samples), its DFT at the bins
+/// `in_band`: F_k = Σ v_i e^(−2πi k i/n) (unscaled, as H1's).
+fn force_spectra(windowed: &[Vec<f64>], n: usize, in_band: &[usize]) -> Vec<Vec<Complex64>> {
     let mut planner = RealFftPlanner::<f64>::new();
     let fft = planner.plan_fft_forward(n);
-    records
+    windowed
         .iter()
-        .map(|r| {
-            let mut input: Vec<f64> = r.force.iter().zip(&weights).map(|(x, w)| x * w).collect();
+        .map(|v| {
+            let mut input = v.clone();
             let mut out = fft.make_output_vec();
             // Lengths are the plan's own: the transform cannot fail.
             fft.process(&mut input, &mut out)
@@ -179,18 +178,17 @@ fn force_spectra(
         .collect()
 }
 
-/// Per record, λ^N F̃(s) = Σ_i v_i λ^(N−i) (module doc), by running powers
-/// from the record's end (n multiplications, no exp per sample; their
-/// round-off is n ε relative).
-fn tails(records: &[TimeRecord], estimate: &FrfEstimate, lambda: Complex64) -> Vec<Complex64> {
-    let weights = estimate.window.force_weights(estimate.samples);
-    records
+/// Per windowed force record v, λ^N F̃(s) = Σ_i v_i λ^(N−i) (module doc),
+/// by running powers from the record's end (n multiplications, no exp per
+/// sample; their round-off is n ε relative).
+fn tails(windowed: &[Vec<f64>], lambda: Complex64) -> Vec<Complex64> {
+    windowed
         .iter()
-        .map(|r| {
+        .map(|v| {
             let (mut tail, mut decay) = (Complex64::new(0.0, 0.0), Complex64::new(1.0, 0.0));
-            for (x, w) in r.force.iter().zip(&weights).rev() {
+            for x in v.iter().rev() {
                 decay *= lambda;
-                tail += x * w * decay;
+                tail += x * decay;
             }
             tail
         })

@@ -116,6 +116,14 @@ impl Band<'_> {
         self.rows.and_then(|w| w.get(k).copied()).unwrap_or(1.0)
     }
 
+    /// The spacing of the band's lines, Hz (`None` under two bins).
+    pub(crate) fn line_hz(&self) -> Option<f64> {
+        match self.bins {
+            [first, .., last] => Some((last.0 - first.0) / (self.bins.len() - 1) as f64),
+            _ => None,
+        }
+    }
+
     /// The truncation weight at bin `k` (zero without records).
     pub(crate) fn weight(&self, k: usize) -> Complex64 {
         self.truncation
@@ -282,7 +290,11 @@ pub fn decay_standard_errors(band: Band<'_>, poles: &[Complex64]) -> Vec<f64> {
 }
 
 /// The bins of `band` within `f0` ± `half` Hz.
-fn bins_near(bins: &[(f64, Complex64)], f0: f64, half: f64) -> impl Iterator<Item = usize> + '_ {
+pub(crate) fn bins_near(
+    bins: &[(f64, Complex64)],
+    f0: f64,
+    half: f64,
+) -> impl Iterator<Item = usize> + '_ {
     bins.iter()
         .enumerate()
         .filter(move |(_, (f, _))| (f - f0).abs() <= half)
@@ -313,9 +325,8 @@ pub fn polish<'a>(
         powers: &POLISH_POWERS,
         ..band
     };
-    let line = match band.bins {
-        [first, .., last] => 2.0 * PI * (last.0 - first.0) / (band.bins.len() - 1) as f64,
-        _ => return (band, poles),
+    let Some(line) = band.line_hz().map(|df| 2.0 * PI * df) else {
+        return (band, poles);
     };
     let mut polished = poles.clone();
     refine(extended, &mut polished);

@@ -31,7 +31,7 @@ use std::f64::consts::PI;
 use realfft::num_complex::Complex64;
 
 use super::fit::{FitSettings, RejectReason};
-use super::lsfd::{self, project, Band, Rejection, MIN_HALF_POWER_BINS};
+use super::lsfd::{self, bins_near, project, Band, Rejection, MIN_HALF_POWER_BINS};
 use super::residual_search::upper_median;
 
 /// Mean |r|²/σ² over a pole's half-power band above which it is tried as
@@ -48,9 +48,15 @@ pub fn split_merged(
     mut rejected: Vec<Rejection>,
     settings: &FitSettings,
 ) -> (Vec<Complex64>, Vec<Rejection>) {
-    let line = match band.bins {
-        [first, .., last] => (last.0 - first.0) / (band.bins.len() - 1) as f64,
-        _ => return (kept, rejected),
+    let Some(line) = band.line_hz() else {
+        return (kept, rejected);
+    };
+    // The mean of `power` over the half-power band of pole `p`.
+    let near = |power: &[f64], p: Complex64| {
+        let half = (-p.re / (2.0 * PI)).max(MIN_HALF_POWER_BINS * line);
+        let (sum, count) = bins_near(band.bins, p.im / (2.0 * PI), half)
+            .fold((0.0, 0usize), |(s, c), k| (s + power[k], c + 1));
+        sum / count.max(1) as f64
     };
     let mut tried: Vec<Complex64> = Vec::new();
     while tried.len() < MAX_SPLITS {
@@ -60,17 +66,6 @@ pub fn split_merged(
         if noise <= 0.0 {
             break;
         }
-        let misfit = |p: &Complex64| {
-            let (f, half) = (
-                p.im / (2.0 * PI),
-                (-p.re / (2.0 * PI)).max(MIN_HALF_POWER_BINS * line),
-            );
-            let near: Vec<f64> = (band.bins.iter().zip(&power))
-                .filter(|((fk, _), _)| (fk - f).abs() <= half)
-                .map(|(_, q)| *q)
-                .collect();
-            near.iter().sum::<f64>() / near.len().max(1) as f64 / noise
-        };
         let not_significant = rejected
             .iter()
             .filter(|(_, why)| *why == RejectReason::NotSignificant)
@@ -80,7 +75,7 @@ pub fn split_merged(
             .copied()
             .chain(not_significant)
             .filter(|p| !tried.contains(p) && -p.re / (2.0 * PI) >= MIN_HALF_POWER_BINS * line)
-            .map(|p| (p, misfit(&p)))
+            .map(|p| (p, near(&power, p) / noise))
             .max_by(|a, b| a.1.total_cmp(&b.1))
         else {
             break;
@@ -116,15 +111,7 @@ pub fn split_merged(
             let after: Vec<f64> = (project(band, &more).residual.iter())
                 .map(|r| r.norm_sqr())
                 .collect();
-            let (f, half) = (
-                worst.im / (2.0 * PI),
-                (sigma / (2.0 * PI)).max(MIN_HALF_POWER_BINS * line),
-            );
-            let near: Vec<f64> = (band.bins.iter().zip(&after))
-                .filter(|((fk, _), _)| (fk - f).abs() <= half)
-                .map(|(_, q)| *q)
-                .collect();
-            near.iter().sum::<f64>() / near.len().max(1) as f64 / noise < SPLIT_RATIO
+            near(&after, worst) / noise < SPLIT_RATIO
         };
         if more.len() > kept.len() && two && explained() {
             kept = more;
