@@ -529,3 +529,65 @@ fn a_mass_held_by_grounded_springs_is_judged_by_its_springs() {
         );
     }
 }
+
+/// A mass between two opposed springs with the same preload T (the re-check
+/// of issue 33: two springs at −50 N were judged against the 4e-14 N their
+/// forces leave summed, and the balanced reference was called "not an
+/// equilibrium"). Generated: T of either sign over six decades, stiffnesses,
+/// mass, span and axis. The reference is an equilibrium, and the modes are
+/// the closed form: along the axis ω² = (k₁ + k₂)/m, across it
+/// ω² = 2T/(d m) (the springs' geometric stiffness T/d each), negative and
+/// said as unstable when the springs are compressed.
+#[test]
+fn opposed_preloaded_springs_balance_whatever_their_preload() {
+    let mut runner = TestRunner::new_with_rng(
+        Config {
+            cases: 64,
+            ..Config::default()
+        },
+        TestRng::deterministic_rng(RngAlgorithm::ChaCha),
+    );
+    let spec = (
+        -3.0..3.0f64,
+        any::<bool>(),
+        (2.0..5.0f64, 2.0..5.0f64),
+        -3.0..0.0f64,
+        0.01..0.5f64,
+        0.0..180.0f64,
+    );
+    runner
+        .run(
+            &spec,
+            |(log_t, tension, (log_k1, log_k2), log_m, d, angle)| {
+                let (k1, k2, m) = (10f64.powf(log_k1), 10f64.powf(log_k2), 10f64.powf(log_m));
+                // A tension below half of k d keeps both free lengths positive.
+                let size = 10f64.powf(log_t).min(0.5 * k1.min(k2) * d);
+                let t = if tension { size } else { -size };
+                let n = [angle.to_radians().cos(), angle.to_radians().sin()];
+                let valve = model(json!({
+                    "name": "opposed",
+                    "point_masses": [{"id": "valve", "mass": m, "position": [0.0, 0.0]}],
+                    "springs": [
+                        {"a": {"ground": [-d * n[0], -d * n[1]]}, "b": {"body": "valve"},
+                         "stiffness": k1, "preload": t},
+                        {"a": {"ground": [d * n[0], d * n[1]]}, "b": {"body": "valve"},
+                         "stiffness": k2, "preload": t}
+                    ]
+                }));
+                let system = System::new(&valve);
+                let r = modal_at_reference(&system, &settings(2))
+                    .map_err(|e| TestCaseError::fail(format!("modal: {e}")))?;
+                prop_assert!(r.equilibrium.balanced, "{:?}", r.equilibrium);
+                let mut expected = [(k1 + k2) / m, 2.0 * t / (d * m)];
+                expected.sort_by(f64::total_cmp);
+                let mut got: Vec<f64> = r.modes.iter().map(|m| m.eigenvalue).collect();
+                got.sort_by(f64::total_cmp);
+                for (g, e) in got.iter().zip(&expected) {
+                    prop_assert!((g - e).abs() <= 1e-8 * expected[1].abs(), "{g} vs {e}");
+                }
+                prop_assert_eq!(r.unstable_modes, usize::from(!tension));
+                Ok(())
+            },
+        )
+        .expect("the property holds");
+}

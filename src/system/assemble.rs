@@ -130,6 +130,34 @@ impl System {
         }
     }
 
+    /// The largest entry any one member (a beam element, a spring, a
+    /// torsion spring, a contact) exerts at `q`, each entry times its
+    /// `weight` [SI: N when the weights turn moments into forces]. Members
+    /// in balance with each other cancel in the assembled Q_int (two
+    /// opposed preloaded springs, the elements of a tensioned beam); this is
+    /// the size of the forces they carry.
+    pub fn largest_member_force(&self, q: &[f64], weight: &[f64]) -> f64 {
+        let mut largest = 0.0f64;
+        for b in &self.beams {
+            for (k, e) in b.elements.iter().enumerate() {
+                let d0 = b.dof0 + 4 * k;
+                let mut f = Vec8::zeros();
+                e.elastic_force_into(&Vec8::from_column_slice(&q[d0..d0 + 8]), &mut f);
+                for (i, fi) in f.iter().enumerate() {
+                    largest = largest.max((fi * weight[d0 + i]).abs());
+                }
+            }
+        }
+        let mut g = PairGrad::zeros();
+        for fe in self.elastic_elements() {
+            fe.gradient(q, &mut g);
+            for (i, d) in fe.pair().dofs().enumerate() {
+                largest = largest.max((g[i] * weight[d]).abs());
+            }
+        }
+        largest
+    }
+
     /// External force Q_ext(q, t): loads × `load_scale` plus gravity, overwriting `out`.
     pub fn external_force(&self, q: &[f64], t: f64, load_scale: f64, out: &mut [f64]) {
         out.fill(0.0);

@@ -31,7 +31,10 @@
 //!
 //! **Verdict.** The state is balanced when ‖r‖∞ ≤ `tolerance` · F + noise
 //! and ‖C(q)‖∞ ≤ `tolerance` · L, with F ([`Balance::scale`]) the largest
-//! entry of Q_int, Q_ext and the joint forces C_qᵀλ, and of Q_int at the
+//! entry of Q_int, Q_ext and the joint forces C_qᵀλ, of any one member's
+//! force (two opposed springs preloaded to 50 N cancel in Q_int: judged
+//! against the assembled 4e-14 N they were "not an equilibrium"), and of
+//! those at the
 //! reference (a spring's preload is the model's force even where the
 //! equilibrium relaxes it: without it, springs relaxed to 1e-9 N were
 //! judged against 1e-9 N), and the noise the
@@ -146,7 +149,9 @@ pub fn unbalanced_force(
     system.internal_force(&system.q0, &mut at_reference);
     let mut scale = weighted_max(&internal)
         .max(weighted_max(&external))
-        .max(weighted_max(&at_reference));
+        .max(weighted_max(&at_reference))
+        .max(system.largest_member_force(q, &w))
+        .max(system.largest_member_force(&system.q0, &w));
     let noise = (NOISE_FACTOR * f64::EPSILON * system.stiffest_ea()).max(resolution_force(system));
     let mut cq = Triplets::new(m, n);
     system.add_constraint_jacobian(q, &mut cq);
