@@ -103,6 +103,57 @@ pub struct SwitchOffRun {
     pub min_step_s: f64,
 }
 
+impl SwitchOffRun {
+    /// The tracked point's largest travel along `direction` from its ON
+    /// position within the run [SI: m] (0 for a run without samples).
+    pub fn max_travel_m(&self, direction: [f64; 2]) -> f64 {
+        let [dx, dy] = direction;
+        let norm = dx.hypot(dy);
+        match (self.x_m.first(), self.y_m.first()) {
+            (Some(x0), Some(y0)) => (self.x_m.iter().zip(&self.y_m))
+                .map(|(x, y)| ((x - x0) * dx + (y - y0) * dy) / norm)
+                .fold(0.0, f64::max),
+            _ => 0.0,
+        }
+    }
+}
+
+/// The largest change of the time to distance at half the step, relative,
+/// before a warning says the step is too coarse for the result [–].
+pub const HALF_STEP_TOLERANCE: f64 = 1e-2;
+
+/// What the half-step run says of the run at the step: a warning when only
+/// one of them reaches the distance (the tracked point turns back near it,
+/// within the step's error: neither time is reliable), or when their times
+/// differ by more than [`HALF_STEP_TOLERANCE`].
+fn half_step_warning(
+    run: &SwitchOffRun,
+    half: &SwitchOffRun,
+    settings: &SwitchOffSettings,
+) -> Option<String> {
+    let travel = |r: &SwitchOffRun| r.max_travel_m(settings.direction) * 1e3;
+    let d = settings.distance * 1e3;
+    match (run.time_to_distance_s, half.time_to_distance_s) {
+        (Some(a), Some(b)) if ((b - a) / a).abs() > HALF_STEP_TOLERANCE => Some(format!(
+            "at half the step the time to distance changes by {:+.1} % ({:.4} → {:.4} ms): the step is too coarse for this result",
+            100.0 * (b - a) / a,
+            a * 1e3,
+            b * 1e3
+        )),
+        (Some(a), None) => Some(format!(
+            "the run reaches {d:.4} mm at {:.4} ms, but at half the step the tracked point peaks at {:.4} mm and never does: the distance lies within the integration's error of the point's largest travel, and the time is not reliable",
+            a * 1e3,
+            travel(half)
+        )),
+        (None, Some(b)) => Some(format!(
+            "the run's tracked point peaks at {:.4} mm, short of {d:.4} mm, but at half the step it reaches it at {:.4} ms: the distance lies within the integration's error of the point's largest travel, and neither answer is reliable",
+            travel(run),
+            b * 1e3
+        )),
+        _ => None,
+    }
+}
+
 /// The experiment's result.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SwitchOffResult {
@@ -345,11 +396,12 @@ pub fn run_switch_off_from(
     } else {
         None
     };
-    let half_step_time_s = if settings.halve_step {
-        run_one(model, base, &point, settings, 0.5 * settings.step)?.time_to_distance_s
+    let half = if settings.halve_step {
+        Some(run_one(model, base, &point, settings, 0.5 * settings.step)?)
     } else {
         None
     };
+    let half_step_time_s = half.as_ref().and_then(|h| h.time_to_distance_s);
     let departure_s = rigid.as_ref().and_then(|r| {
         let limit = DEPARTURE_FRACTION * settings.distance;
         (0..flexible.time_s.len().min(r.time_s.len()))
@@ -373,6 +425,12 @@ pub fn run_switch_off_from(
                 t * 1e3
             ));
         }
+    }
+    if let Some(w) = half
+        .as_ref()
+        .and_then(|h| half_step_warning(&flexible, h, settings))
+    {
+        warnings.push(w);
     }
     let builtin = *model == Model::switch_off_builtin();
     Ok(SwitchOffResult {

@@ -26,19 +26,10 @@ fn ms(t: Option<f64>) -> String {
 /// along the direction within the run.
 fn short_of_distance(r: &SwitchOffResult) -> String {
     let run = &r.flexible;
-    let [dx, dy] = r.settings.direction;
-    let norm = dx.hypot(dy);
-    let (x0, y0) = (run.x_m.first().copied(), run.y_m.first().copied());
-    let travel = match (x0, y0) {
-        (Some(x0), Some(y0)) => (run.x_m.iter().zip(&run.y_m))
-            .map(|(x, y)| ((x - x0) * dx + (y - y0) * dy) / norm)
-            .fold(f64::NEG_INFINITY, f64::max),
-        _ => 0.0,
-    };
     let end = run.time_s.last().copied().unwrap_or(0.0);
     format!(
         "  not reached: the tracked point travels at most {:.4} mm of the {:.3} mm along the direction in the run's {:.4} ms",
-        travel * 1e3,
+        run.max_travel_m(r.settings.direction) * 1e3,
         r.settings.distance * 1e3,
         end * 1e3
     )
