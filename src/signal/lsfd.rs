@@ -36,7 +36,10 @@
 //! linearised equation error is biased by noise; this output error is not
 //! (for noise of equal variance across the band).
 //!
-//! **Choice.** After each refinement one pole at a time is rejected, and
+//! **Choice.** A refined pole that grows by less than [`DECAY_RESOLUTION`]
+//! standard errors is put on the stability boundary: the record shows no
+//! decay, and its damping is reported as a bound. After each refinement
+//! one pole at a time is rejected, and
 //! the rest refined again from their seeds: first a pole the refinement
 //! made unstable, overdamped or moved off the positive frequencies
 //! (`failed_refinement`, shown at its seed), then one it moved out of the
@@ -355,6 +358,39 @@ fn unphysical(p: Complex64, settings: &FitSettings) -> Option<RejectReason> {
     (f < settings.f_lo || f > settings.f_hi).then_some(RejectReason::LeftBand)
 }
 
+/// Puts on the stability boundary each refined pole whose decay rate came
+/// out negative but within [`DECAY_RESOLUTION`] standard errors of zero: a
+/// mode that rings through the record with no decay it can measure (a
+/// near-undamped structure; the cut-off record's own error then tips the
+/// fitted decay either way), and that stands above the noise as a
+/// ringing mode does ([`RINGING_SIGNIFICANCE`]). Rejected as unstable,
+/// such modes were lost: six of seven on the re-check's cantilever with
+/// α = 0.01 1/s. Their damping is then reported as the bound the record
+/// allows ([`unresolved_decay_bounds`]), or as the decay a later
+/// refinement finds.
+fn settle_undamped(band: Band<'_>, poles: &mut [Complex64], settings: &FitSettings) {
+    // Under an exponential window the record decays at the window's rate
+    // whatever the structure does: a pole decaying slower than the window
+    // is a misfit there, not a mode ringing through the record (settled,
+    // the combination tones of the paper's undamped record stayed in the
+    // model and a weaker artifact of its integrator, gone at half the
+    // step, came out as a mode).
+    if settings.window_decay_rate != 0.0 {
+        return;
+    }
+    let growing = |p: &Complex64| p.im > 0.0 && p.norm().is_finite() && p.re >= 0.0;
+    if !poles.iter().any(growing) {
+        return;
+    }
+    let se = decay_standard_errors(band, poles);
+    let sig = significance(band, poles);
+    for ((p, se), sig) in poles.iter_mut().zip(se).zip(sig) {
+        if growing(p) && p.re < DECAY_RESOLUTION * se && sig >= RINGING_SIGNIFICANCE {
+            p.re = -f64::EPSILON * p.im;
+        }
+    }
+}
+
 /// Significance of each pole (module doc), divided by
 /// √(max(1, min(ℓ, w)/4)) for a pole w bins wide when the residual is
 /// correlated over ℓ bins ([`super::residual_search::correlation_length`]):
@@ -553,6 +589,7 @@ pub fn select(
     while !seeds.is_empty() {
         let mut poles = seeds.clone();
         refine(band, &mut poles);
+        settle_undamped(band, &mut poles, settings);
         let bad = poles
             .iter()
             .enumerate()
