@@ -122,7 +122,10 @@ pub struct FittedPeak {
     pub frequency_hz: f64,
     /// Damping ratio ζ [–].
     pub damping_ratio: f64,
-    /// |H| of the mode at its frequency [FRF unit].
+    /// |Ĥ| of the fitted model, all its terms, at the mode's damped
+    /// frequency [FRF unit] (near a close mode it holds that mode's
+    /// contribution too: it is what the FRF reads there, not the mode's own
+    /// peak |R|/σ).
     pub magnitude: f64,
     /// The mode's residue, real and imaginary part [FRF unit × rad/s].
     pub residue: [f64; 2],

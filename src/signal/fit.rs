@@ -116,7 +116,9 @@ pub struct FittedMode {
     /// without records, or for a decay that dies out inside them),
     /// FRF unit × N/s ([`lsfd::Band::truncation`]).
     pub cut_off: Complex64,
-    /// |H| of the fitted model at the damped frequency.
+    /// |Ĥ| of the fitted model, all its terms, at the damped frequency
+    /// [FRF unit] (near a close mode it holds that mode's contribution
+    /// too: not the mode's own peak |R|/σ).
     pub magnitude: f64,
     /// When the records do not resolve the mode's damping (it rings past
     /// their end with no measurable decay,
