@@ -42,27 +42,17 @@ const STEP: f64 = 1e-6;
 /// limit for `impulse` records: the integrator stretches the period by
 /// (ωΔt)²/12, 7e-5 there).
 fn fit(alpha: f64) -> (Vec<Value>, Vec<f64>) {
-    let dir = tempfile::tempdir().unwrap();
-    let (json, csv) = (dir.path().join("strip.json"), dir.path().join("imp.csv"));
-    std::fs::write(&json, strip(alpha).to_string()).unwrap();
-    common::run_ok([
-        "impulse".as_ref(),
-        json.as_os_str(),
-        "--end-time".as_ref(),
-        "0.1".as_ref(),
-        "--step".as_ref(),
-        "1e-6".as_ref(),
-        "--sample-rate".as_ref(),
-        "25600".as_ref(),
-        "--csv".as_ref(),
-        csv.as_os_str(),
-    ]);
-    let doc: Value = serde_json::from_slice(&common::run_ok([
-        "frf".as_ref(),
-        csv.as_os_str(),
-        "--json".as_ref(),
-    ]))
-    .unwrap();
+    let doc = common::impulse_then_frf(
+        &strip(alpha),
+        &[
+            "--end-time",
+            "0.1",
+            "--step",
+            "1e-6",
+            "--sample-rate",
+            "25600",
+        ],
+    );
     let model = Model::from_json(&strip(alpha).to_string(), Source::BuiltIn).unwrap();
     let modes = modal_at_reference(&System::new(&model), &ModalSettings::default()).unwrap();
     let band_end = doc["band_hz"][1].as_f64().unwrap();
@@ -77,7 +67,7 @@ fn fit(alpha: f64) -> (Vec<Value>, Vec<f64>) {
 
 /// The peak at frequency `f` (within 1e-4, the tolerance for
 /// `impulse` records), or a failure naming what was found.
-fn peak<'a>(peaks: &'a [Value], f: f64) -> &'a Value {
+fn peak(peaks: &[Value], f: f64) -> &Value {
     peaks
         .iter()
         .find(|p| (p["frequency_hz"].as_f64().unwrap() / f - 1.0).abs() < 1e-4)

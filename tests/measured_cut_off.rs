@@ -91,27 +91,17 @@ fn residues_are_the_models(rec: Record<'_>) -> usize {
         step,
         rate,
     } = rec;
-    let dir = tempfile::tempdir().unwrap();
-    let (json, csv) = (dir.path().join("blade.json"), dir.path().join("imp.csv"));
-    std::fs::write(&json, json_model.to_string()).unwrap();
-    common::run_ok([
-        "impulse".as_ref(),
-        json.as_os_str(),
-        "--end-time".as_ref(),
-        end_time.as_ref(),
-        "--step".as_ref(),
-        step.as_ref(),
-        "--sample-rate".as_ref(),
-        rate.as_ref(),
-        "--csv".as_ref(),
-        csv.as_os_str(),
-    ]);
-    let doc: Value = serde_json::from_slice(&common::run_ok([
-        "frf".as_ref(),
-        csv.as_os_str(),
-        "--json".as_ref(),
-    ]))
-    .unwrap();
+    let doc = common::impulse_then_frf(
+        &json_model,
+        &[
+            "--end-time",
+            end_time,
+            "--step",
+            step,
+            "--sample-rate",
+            rate,
+        ],
+    );
     let model = Model::from_json(&json_model.to_string(), Source::BuiltIn).unwrap();
     let sys = System::new(&model);
     let modes = modal_at_reference(&sys, &ModalSettings::default()).unwrap();

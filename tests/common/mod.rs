@@ -96,6 +96,26 @@ where
     out.stdout
 }
 
+/// Writes `model` to a temporary file, runs `impulse` on it with
+/// `impulse_args` (end time, step, sample rate...) into a CSV record, and
+/// returns `frf --json` of that record.
+#[allow(dead_code)]
+pub fn impulse_then_frf(model: &Value, impulse_args: &[&str]) -> Value {
+    let dir = tempfile::tempdir().unwrap();
+    let (json, csv) = (dir.path().join("model.json"), dir.path().join("imp.csv"));
+    std::fs::write(&json, model.to_string()).unwrap();
+    let mut args: Vec<&std::ffi::OsStr> = vec!["impulse".as_ref(), json.as_os_str()];
+    args.extend(impulse_args.iter().map(std::ffi::OsStr::new));
+    args.extend([std::ffi::OsStr::new("--csv"), csv.as_os_str()]);
+    run_ok(args);
+    serde_json::from_slice(&run_ok([
+        "frf".as_ref(),
+        csv.as_os_str(),
+        "--json".as_ref(),
+    ]))
+    .unwrap()
+}
+
 /// A property test's configuration: `cases` drawn from a fixed seed
 /// (`default`), so that every run draws the same cases and a failure is
 /// reproducible; the environment variable `var` = N explores others.
