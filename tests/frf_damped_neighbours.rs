@@ -228,3 +228,45 @@ fn a_close_pair_is_two_modes_on_the_full_band_and_on_a_zoom() {
         }
     }
 }
+
+/// The close pair at 10:1 (the re-check of issue 33: the 1012 Hz mode, a
+/// tenth of its neighbour's residue, 1.2 half-power widths from it, was
+/// lost without a word in 28 of 30 records at 1.5 % noise: the residual
+/// search left three half-power widths around every fitted pole alone,
+/// and the weak mode lies within them). Its peak stands 7–20 × above the
+/// noise here: on the full band it must be found, with the others and
+/// nothing else, within the issue's tolerances for records with noise
+/// (its damping within 15 %). On zoom bands (900–1100 Hz) at 1–1.5 %
+/// noise it is still lost: there the noise estimate's |Ĥ|² term is taken
+/// from bins its misfit fills.
+#[test]
+fn a_weak_mode_beside_a_strong_one_is_found_above_the_noise() {
+    let modes = [
+        (1000.0, 0.005, 1e4),
+        (1012.0, 0.005, 1e3),
+        (1500.0, 0.005, 2e4),
+    ];
+    let expected: Vec<(f64, f64)> = modes.iter().map(|m| (m.0, m.1)).collect();
+    for noise in [0.005, 0.01, 0.015] {
+        for seed in 1..=4 {
+            let data = accelerance(&modes, 8000, noise, seed);
+            check(
+                &data,
+                (0.25, 2000.0),
+                &expected,
+                // The weak mode's damping comes from its 40 lines at 7–20 ×
+                // the noise, on its neighbour's flank: measured up to 9 %
+                // off (noise 1 %, seed 4), beyond the issue's 5 % for the
+                // strong ones.
+                |f| {
+                    if f == 1012.0 {
+                        (1e-3, 0.15)
+                    } else {
+                        (1e-3, 0.05)
+                    }
+                },
+                &format!("10:1 pair, noise {noise}, seed {seed}"),
+            );
+        }
+    }
+}

@@ -57,6 +57,8 @@ pub const SEED_PRECISION: f64 = 1e-8;
 /// Widths, in bins, over which the residual's power is averaged: a mode's
 /// half-power band holds about 2ζf/Δf bins.
 pub const SEED_WIDTHS: [usize; 5] = [1, 2, 4, 8, 16];
+/// Half-power half-widths around a fitted pole where no stretch is sought.
+pub const EXCLUSION_WIDTHS: f64 = 1.0;
 
 /// A stretch of the band: centre and half-width, Hz.
 pub type Stretch = (f64, f64);
@@ -190,7 +192,7 @@ pub fn residual_peak(
         .iter()
         .map(|p| {
             let half = (-p.re / (2.0 * PI)).max(MIN_HALF_POWER_BINS * df);
-            (p.im / (2.0 * PI), 3.0 * half)
+            (p.im / (2.0 * PI), EXCLUSION_WIDTHS * half)
         })
         .collect();
     taken.extend_from_slice(tried);
