@@ -265,6 +265,17 @@ fn an_frf_files_ordinate_type_is_its_unit() {
     );
     let told = run(&["--response-quantity", "velocity"]);
     assert_eq!(told["response_quantity"], "velocity");
+    // Overriding the file's own ordinate is said; agreeing with it is not.
+    let said = |d: &serde_json::Value| {
+        d["warnings"].as_array().unwrap().iter().any(|w| {
+            w.as_str()
+                .unwrap()
+                .contains("the file's units are overridden")
+        })
+    };
+    assert!(said(&told), "{}", told["warnings"]);
+    assert!(!said(&run(&["--response-quantity", "acceleration"])));
+    assert!(!said(&doc));
     // The mode is the file's, whatever its unit is called.
     let f0 = doc["peaks"][0]["frequency_hz"].as_f64().unwrap();
     assert!((f0 - 100.0).abs() < 1e-6, "{f0}");

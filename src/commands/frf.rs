@@ -251,6 +251,18 @@ pub fn run(model: Option<&ModelInput>, request: &FrfRequest) -> Result<FrfRun, C
     let (measurements, mut notes) = request.measurements()?;
     let analysis = analyse(measurements, settings)?;
     notes.extend(analysis.warnings());
+    if let (Some(given), Some(file)) = (request.response_quantity, analysis.file_quantity) {
+        if given != file {
+            notes.push(format!(
+                "the records' FRF is of {} ({}), but {} ({}) was asked for: the response is taken as {}, and the file's units are overridden",
+                file.name(),
+                file.frf_unit(),
+                given.name(),
+                given.frf_unit(),
+                given.name()
+            ));
+        }
+    }
     let q = request
         .response_quantity
         .or(analysis.file_quantity)
