@@ -679,3 +679,49 @@ fn a_target_past_the_modes_limit_is_said_so() {
         "{f} against {point_mass}"
     );
 }
+
+/// A rigid pendulum on a pin, unstressed, has no bending mode: its only
+/// mode is a free rotation at 0 Hz (gravity stiffens it only at its static
+/// equilibrium, where the pin carries the weight). Asked to fit a mode
+/// without the pre-stress, the message points to it (the re-check of issue
+/// 33: "the model has no bending mode number 1" and nothing else); with the
+/// pre-stress the pendulum's √(mgd/(I + md²))/2π is fitted.
+#[test]
+fn a_pendulums_missing_unstressed_mode_points_to_the_prestress() {
+    let model = json!({
+        "name": "pendulum", "gravity": [0.0, -9.81],
+        "rigid_bodies": [{"id": "bob", "mass": 1.0, "inertia": 0.01, "position": [0.0, -0.2]}],
+        "joints": [{"type": "pin", "a": {"ground": [0.0, 0.0]}, "b": {"body": "bob", "local": [0.0, 0.2]}}]
+    });
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("pendulum.json");
+    std::fs::write(&path, model.to_string()).unwrap();
+    let run = |extra: &[&str]| {
+        bin()
+            .arg("calibrate")
+            .arg(&path)
+            .args(["--target", "1.0", "--param", "bob.inertia"])
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let o = run(&[]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("unstressed modes of a pre-stressed model"),
+        "{err}"
+    );
+    let o = run(&["--prestress", "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // ω² = m g d/(I + m d²): I = m g d/ω² − m d² for ω = 2π · 1 Hz,
+    // m = 1 kg, d = 0.2 m.
+    let w = 2.0 * std::f64::consts::PI;
+    let inertia = 9.81 * 0.2 / (w * w) - 0.04;
+    let doc: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let fitted = doc["parameters"][0]["fitted"].as_f64().unwrap();
+    assert!(
+        (fitted / inertia - 1.0).abs() < 1e-6,
+        "{fitted} against {inertia}"
+    );
+}

@@ -223,8 +223,8 @@ pub fn run(input: &ModelInput, request: &CalibrateRequest) -> Result<CalibrateRu
     })
 }
 
-/// `e` with the pre-stress named when an unreachable target was sought
-/// among the unstressed modes of a pre-stressed model (the fit was not
+/// `e` with the pre-stress named when an unreachable target, or a missing
+/// mode, was sought among the unstressed modes of a pre-stressed model (the fit was not
 /// asked to be pre-stressed, and the reference does not balance the
 /// loads).
 fn with_prestress_hint(
@@ -233,6 +233,10 @@ fn with_prestress_hint(
     mut e: CalibrationError,
 ) -> CalibrationError {
     if let CalibrationError::Unreachable {
+        unstressed_of_prestressed,
+        ..
+    }
+    | CalibrationError::ModeNotFound {
         unstressed_of_prestressed,
         ..
     } = &mut e
@@ -245,7 +249,13 @@ fn with_prestress_hint(
             fit.keep_mass,
         )
         .map_or(fit.prestress, |set| fit.prestressed(&set));
-        *unstressed_of_prestressed = !asked && !reference_balances(&crate::System::new(model));
+        // Loads or gravity carried by the joints stress a model whose
+        // reference balances them too (a pendulum: its unstressed mode is a
+        // free rotation at 0 Hz).
+        let system = crate::System::new(model);
+        *unstressed_of_prestressed = !asked
+            && (crate::analysis::statics::start::loads_act_at_start(&system)
+                || !reference_balances(&system));
     }
     e
 }

@@ -68,11 +68,14 @@ pub enum CalibrationError {
     },
     #[error("{modes} mode numbers for {targets} targets (one mode number per target)")]
     ModeCount { modes: usize, targets: usize },
-    #[error("the model has no {kind} mode number {number} ({available} {kind} modes computed)")]
+    #[error("the model has no {kind} mode number {number} ({available} {kind} modes computed){}", if *unstressed_of_prestressed { "; these are the unstressed modes of a pre-stressed model (its loads or gravity stiffen it only at its static equilibrium): the pre-stressed fit (prestress) fits the modes there" } else { "" })]
     ModeNotFound {
         kind: ModeKind,
         number: usize,
         available: usize,
+        /// The modes were the unstressed ones of a model whose reference
+        /// does not balance its loads (set by the command, which knows).
+        unstressed_of_prestressed: bool,
     },
     #[error("`{parameter}` does not affect the chosen mode ({frequency_hz:.3} Hz): ∂ln f/∂ln p = {relative_sensitivity:.2e}")]
     NoEffect {

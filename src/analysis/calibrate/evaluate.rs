@@ -141,6 +141,7 @@ impl EigenFrequencies {
                     kind: selection.kind,
                     number: n,
                     available: of_kind.len(),
+                    unstressed_of_prestressed: false,
                 },
             )?;
             reference.push(mode.shape.clone());

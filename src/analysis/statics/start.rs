@@ -86,7 +86,7 @@ pub fn reference_balances(system: &System) -> bool {
 }
 
 /// Whether any applied load or gravity acts at t = 0⁻.
-fn loads_act_at_start(system: &System) -> bool {
+pub fn loads_act_at_start(system: &System) -> bool {
     let mut f = vec![0.0; system.ndof()];
     system.external_force(&system.q0, START_TIME, 1.0, &mut f);
     f.iter().any(|&x| x != 0.0)
