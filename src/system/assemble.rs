@@ -158,6 +158,19 @@ impl System {
         largest
     }
 
+    /// The largest stiffness entry of any spring, torsion spring or contact
+    /// at `q` [SI: N/m, or N m/rad]: with the model's size, the scale of
+    /// their forces' round-off (a spring's k(l − l₀) loses ε k l).
+    pub fn stiffest_member(&self, q: &[f64]) -> f64 {
+        let mut h = PairHess::zeros();
+        self.elastic_elements()
+            .map(|fe| {
+                fe.hessian(q, &mut h);
+                h.iter().fold(0.0f64, |a, v| a.max(v.abs()))
+            })
+            .fold(0.0, f64::max)
+    }
+
     /// External force Q_ext(q, t): loads × `load_scale` plus gravity, overwriting `out`.
     pub fn external_force(&self, q: &[f64], t: f64, load_scale: f64, out: &mut [f64]) {
         out.fill(0.0);

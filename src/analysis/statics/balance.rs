@@ -29,7 +29,9 @@
 //! counted as unbalance. A free rigid rotation is not fitted (it is not a
 //! steady motion).
 //!
-//! **Verdict.** The state is balanced when ‖r‖∞ ≤ `tolerance` · F + noise
+//! **Verdict.** The state is balanced when the resultant |r|²/‖r‖∞ (the
+//! unbalance of parts that move together, summed back from the
+//! coordinates the projection spreads it over) is ≤ `tolerance` · F + noise
 //! and ‖C(q)‖∞ ≤ `tolerance` · L, with F ([`Balance::scale`]) the largest
 //! entry of Q_int, Q_ext and the joint forces C_qᵀλ, of any one member's
 //! force (two opposed springs preloaded to 50 N cancel in Q_int: judged
@@ -39,7 +41,8 @@
 //! equilibrium relaxes it: without it, springs relaxed to 1e-9 N were
 //! judged against 1e-9 N), and the noise the
 //! larger of 256 ε · max EA, the rounding a straight, stress-free beam's
-//! elastic forces carry ([`NOISE_FACTOR`]), and the force a displacement
+//! elastic forces carry ([`NOISE_FACTOR`]), 8 ε k L for the stiffest
+//! spring or contact k ([`MEMBER_ROUNDING`]), and the force a displacement
 //! of [`STEP_RESOLUTION`] × L makes in the stiffest element, EA/Le (the
 //! statics' Newton iteration stops on a step that small, so it does not
 //! resolve a smaller unbalance: a 25 mm cantilever of 8 elements, 0.1 N at
@@ -57,6 +60,12 @@ pub const BALANCE_TOLERANCE: f64 = 1e-8;
 
 /// Multiple of ε · max EA below which an unbalanced force is round-off.
 pub const NOISE_FACTOR: f64 = 256.0;
+
+/// Multiple of ε k L below which an unbalanced force is a spring's or a
+/// contact's round-off (k(l − l₀) loses ε k l: two springs of 1e5 and
+/// 3e5 N/m preloaded to 1 mN, 1 and 1.3 m long, leave 1.1e-11 N at their
+/// exact equilibrium, 1.1e-8 of their force).
+pub const MEMBER_ROUNDING: f64 = 8.0;
 
 /// The statics' smallest resolved step, relative to the assembly's size L
 /// (its Newton iteration stops on a step below it).
@@ -78,8 +87,9 @@ pub fn resolution_force(system: &System) -> f64 {
 /// The force balance at one state.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Balance {
-    /// Largest entry of the unbalanced force r (moments divided by the
-    /// model's size) [SI: N].
+    /// The unbalanced force r (moments divided by the model's size) as the
+    /// resultant along its own motion, |r|²/max|rᵢ| (the largest entry when
+    /// it acts on one coordinate) [SI: N].
     pub unbalanced: f64,
     /// Largest entry of Q_int, Q_ext and C_qᵀλ, the same units [SI: N].
     pub scale: f64,
@@ -152,7 +162,9 @@ pub fn unbalanced_force(
         .max(weighted_max(&at_reference))
         .max(system.largest_member_force(q, &w))
         .max(system.largest_member_force(&system.q0, &w));
-    let noise = (NOISE_FACTOR * f64::EPSILON * system.stiffest_ea()).max(resolution_force(system));
+    let noise = (NOISE_FACTOR * f64::EPSILON * system.stiffest_ea())
+        .max(resolution_force(system))
+        .max(MEMBER_ROUNDING * f64::EPSILON * system.stiffest_member(q) * length);
     let mut cq = Triplets::new(m, n);
     system.add_constraint_jacobian(q, &mut cq);
     let mut free_fall = false;
@@ -198,12 +210,23 @@ pub fn unbalanced_force(
             rw.iter().zip(&w).map(|(x, wi)| x / wi).collect()
         }
     };
-    let (mut worst_dof, mut unbalanced) = (0, 0.0);
+    let (mut worst_dof, mut largest, mut squares) = (0, 0.0, 0.0);
     for (i, (ri, wi)) in r.iter().zip(&w).enumerate() {
-        if (ri * wi).abs() > unbalanced {
-            (worst_dof, unbalanced) = (i, (ri * wi).abs());
+        squares += (ri * wi).powi(2);
+        if (ri * wi).abs() > largest {
+            (worst_dof, largest) = (i, (ri * wi).abs());
         }
     }
+    // The resultant along the residual's own motion, |r|²/max|rᵢ|: the
+    // unbalance of parts that move together is spread over their
+    // coordinates by the projection (two masses pinned together carry half
+    // each; a mass pinned under an unbalance of 0.01 N read 5e-3 N), and
+    // summed back here; on one coordinate it is that entry.
+    let unbalanced = if largest > 0.0 {
+        squares / largest
+    } else {
+        0.0
+    };
     let mut c = vec![0.0; m];
     system.constraint_residual(q, &mut c);
     Balance {
