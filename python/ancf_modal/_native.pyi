@@ -439,7 +439,8 @@ class FrfResult:
         """Stable poles not reported as modes: dicts with frequency_hz [Hz],
         damping_ratio [–], reason (``outside_band``, ``left_band``,
         ``not_significant``, ``redundant``, ``unresolved_damping``,
-        ``failed_refinement``, ``harmonic``) and why (in words)."""
+        ``failed_refinement``, ``harmonic``, ``unfitted``) and why (in
+        words)."""
     @property
     def stabilization(self) -> List[Dict[str, Any]]:
         """The stabilization diagram's poles."""
