@@ -28,7 +28,7 @@ fn short_of_distance(r: &SwitchOffResult) -> String {
     let run = &r.flexible;
     let end = run.time_s.last().copied().unwrap_or(0.0);
     format!(
-        "  not reached: the tracked point travels at most {:.4} mm of the {:.3} mm along the direction in the run's {:.4} ms",
+        "  not reached: the tracked point travels at most {:.6} mm of the {:.6} mm along the direction in the run's {:.4} ms",
         run.max_travel_m(r.settings.direction) * 1e3,
         r.settings.distance * 1e3,
         end * 1e3
