@@ -170,7 +170,8 @@ pub struct ModeDamping {
 }
 
 /// The damping of every mode of `modal`, in its order: complex modes when
-/// the system has dampers, else ζ = α/(2ω) + βω/2 (0 without damping).
+/// the system has dampers, else ζ = φᵀ(αM + βK₀)φ/(2ω) (α/(2ω) + βω/2 for
+/// a mode of the unloaded reference; 0 without damping).
 pub fn mode_damping(
     system: &System,
     at: &Linearization,
@@ -182,6 +183,9 @@ pub fn mode_damping(
     } else {
         None
     };
+    let k0 = rayleigh
+        .filter(|_| complex.is_none())
+        .map(|_| crate::analysis::transient::rayleigh::reference_stiffness(system));
     Ok(modal
         .modes
         .iter()
@@ -199,9 +203,15 @@ pub fn mode_damping(
                     }
                 }
                 None => ModeDamping {
-                    damping_ratio: Some(rayleigh.map_or(0.0, |r| {
-                        r.ratio(2.0 * std::f64::consts::PI * m.frequency_hz)
-                    })),
+                    damping_ratio: Some(match (rayleigh, &k0) {
+                        (Some(r), Some(k0)) => crate::analysis::transient::rayleigh::mode_ratio(
+                            r,
+                            k0,
+                            &m.shape,
+                            2.0 * std::f64::consts::PI * m.frequency_hz,
+                        ),
+                        _ => 0.0,
+                    }),
                     ..ModeDamping::default()
                 },
             }

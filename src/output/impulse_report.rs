@@ -131,7 +131,7 @@ pub fn impulse_table(model_name: &str, r: &ImpulseResult, reference_hz: Option<f
         );
         let _ = writeln!(
             s,
-            "  model (Rayleigh α/(2ω) + βω/2)            {:>9.5} %",
+            "  model (Rayleigh φᵀ(αM + βK₀)φ/(2ω))       {:>9.5} %",
             100.0 * d.modal_ratio
         );
         let _ = writeln!(

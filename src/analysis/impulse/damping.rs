@@ -19,7 +19,8 @@
 //! leave the fit too few bins at 10 Hz resolution.
 //!
 //! What the fit should find is the model's Rayleigh ratio
-//! ζ = α/(2ω) + βω/2 plus the integrator's numerical damping ratio at that
+//! ζ = φᵀ(αM + βK₀)φ/(2ω) (α/(2ω) + βω/2 for a mode of the unloaded
+//! reference; K₀ is the reference's stiffness the run damps with) plus the integrator's numerical damping ratio at that
 //! frequency (generalized-α with ρ∞ < 1; zero at ρ∞ = 1; from the
 //! scheme's amplification matrix, [`super::super::dispersion`]). Both are
 //! reported. Without damping in the model the response does not decay
@@ -42,8 +43,8 @@ pub struct DampingCheck {
     pub identified_hz: f64,
     /// ζ of the fitted pole [–].
     pub identified_ratio: f64,
-    /// The model's Rayleigh ratio α/(2ω) + βω/2 at the eigenfrequency (0
-    /// without damping) [–].
+    /// The model's Rayleigh ratio φᵀ(αM + βK₀)φ/(2ω) of the mode (α/(2ω) +
+    /// βω/2 for a mode of the unloaded reference; 0 without damping) [–].
     pub modal_ratio: f64,
     /// The integrator's numerical damping ratio at the eigenfrequency [–].
     pub numerical_ratio: f64,

@@ -40,7 +40,7 @@ use super::modal::{modal_at_reference, ModalResult, ModalSettings};
 use super::statics::prestress::modal_at_equilibrium;
 use super::statics::start::{starting_equilibrium, Start};
 use super::transient::dispersion::{DispersionError, GenAlpha};
-use super::transient::{Integrator, RunStats, State, TransientSettings};
+use super::transient::{rayleigh, Integrator, RunStats, State, TransientSettings};
 use crate::error::{AnalysisError, InvalidModel, TransientError};
 use crate::model::{Model, SensorQuantity, TimeFunction, ValidModel};
 use crate::signal::frf::{frf_h1, Frf};
@@ -404,7 +404,7 @@ pub fn run_impulse(
         Some(s) if s.blind() => None,
         _ => identify_first_bending(&modal, &spectrum, settings)?,
     };
-    let damping = damping_band(&modal, &transient)?
+    let damping = damping_band(&system, &modal, &transient)?
         .and_then(|band| identify_damping(&force, &signal, sample_rate_hz, &band));
     let frf = frf_h1(&force, &signal, sample_rate_hz, &settings.spectrum).ok();
     Ok(ImpulseResult {
@@ -486,6 +486,7 @@ pub fn first_bending_band(modal: &ModalResult) -> Option<(f64, f64, f64)> {
 
 /// The band and the expected ratios of the damping check.
 fn damping_band(
+    system: &System,
     modal: &ModalResult,
     transient: &TransientSettings,
 ) -> Result<Option<DampingBand>, ImpulseError> {
@@ -493,6 +494,13 @@ fn damping_band(
         return Ok(None);
     };
     let omega = 2.0 * PI * eigen_hz;
+    // The run damps with C = αM + βK₀, K₀ the reference's stiffness.
+    let modal_ratio = match (transient.damping, modal.first_bending()) {
+        (Some(d), Some(m)) => {
+            rayleigh::mode_ratio(d, &rayleigh::reference_stiffness(system), &m.shape, omega)
+        }
+        _ => 0.0,
+    };
     let numerical = GenAlpha::from_spectral_radius(transient.spectral_radius)?
         .numerical_frequency(omega, transient.step)?;
     let w = damping::BAND_HALF_WIDTH;
@@ -500,7 +508,7 @@ fn damping_band(
         eigen_hz,
         lo_hz: lo_hz.max(eigen_hz * (1.0 - w)),
         hi_hz: hi_hz.min(eigen_hz * (1.0 + w)),
-        modal_ratio: transient.damping.map_or(0.0, |d| d.ratio(omega)),
+        modal_ratio,
         numerical_ratio: numerical.damping_ratio,
     }))
 }
