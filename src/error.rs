@@ -221,7 +221,7 @@ pub enum AnalysisError {
         residual: f64,
     },
     /// Statics: the equilibrium loses stability on the load path.
-    #[error("the static equilibrium loses stability at load factor {load_factor:.6} (load path: {path}): the stiffness against a motion that moves {dof} most reaches zero there (buckling or snap-through); past it no stable equilibrium follows the load path")]
+    #[error("the static equilibrium loses stability at load factor {load_factor:.9} (load path: {path}): the stiffness against a motion that moves {dof} most reaches zero there (buckling or snap-through); past it no stable equilibrium follows the load path")]
     Unstable {
         load_factor: f64,
         dof: String,
