@@ -37,9 +37,11 @@
 //! (for noise of equal variance across the band).
 //!
 //! **Choice.** A refined pole that grows by less than [`DECAY_RESOLUTION`]
-//! standard errors is put on the stability boundary: the record shows no
-//! decay, and its damping is reported as a bound. After each refinement
-//! one pole at a time is rejected, and
+//! standard errors, and stands above the noise as a ringing mode does
+//! ([`RINGING_SIGNIFICANCE`]), is put on the stability boundary when no
+//! exponential window is applied: the record shows no decay, and its
+//! damping is reported as a bound. After each refinement one pole at a
+//! time is rejected, and
 //! the rest refined again from their seeds: first a pole the refinement
 //! made unstable, overdamped or moved off the positive frequencies
 //! (`failed_refinement`, shown at its seed), then one it moved out of the
