@@ -36,6 +36,7 @@ pub mod fit;
 pub mod frf;
 pub mod harmonics;
 pub mod lm;
+pub mod lscf;
 pub mod lsfd;
 pub mod mac;
 pub mod pole_basis;
