@@ -159,7 +159,7 @@ fn mode_rows(s: &mut String, a: &FrfAnalysis) {
     if !ringing.is_empty() {
         let _ = writeln!(
             s,
-            "damping not resolved for mode {}: it rings past the records' end with no decay they can measure, so only a bound is given (ζ + 3 standard errors), and |H| at its peak, which goes as 1/ζ, only a lower bound; longer records, or an exponential window, measure them",
+            "damping not resolved for mode {}: it rings past the records' end with no decay they can measure, so only a bound is given (ζ + 3 standard errors, at least a 5 % decay over the record), and |H| at its peak, which goes as 1/ζ, only a lower bound; longer records, or an exponential window, measure them",
             ringing.join(", ")
         );
     }

@@ -122,7 +122,8 @@ pub struct FittedMode {
     /// When the records do not resolve the mode's damping (it rings past
     /// their end with no measurable decay,
     /// [`lsfd::RINGING_SIGNIFICANCE`]): the largest damping ratio they
-    /// allow, ζ + 3 standard errors [–]; `damping_ratio` is then no
+    /// allow, ζ + 3 standard errors and at least a 5 % decay over the record
+    /// ([`lsfd::RECORD_DECAY_FLOOR`]) [–]; `damping_ratio` is then no
     /// measurement. `None` for a resolved damping.
     pub damping_bound: Option<f64>,
 }
@@ -488,7 +489,7 @@ fn fit_with(
     result.upper_residual = u;
     result.residual_powers = powers;
     result.lower_residual = l;
-    let bounds = lsfd::unresolved_decay_bounds(bins, &kept);
+    let bounds = lsfd::unresolved_decay_bounds(bins, &kept, sigma_w);
     result.modes = kept
         .iter()
         .zip(&res)
