@@ -466,6 +466,7 @@ fn fit_with(
         return result;
     };
     let (bins, mut kept) = lsfd::polish(bins, kept, settings);
+    super::zoom::refine_in_zoom(bins, &mut kept, settings);
     result.settings.basis = bins.basis;
     kept.sort_by(|a, b| a.im.total_cmp(&b.im));
     result.rejected = rejected
@@ -579,6 +580,8 @@ fn choose_poles(
         if more.len() > kept.len() {
             kept = more;
             rejected.extend(left_out);
+        } else if let Some(more) = super::zoom::admit(bins, &kept, seed, settings) {
+            kept = more;
         } else {
             let near = |p: &Complex64| {
                 (p.im / (2.0 * std::f64::consts::PI) - stretch.0).abs() <= stretch.1

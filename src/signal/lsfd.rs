@@ -364,7 +364,7 @@ pub fn polish<'a>(
 
 /// Why the refined pole `p` (of the windowed FRF) is not physical in the
 /// band, if it is not.
-fn unphysical(p: Complex64, settings: &FitSettings) -> Option<RejectReason> {
+pub(crate) fn unphysical(p: Complex64, settings: &FitSettings) -> Option<RejectReason> {
     // The pole of the structure: the window's decay added back.
     let p = p + settings.window_decay_rate;
     let w = p.norm();
@@ -555,6 +555,19 @@ fn redundant(band: Band<'_>, poles: &[Complex64]) -> Option<usize> {
         }
     }
     best.map(|(_, i)| i)
+}
+
+/// Whether pole `i` of `poles`, as they stand, is a mode beyond doubt:
+/// significant ([`SIGNIFICANCE`]) with its decay resolved
+/// ([`DECAY_RESOLUTION`] standard errors, and the record's floor
+/// [`RECORD_DECAY_FLOOR`]). Stricter than [`select`], which also keeps a
+/// ringing mode: a pole admitted without the whole band's refinement
+/// (`zoom::admit`) has only this test to pass.
+pub fn admissible(band: Band<'_>, poles: &[Complex64], i: usize) -> bool {
+    let sig = significance(band, poles)[i];
+    let se = decay_standard_errors(band, poles)[i];
+    let sigma = -poles[i].re;
+    sig >= SIGNIFICANCE && sigma >= DECAY_RESOLUTION * se && sigma >= band.record_decay_floor()
 }
 
 /// The pole whose damping the record resolves least, among those under

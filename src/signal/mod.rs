@@ -46,5 +46,6 @@ pub mod residual_search;
 pub mod spectrum;
 pub mod split;
 pub mod window;
+pub mod zoom;
 
 pub use window::Window;

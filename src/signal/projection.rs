@@ -406,13 +406,24 @@ pub const STEP_TOLERANCE: f64 = 1e-13;
 
 /// Nonlinear least-squares refinement of the poles (module doc).
 pub fn refine(band: Band<'_>, poles: &mut [Complex64]) {
+    refine_some(band, poles, |_| true);
+}
+
+/// [`refine`] of the poles `free(i)` says, the others held where they are
+/// (their residues still fitted).
+pub fn refine_some(band: Band<'_>, poles: &mut [Complex64], free: impl Fn(usize) -> bool) {
     if poles.is_empty() {
         return;
     }
     let mut problem = PoleRefinement { band };
     let x0: Vec<f64> = poles.iter().flat_map(|p| [p.re, p.im]).collect();
-    let unbounded = vec![f64::INFINITY; x0.len()];
-    let lower: Vec<f64> = unbounded.iter().map(|v| -v).collect();
+    let bound = |sign: f64| -> Vec<f64> {
+        x0.iter()
+            .enumerate()
+            .map(|(k, &v)| if free(k / 2) { sign * f64::INFINITY } else { v })
+            .collect()
+    };
+    let (lower, unbounded) = (bound(-1.0), bound(1.0));
     let Ok(start) = lm::Problem::evaluate(&mut problem, &x0);
     let scale = poles.iter().fold(0.0_f64, |m, p| m.max(p.norm()));
     let settings = lm::Settings {
