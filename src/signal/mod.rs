@@ -21,6 +21,8 @@
 //!   sampled, filtered);
 //! * [`residual_search`] — modes the LSCF seeds missed, found where the fit
 //!   residual stands above the noise;
+//! * [`zoom`] — each chosen pole refined again over a band around it, the
+//!   other poles held: a strong mode's misfit no longer bends it;
 //! * [`harmonics`] — poles at multiples, sums and differences of stronger
 //!   modes' frequencies: a nonlinear response's harmonics and combination
 //!   tones, not modes;
