@@ -152,5 +152,10 @@ fn an_undamped_strip_keeps_every_mode_with_a_damping_bound() {
             "{f} Hz: an undamped mode's damping measured as {}",
             p["damping_ratio"]
         );
+        // No point value beside the bound: a fitted ζ of 2e-16 and its
+        // |H| of 9e13 were printed in JSON (the trial of 059e7a2).
+        assert!(p["damping_ratio"].is_null(), "{p}");
+        assert!(p["magnitude"].is_null(), "{p}");
+        assert!(p["magnitude_lower_bound"].as_f64().is_some(), "{p}");
     }
 }

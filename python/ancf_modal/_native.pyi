@@ -429,11 +429,11 @@ class FrfResult:
         """The fit band [Hz]."""
     @property
     def peaks(self) -> List[Dict[str, Any]]:
-        """Identified modes: frequency_hz [Hz], damping_ratio [–],
-        magnitude, residue, damping_upper_bound (the largest ζ the records
-        allow when they do not resolve it, else None) and
-        magnitude_lower_bound (then the smallest |H| at the peak they
-        allow, else None)."""
+        """Identified modes: frequency_hz [Hz], damping_ratio [–] and
+        magnitude (None when the records do not resolve the damping),
+        residue, damping_upper_bound (the largest ζ the records allow when
+        they do not resolve it, else None) and magnitude_lower_bound (then
+        the smallest |H| at the peak they allow, else None)."""
     @property
     def rejected(self) -> List[Dict[str, Any]]:
         """Stable poles not reported as modes: dicts with frequency_hz [Hz],

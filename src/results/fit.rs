@@ -120,22 +120,25 @@ pub fn last_orders(data: &ConvergenceData) -> Vec<f64> {
 pub struct FittedPeak {
     /// Undamped natural frequency [Hz].
     pub frequency_hz: f64,
-    /// Damping ratio ζ [–].
-    pub damping_ratio: f64,
+    /// Damping ratio ζ [–]; null when the records do not resolve it
+    /// (`damping_upper_bound` then holds what they allow): a fitted value
+    /// there is no measurement.
+    pub damping_ratio: Option<f64>,
     /// |Ĥ| of the fitted model, all its terms, at the mode's damped
     /// frequency [FRF unit] (near a close mode it holds that mode's
     /// contribution too: it is what the FRF reads there, not the mode's own
-    /// peak |R|/σ).
-    pub magnitude: f64,
+    /// peak |R|/σ); null when the damping is not resolved
+    /// (`magnitude_lower_bound` then holds what the records allow).
+    pub magnitude: Option<f64>,
     /// The mode's residue, real and imaginary part [FRF unit × rad/s].
     pub residue: [f64; 2],
     /// The largest damping ratio the records allow [–], when they do not
     /// resolve it (the mode rings past their end with no decay they can
-    /// measure; `damping_ratio` is then no measurement); null when they do.
+    /// measure; `damping_ratio` is then null); null when they do.
     pub damping_upper_bound: Option<f64>,
     /// The smallest |H| at the peak the records allow [FRF unit], when
     /// they do not resolve the damping (|R|/(ζ_max ω): `magnitude` is then
-    /// no measurement); null when they do.
+    /// null); null when they do.
     pub magnitude_lower_bound: Option<f64>,
 }
 
@@ -330,8 +333,8 @@ impl FrfOutput {
                 .iter()
                 .map(|m| FittedPeak {
                     frequency_hz: m.frequency_hz,
-                    damping_ratio: m.damping_ratio,
-                    magnitude: m.magnitude,
+                    damping_ratio: m.damping_bound.is_none().then_some(m.damping_ratio),
+                    magnitude: m.damping_bound.is_none().then_some(m.magnitude),
                     residue: [m.residue.re, m.residue.im],
                     damping_upper_bound: m.damping_bound,
                     magnitude_lower_bound: m.magnitude_lower_bound(),
