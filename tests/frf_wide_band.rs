@@ -139,7 +139,7 @@ fn a_mode_beside_a_cubic_combination_is_a_mode() {
         "--json".as_ref(),
     ]))
     .unwrap();
-    let doc = common::impulse_then_frf(
+    let docs = common::impulse_then_frfs(
         &model,
         &[
             "--end-time",
@@ -151,7 +151,22 @@ fn a_mode_beside_a_cubic_combination_is_a_mode() {
             "--sample-rate",
             "10240",
         ],
+        &[&[], &["--band", "100:1500"]],
     );
+    let (doc, zoomed) = (&docs[0], &docs[1]);
+    let said = |d: &Value| {
+        d["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|w| w.as_str().unwrap().contains("outside the fit band"))
+    };
+    // The 20.1 Hz mode, 655 × the band's largest |H| and still ringing at
+    // the record's end, left out of a band of the user's: its tail enters
+    // through the residual terms alone (the trial: 155.9 Hz lost, ζ of
+    // 196.5 Hz −2.5 %), which is said; the automatic band holds it.
+    assert!(said(zoomed), "{}", zoomed["warnings"]);
+    assert!(!said(doc), "{}", doc["warnings"]);
     let peaks = doc["peaks"].as_array().unwrap();
     // Modes 1–4 of the model (20.1, 155.9, 196.5, 607.3 Hz); 2πfΔt ≤ 0.04.
     for m in &modal["modes"].as_array().unwrap()[..4] {

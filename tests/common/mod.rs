@@ -101,6 +101,13 @@ where
 /// returns `frf --json` of that record.
 #[allow(dead_code)]
 pub fn impulse_then_frf(model: &Value, impulse_args: &[&str]) -> Value {
+    impulse_then_frfs(model, impulse_args, &[&[]]).remove(0)
+}
+
+/// As [`impulse_then_frf`], with one `frf --json` per set of extra
+/// arguments in `frf_args`, on the same record.
+#[allow(dead_code)]
+pub fn impulse_then_frfs(model: &Value, impulse_args: &[&str], frf_args: &[&[&str]]) -> Vec<Value> {
     let dir = tempfile::tempdir().unwrap();
     let (json, csv) = (dir.path().join("model.json"), dir.path().join("imp.csv"));
     std::fs::write(&json, model.to_string()).unwrap();
@@ -108,12 +115,15 @@ pub fn impulse_then_frf(model: &Value, impulse_args: &[&str]) -> Value {
     args.extend(impulse_args.iter().map(std::ffi::OsStr::new));
     args.extend([std::ffi::OsStr::new("--csv"), csv.as_os_str()]);
     run_ok(args);
-    serde_json::from_slice(&run_ok([
-        "frf".as_ref(),
-        csv.as_os_str(),
-        "--json".as_ref(),
-    ]))
-    .unwrap()
+    frf_args
+        .iter()
+        .map(|extra| {
+            let mut args: Vec<&std::ffi::OsStr> = vec!["frf".as_ref(), csv.as_os_str()];
+            args.extend(extra.iter().map(std::ffi::OsStr::new));
+            args.push("--json".as_ref());
+            serde_json::from_slice(&run_ok(args)).unwrap()
+        })
+        .collect()
 }
 
 /// A property test's configuration: `cases` drawn from a fixed seed
