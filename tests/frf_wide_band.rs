@@ -151,9 +151,9 @@ fn a_mode_beside_a_cubic_combination_is_a_mode() {
             "--sample-rate",
             "10240",
         ],
-        &[&[], &["--band", "100:1500"]],
+        &[&[], &["--band", "100:1500"], &["--band", "400:3000"]],
     );
-    let (doc, zoomed) = (&docs[0], &docs[1]);
+    let (doc, zoomed, above) = (&docs[0], &docs[1], &docs[2]);
     let said = |d: &Value| {
         d["warnings"]
             .as_array()
@@ -167,6 +167,17 @@ fn a_mode_beside_a_cubic_combination_is_a_mode() {
     // 196.5 Hz −2.5 %), which is said; the automatic band holds it.
     assert!(said(zoomed), "{}", zoomed["warnings"]);
     assert!(!said(doc), "{}", doc["warnings"]);
+    // Where such a band finds nothing, that mode is the cause said, not
+    // the records' line spacing (0.5 Hz against modes 46–200 Hz wide).
+    assert!(said(above), "{}", above["warnings"]);
+    let blamed = above["warnings"].as_array().unwrap().iter();
+    assert!(
+        !blamed
+            .into_iter()
+            .any(|w| w.as_str().unwrap().contains("lines are")),
+        "{}",
+        above["warnings"]
+    );
     let peaks = doc["peaks"].as_array().unwrap();
     // Modes 1–4 of the model (20.1, 155.9, 196.5, 607.3 Hz); 2πfΔt ≤ 0.04.
     for m in &modal["modes"].as_array().unwrap()[..4] {

@@ -130,13 +130,16 @@ impl FrfAnalysis {
 /// slow for a hammer test, channels that look swapped, and, but under a
 /// taper (whose own warning says the blow is cut, so these follow from
 /// it), noise on the force, records too short for any mode, and modes
-/// whose residue the records do not determine (`untied`).
+/// whose residue the records do not determine (`untied`). No mode found
+/// is put down to the records' length unless `outside_dominates`: a mode
+/// outside the band that stands above it is the likelier cause
+/// ([`dominant_outside_note`]).
 fn record_notes(
     records: &[TimeRecord],
     est: Option<&FrfEstimate>,
     settings: &AnalysisSettings,
     band: (f64, f64),
-    fit: &ModalFit,
+    (fit, outside_dominates): (&ModalFit, bool),
     untied: &[FittedMode],
 ) -> Vec<String> {
     let mut notes: Vec<String> = record_checks::slow_sampling(records)
@@ -145,7 +148,9 @@ fn record_notes(
         .collect();
     if !is_taper(settings.window) {
         notes.extend(est.and_then(|e| record_checks::force_noise_note(records, e, band)));
-        notes.extend(record_checks::short_records(records, fit.modes.len()));
+        if !outside_dominates {
+            notes.extend(record_checks::short_records(records, fit.modes.len()));
+        }
         notes.extend(est.and_then(|e| record_checks::ringing_at_end(untied, e)));
     }
     notes
@@ -356,12 +361,7 @@ pub fn analyse(
     let (outside, outside_peaks) =
         outside_band(&frequency_hz, h, (band, automatic.1), &fit_settings, &found);
     rejected.extend(outside);
-    notes.extend(dominant_outside_note(
-        &frequency_hz,
-        h,
-        band,
-        &outside_peaks,
-    ));
+    let dominant = dominant_outside_note(&frequency_hz, h, band, &outside_peaks);
     rejected.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
     // Two seeds the refinement took to one pole (to its own tolerance:
     // 1.5e-8 apart in ζ were seen) are one pole.
@@ -375,9 +375,10 @@ pub fn analyse(
         est.as_ref(),
         &settings,
         band,
-        &fit,
+        (&fit, dominant.is_some()),
         &untied,
     ));
+    notes.extend(dominant);
     Ok(FrfAnalysis {
         files,
         channels: records
