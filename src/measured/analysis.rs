@@ -217,7 +217,7 @@ fn outside_band(
 /// tail across the band (and, for records, the leakage of its decay cut
 /// off at their end) enters the band's fit through the residual terms
 /// alone, which do not follow it. The trial's noise-free records with a
-/// 12 Hz or 20 Hz mode 100–400 × the others: a band of 100–1500 Hz gave
+/// 12 Hz or 20 Hz mode 96–1419 × the others: a band of 100–1500 Hz gave
 /// ζ −8.6 % and called clean modes not significant; 400–3000 Hz found no
 /// mode. Said, not fitted: a band that holds it fits them.
 fn dominant_outside_note(

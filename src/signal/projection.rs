@@ -423,14 +423,14 @@ pub fn refine_some(band: Band<'_>, poles: &mut [Complex64], free: impl Fn(usize)
             .map(|(k, &v)| if free(k / 2) { sign * f64::INFINITY } else { v })
             .collect()
     };
-    let (lower, unbounded) = (bound(-1.0), bound(1.0));
+    let (lower, upper) = (bound(-1.0), bound(1.0));
     let Ok(start) = lm::Problem::evaluate(&mut problem, &x0);
     let scale = poles.iter().fold(0.0_f64, |m, p| m.max(p.norm()));
     let settings = lm::Settings {
         step_tolerance: STEP_TOLERANCE * scale,
         ..REFINE
     };
-    let Ok(out) = lm::solve(&mut problem, x0, start, &lower, &unbounded, &settings);
+    let Ok(out) = lm::solve(&mut problem, x0, start, &lower, &upper, &settings);
     poles.copy_from_slice(&poles_of(&out.x));
 }
 

@@ -18,14 +18,16 @@
 //! residues fitted): a strong mode's skirt is no smooth background (a
 //! noise-free mode 100 dB under its neighbour, 0.1 % against 4.6 %: ζ +16 %
 //! with only residual terms). The poles whose half-power band reaches into
-//! the zoom are refined with it, and only the zoomed pole's value is taken. It is taken when it stays physical, in
-//! the zoom, and within its own half-power band (|Re s|, at least two
-//! lines) of where the whole band put it: the zoom corrects how the pole
-//! fits its own peak, it does not move it to another peak. And it is taken
-//! only when it moved the pole by more than [`lsfd::DECAY_RESOLUTION`]
-//! standard errors of its decay (the whole band's and the zoom's, in
-//! quadrature): a smaller move is the noise of the fewer lines, and the whole band's residual terms are the better estimate (a
-//! weak mode beside a strong one at 1.5 % noise: ζ +22 % zoomed, within
+//! the zoom are refined with it, and only the zoomed pole's value is taken.
+//!
+//! It is taken when it stays physical, in the zoom, and within its own
+//! half-power band (|Re s|, at least two lines) of where the whole band put
+//! it: the zoom corrects how the pole fits its own peak, it does not move it
+//! to another peak. And only when it moved the pole by more than
+//! [`lsfd::DECAY_RESOLUTION`] standard errors of its decay (the whole
+//! band's and the zoom's, in quadrature): a smaller move is the noise of the
+//! fewer lines, and the whole band's residual terms are the better estimate
+//! (a weak mode beside a strong one at 1.5 % noise: ζ +22 % zoomed, within
 //! 15 % from the whole band).
 //!
 //! Units: frequencies in Hz, poles in rad/s.
@@ -44,6 +46,9 @@ pub const ZOOM_SPAN: f64 = 0.1;
 pub const ZOOM_HALF_POWERS: f64 = 3.0;
 /// Smallest half-width of a zoom band in lines.
 pub const ZOOM_MIN_LINES: f64 = 16.0;
+/// Fraction of the band's lines from which a zoom band is the band itself
+/// (no other fit to make).
+pub const ZOOM_WHOLE_FRACTION: f64 = 0.9;
 /// Half-power widths by which a neighbour's peak reaches: a pole this
 /// close to the zoom band is refined with it.
 pub const NEIGHBOUR_REACH: f64 = 4.0;
@@ -77,10 +82,10 @@ pub fn refine_in_zoom(band: Band<'_>, poles: &mut [Complex64], settings: &FitSet
 
 /// `seed`, a pole the whole-band refinement could not add to `kept`
 /// without losing others (it bends them to absorb the new peak's misfit),
-/// refined in its zoom band alone: the poles of `kept` with it, the seed
-/// taken when it comes out physical and, beside the poles of `kept`
-/// unchanged, significant with a resolved or ringing decay
-/// ([`lsfd::admissible`]). The trial's mast, 0–126 Hz: its two strongest
+/// refined in its zoom band alone (the poles of `kept` held), and taken
+/// when it comes out physical, not within a half-power band of a kept pole,
+/// and, beside the poles of `kept` unchanged, significant with a resolved
+/// decay ([`lsfd::admissible`]). The trial's mast, 0–126 Hz: its two strongest
 /// modes, 1.125 and 5.22 Hz, were listed as unfitted.
 pub fn admit(
     band: Band<'_>,
@@ -122,7 +127,7 @@ fn zoomed(
         .max(ZOOM_MIN_LINES * line);
     let lo = band.bins.partition_point(|(f, _)| *f < fd(&p) - half);
     let hi = band.bins.partition_point(|(f, _)| *f <= fd(&p) + half);
-    if hi <= lo || (hi - lo) as f64 >= band.bins.len() as f64 * 0.9 {
+    if hi <= lo || (hi - lo) as f64 >= ZOOM_WHOLE_FRACTION * band.bins.len() as f64 {
         // The zoom is the band (or nothing): no other fit to make.
         return None;
     }
