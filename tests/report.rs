@@ -307,3 +307,32 @@ fn the_report_command_shows_the_modal_commands_frequencies_at_both_states() {
     );
     assert!(refused.is_input());
 }
+
+/// The modes table's damping column: absent for an undamped model (a
+/// column of "0.000 %" reads as a measured zero, issue 36), and for a
+/// Rayleigh-damped one each mode's ratio as `modal` computes it.
+#[test]
+fn the_damping_column_is_there_only_for_a_damped_model() {
+    use ancf_modal::commands::modal::{run as modal_run, ModalRequest};
+    use ancf_modal::commands::report::{run, ReportRequest};
+    use ancf_modal::commands::ModelInput;
+    let dir = tempfile::tempdir().unwrap();
+    let source = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/cantilever.json");
+    let mut model: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&source).unwrap()).unwrap();
+    let plain = ModelInput::from_file(&source).unwrap();
+    let page = run(&plain, &ReportRequest::default()).unwrap();
+    assert!(!page.html.contains("damping ζ"));
+    model["damping"] = serde_json::json!({"alpha": 20.0, "beta": 1e-7});
+    let path = dir.path().join("damped.json");
+    std::fs::write(&path, model.to_string()).unwrap();
+    let damped = ModelInput::from_file(&path).unwrap();
+    let page = run(&damped, &ReportRequest::default()).unwrap();
+    assert!(page.html.contains("<th>damping ζ</th>"));
+    let modes = modal_run(&damped, &ModalRequest::default()).unwrap();
+    let first = modes.outcome.result().modes[0].frequency_hz;
+    // ζ = α/(2ω) + βω/2 of the first mode, as the table prints it.
+    let w = 2.0 * std::f64::consts::PI * first;
+    let zeta = format!("{:.3} %", 100.0 * (20.0 / (2.0 * w) + 1e-7 * w / 2.0));
+    assert!(page.html.contains(&zeta), "{zeta}");
+}

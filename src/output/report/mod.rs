@@ -157,7 +157,14 @@ fn modes_section(id: &str, set: &ModeSet) -> String {
         r.mechanism_modes,
         escape(r.solver),
     );
-    s.push_str("<table class=\"modes-table\"><thead><tr><th>mode</th><th>frequency [Hz]</th><th>kind</th><th>bending %</th><th>axial %</th><th>spring %</th><th>error bound</th><th>damping ζ</th></tr></thead><tbody>");
+    // An undamped model has no damping column (a column of "0.000 %"
+    // reads as a measured zero).
+    let damped = set.damping_ratio.iter().flatten().any(|z| *z != 0.0);
+    let _ = write!(
+        s,
+        "<table class=\"modes-table\"><thead><tr><th>mode</th><th>frequency [Hz]</th><th>kind</th><th>bending %</th><th>axial %</th><th>spring %</th><th>error bound</th>{}</tr></thead><tbody>",
+        if damped { "<th>damping ζ</th>" } else { "" }
+    );
     for (k, m) in r.modes.iter().enumerate() {
         let bound = m.error_bound.map_or(String::new(), |b| format!("{b:.1e}"));
         let zeta = set
@@ -166,9 +173,14 @@ fn modes_section(id: &str, set: &ModeSet) -> String {
             .copied()
             .flatten()
             .map_or(String::new(), |z| format!("{:.3} %", 100.0 * z));
+        let zeta = if damped {
+            format!("<td class=\"num\">{zeta}</td>")
+        } else {
+            String::new()
+        };
         let _ = write!(
             s,
-            "<tr data-mode=\"{}\" data-frequency-hz=\"{:?}\" data-kind=\"{}\"><td>{}</td><td class=\"num\">{:.3}</td><td>{}</td><td class=\"num\">{:.2}</td><td class=\"num\">{:.2}</td><td class=\"num\">{:.2}</td><td class=\"num\">{bound}</td><td class=\"num\">{zeta}</td></tr>",
+            "<tr data-mode=\"{}\" data-frequency-hz=\"{:?}\" data-kind=\"{}\"><td>{}</td><td class=\"num\">{:.3}</td><td>{}</td><td class=\"num\">{:.2}</td><td class=\"num\">{:.2}</td><td class=\"num\">{:.2}</td><td class=\"num\">{bound}</td>{zeta}</tr>",
             m.index,
             m.frequency_hz,
             m.kind,
