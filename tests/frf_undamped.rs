@@ -121,24 +121,7 @@ proptest::proptest! {
 
 #[test]
 fn a_lightly_damped_strip_keeps_every_mode_with_its_damping_or_a_bound() {
-    let alpha = 0.01;
-    let (peaks, truth) = fit(alpha);
-    assert!(truth.len() >= 5, "{truth:?}");
-    for f in truth {
-        let p = peak(&peaks, f);
-        let zeta = alpha / (4.0 * PI * f);
-        match p["damping_upper_bound"].as_f64() {
-            Some(bound) => assert!(bound >= zeta, "{f} Hz: bound {bound} under ζ {zeta}"),
-            None => {
-                // 2 %: the tolerance for `impulse` records.
-                let got = p["damping_ratio"].as_f64().unwrap();
-                assert!(
-                    (got / zeta - 1.0).abs() < 0.02,
-                    "{f} Hz: ζ {got} against α/(2ω) = {zeta}"
-                );
-            }
-        }
-    }
+    assert_damping_right(0.01, 0.1);
 }
 
 #[test]
