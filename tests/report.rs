@@ -215,13 +215,7 @@ fn animated_modes_draw_q0_plus_and_minus_a_phi() {
             .collect();
         let moved = assembly_geometry(&system, &q_eps, per);
         let points = |g: &ancf_modal::output::plot::Geometry| -> Vec<[f64; 2]> {
-            g.beams
-                .iter()
-                .flatten()
-                .chain(&g.bodies)
-                .chain(&g.joints)
-                .copied()
-                .collect()
+            g.points().copied().collect()
         };
         let (before, after) = (points(&undeformed), points(&moved));
         let unit = before

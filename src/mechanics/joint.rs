@@ -40,6 +40,11 @@ pub trait Constraint: std::fmt::Debug + Send + Sync {
     fn rigid(&self) -> bool;
     /// C(q) into `out[..rows]`.
     fn residual(&self, q: &[f64], out: &mut [f64]);
+    /// For a joint that holds point b on a line through point a (a
+    /// slider), the line's unit direction at q; `None` for the others.
+    fn line_direction(&self, _q: &[f64]) -> Option<Vector2<f64>> {
+        None
+    }
     /// ∂C/∂q (local) into the first `rows` rows of `out`.
     fn jacobian(&self, q: &[f64], out: &mut ConstraintJac);
     /// Adds Σᵢ λᵢ ∂²Cᵢ/∂q² (local) into `out`.
@@ -174,6 +179,11 @@ impl Slider {
 impl Constraint for Slider {
     fn rigid(&self) -> bool {
         false
+    }
+    fn line_direction(&self, q: &[f64]) -> Option<Vector2<f64>> {
+        // The normal turned back by a quarter turn.
+        let n = self.normal(q);
+        Some(Vector2::new(n.y, -n.x))
     }
     fn label(&self) -> &str {
         &self.label

@@ -131,7 +131,8 @@ pub fn equilibrium_figure(system: &System, eq: &Equilibrium) -> LineFigure {
         .beams
         .iter()
         .flatten()
-        .chain(&reference.bodies)
+        .chain(reference.bodies.iter().flatten())
+        .chain(&reference.masses)
         .fold((f64::MAX, f64::MIN, f64::MAX, f64::MIN), |e, p| {
             (e.0.min(p[0]), e.1.max(p[0]), e.2.min(p[1]), e.3.max(p[1]))
         });
@@ -179,13 +180,17 @@ pub fn equilibrium_figure(system: &System, eq: &Equilibrium) -> LineFigure {
             .series
             .push(poly(named(&label), d, 0, SeriesStyle::Line));
     }
-    if !deformed.bodies.is_empty() {
-        panel.series.push(poly(
-            "bodies".to_string(),
-            &deformed.bodies,
-            1,
-            SeriesStyle::Points,
-        ));
+    let bodies: Vec<[f64; 2]> = deformed
+        .bodies
+        .iter()
+        .flatten()
+        .chain(&deformed.masses)
+        .copied()
+        .collect();
+    if !bodies.is_empty() {
+        panel
+            .series
+            .push(poly("bodies".to_string(), &bodies, 1, SeriesStyle::Points));
     }
     // Equal spans on both axes keep the shape's proportions.
     let (cx, cy) = (0.5 * (extent.0 + extent.1), 0.5 * (extent.2 + extent.3));

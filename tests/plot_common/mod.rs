@@ -118,6 +118,17 @@ pub fn single_marker(x: f64, y: f64) -> LineFigure {
 /// Deformed position of the beam point at x.
 type Shape<'a> = dyn Fn(f64) -> [f64; 2] + 'a;
 
+/// A weld at `at` (a clamp when `ground`), its part along +x.
+fn weld(at: [f64; 2], ground: bool) -> JointMark {
+    JointMark {
+        kind: JointKind::Weld,
+        at,
+        ground,
+        rail: None,
+        toward: [1.0, 0.0],
+    }
+}
+
 /// Two beams joined at mid-span, a point mass at the tip, four modes.
 pub fn mode_shapes(n_modes: usize) -> ModeShapeFigure {
     let l = 0.5;
@@ -133,8 +144,9 @@ pub fn mode_shapes(n_modes: usize) -> ModeShapeFigure {
             beam(0.0, l / 2.0, &|x| [x, 0.0]),
             beam(l / 2.0, l, &|x| [x, 0.0]),
         ],
-        bodies: vec![[l, 0.0]],
-        joints: vec![[l / 2.0, 0.0], [0.0, 0.0]],
+        masses: vec![[l, 0.0]],
+        joints: vec![weld([l / 2.0, 0.0], false), weld([0.0, 0.0], true)],
+        ..Geometry::default()
     };
     let shapes: [(f64, &str, &Shape<'_>); 4] = [
         (4577.3, "bending", &|x: f64| {
@@ -160,8 +172,9 @@ pub fn mode_shapes(n_modes: usize) -> ModeShapeFigure {
             kind: kind.to_string(),
             deformed: Geometry {
                 beams: vec![beam(0.0, l / 2.0, shape), beam(l / 2.0, l, shape)],
-                bodies: vec![shape(l)],
-                joints: vec![shape(l / 2.0), shape(0.0)],
+                masses: vec![shape(l)],
+                joints: vec![weld(shape(l / 2.0), false), weld(shape(0.0), true)],
+                ..Geometry::default()
             },
         })
         .collect();

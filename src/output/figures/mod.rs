@@ -19,6 +19,7 @@
 //!
 //! All data are SI (m, Hz); figures show lengths in millimetres.
 
+pub mod assembly;
 pub mod convergence;
 pub mod impulse;
 pub mod mac;
@@ -27,10 +28,9 @@ pub mod sweep;
 pub mod switch_off;
 mod write;
 
+pub use assembly::{assembly_geometry, assembly_motion};
 pub use convergence::convergence_figure;
 pub use impulse::{response_figure, response_path, spectrum_figure, write_impulse_figures};
 pub use mac::mac_figure;
-pub use modal::{
-    assembly_geometry, mode_amplitude, mode_shape_figure, mode_shape_figure_with, ModeShapeSettings,
-};
+pub use modal::{mode_amplitude, mode_shape_figure, mode_shape_figure_with, ModeShapeSettings};
 pub use write::{write_figure, write_mode_shapes};

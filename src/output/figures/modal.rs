@@ -10,23 +10,22 @@
 //!   [`ModeShapeSettings::points_per_element`] points per element, so that
 //!   a bending mode is drawn curved as the element interpolates it, not as
 //!   straight lines between nodes;
-//! * rigid bodies and point masses as markers at their positions;
-//! * joints as small circles at their anchor positions (point a of each
-//!   joint; both points coincide in the linearized motion).
+//! * rigid bodies as outlines of their attachment points, point masses,
+//!   springs, joints and supports as [`crate::output::plot::scene`]
+//!   describes them, every point moved by the one linear map of
+//!   [`super::assembly`]: p(q) + a·(∂p/∂q)·φ.
 //!
 //! A mode shape has no physical amplitude (it is mass-normalized,
 //! φᵀMφ = 1). Each mode is scaled on its own so that the largest
 //! displacement of any drawn point is [`ModeShapeSettings::amplitude_fraction`]
 //! of the assembly's size (the larger side of the bounding box of the grey
-//! geometry). The displacement of a drawn point is the linearized one: beam
-//! points and body positions are linear in q, a joint anchor on a rotating
-//! body moves by (∂r/∂q)·φ. The sign is fixed so that the largest
+//! geometry). The displacement of a drawn point is the linearized one. The sign is fixed so that the largest
 //! displacement points along the normal (n = ẑ × t) of the first beam, or
 //! along its tangent for a mostly axial motion, making pictures repeatable.
 
+use super::assembly::{assembly_geometry, assembly_motion, drawn_size};
 use crate::analysis::{ModalResult, Mode};
-use crate::mechanics::element::shape;
-use crate::output::plot::{Geometry, ModeShape, ModeShapeFigure, Scale};
+use crate::output::plot::{ModeShape, ModeShapeFigure, Scale};
 use crate::system::System;
 use nalgebra::Vector2;
 
@@ -55,105 +54,6 @@ impl Default for ModeShapeSettings {
     }
 }
 
-/// The drawn geometry of `system` at coordinates `q` [SI: m]: beam centre
-/// lines sampled `points_per_element` times per element from the shape
-/// functions, rigid-body and point-mass positions, joint anchors; drawn
-/// where the model sits (the system's origin added, see
-/// [`System::origin`]).
-pub fn assembly_geometry(system: &System, q: &[f64], points_per_element: usize) -> Geometry {
-    geometry(system, q, points_per_element, system.origin)
-}
-
-/// The geometry of `q` moved by `shift` (zero for a motion φ).
-fn geometry(
-    system: &System,
-    q: &[f64],
-    points_per_element: usize,
-    shift: Vector2<f64>,
-) -> Geometry {
-    let per = points_per_element.max(1);
-    let beams = system
-        .beams
-        .iter()
-        .map(|b| {
-            let mut line = Vec::with_capacity(b.elements.len() * per + 1);
-            for (k, el) in b.elements.iter().enumerate() {
-                let dofs = b.element_dofs(k);
-                let first = if k == 0 { 0 } else { 1 };
-                for j in first..=per {
-                    let s = shape(el.le, j as f64 / per as f64).s;
-                    let mut r = [shift.x, shift.y];
-                    for (i, si) in s.iter().enumerate() {
-                        r[0] += si * q[dofs[2 * i]];
-                        r[1] += si * q[dofs[2 * i + 1]];
-                    }
-                    line.push(r);
-                }
-            }
-            line
-        })
-        .collect();
-    let rigid = system.rigid_bodies.iter().map(|r| r.dof0);
-    let masses = system.point_masses.iter().map(|p| p.dof0);
-    let bodies = rigid
-        .chain(masses)
-        .map(|d| [q[d] + shift.x, q[d + 1] + shift.y])
-        .collect();
-    let joints = system
-        .constraints
-        .iter()
-        .map(|c| {
-            let p = c.pair().a.position(q) + shift;
-            [p.x, p.y]
-        })
-        .collect();
-    Geometry {
-        beams,
-        bodies,
-        joints,
-    }
-}
-
-/// Linearized displacement of every drawn point for the motion `phi` at
-/// `q`, in the order of [`Geometry`]'s points: beams, bodies, joints.
-fn displacements(system: &System, q: &[f64], phi: &[f64], per: usize) -> Vec<Vector2<f64>> {
-    // Beam points and body positions are linear in q: their displacement is
-    // the geometry of φ itself (positions and slopes alike).
-    let g = geometry(system, phi, per, Vector2::zeros());
-    let mut d: Vec<Vector2<f64>> = g
-        .beams
-        .iter()
-        .flatten()
-        .chain(&g.bodies)
-        .map(|p| Vector2::new(p[0], p[1]))
-        .collect();
-    d.extend(
-        system
-            .constraints
-            .iter()
-            .map(|c| c.pair().a.velocity(q, phi)),
-    );
-    d
-}
-
-/// The larger side of the bounding box of `g` [SI: m]; 0 for no points.
-fn size_of(g: &Geometry) -> f64 {
-    let pts = g.beams.iter().flatten().chain(&g.bodies).chain(&g.joints);
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in pts {
-        for i in 0..2 {
-            lo[i] = lo[i].min(p[i]);
-            hi[i] = hi[i].max(p[i]);
-        }
-    }
-    let span = (hi[0] - lo[0]).max(hi[1] - lo[1]);
-    if span.is_finite() {
-        span
-    } else {
-        0.0
-    }
-}
-
 /// The signed amplitude a that scales `phi` for drawing at `q` (see the
 /// module docs); 0 when no drawn point moves.
 pub fn mode_amplitude(
@@ -163,9 +63,13 @@ pub fn mode_amplitude(
     settings: &ModeShapeSettings,
 ) -> f64 {
     let per = settings.points_per_element.max(1);
-    let size = size_of(&assembly_geometry(system, q, per));
-    let d = displacements(system, q, phi, per);
-    let Some(largest) = d.iter().max_by(|a, b| a.norm().total_cmp(&b.norm())) else {
+    let (at, rate) = assembly_motion(system, q, phi, per);
+    let size = drawn_size(&at);
+    let largest = rate
+        .points()
+        .map(|p| Vector2::new(p[0], p[1]))
+        .max_by(|a, b| a.norm().total_cmp(&b.norm()));
+    let Some(largest) = largest else {
         return 0.0;
     };
     let max = largest.norm();
@@ -227,11 +131,11 @@ pub fn mode_shape_figure_with(
 
 fn mode_shape(system: &System, q: &[f64], mode: &Mode, settings: &ModeShapeSettings) -> ModeShape {
     let a = mode_amplitude(system, q, &mode.shape, settings);
-    let deformed: Vec<f64> = q.iter().zip(&mode.shape).map(|(q, p)| q + a * p).collect();
+    let (at, rate) = assembly_motion(system, q, &mode.shape, settings.points_per_element);
     ModeShape {
         number: mode.index,
         frequency_hz: mode.frequency_hz,
         kind: mode.kind.to_string(),
-        deformed: assembly_geometry(system, &deformed, settings.points_per_element),
+        deformed: at.moved(&rate, a),
     }
 }

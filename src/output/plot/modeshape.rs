@@ -9,30 +9,10 @@ use super::annotate::draw_title;
 use super::error::PlotError;
 use super::frame::{self, AxisFrame, AxisMap, Coord, FrameSizes, PanelLayout};
 use super::geom::{Extent, Pt};
+use super::scene::{self, Geometry, JointKind, SymbolPart, JOINT_RADIUS, MARKER_HALF};
 use super::size::PlotSize;
 use super::style::{self, palette, Scale, TextSizes, BACKGROUND, INK, UNDEFORMED};
 use super::ticks::nice_step;
-
-/// Planar geometry in metres.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Geometry {
-    /// Beam centre lines, one polyline each.
-    pub beams: Vec<Vec<[f64; 2]>>,
-    /// Rigid bodies and point masses (drawn as squares).
-    pub bodies: Vec<[f64; 2]>,
-    /// Joints (drawn as small circles).
-    pub joints: Vec<[f64; 2]>,
-}
-
-impl Geometry {
-    fn points(&self) -> impl Iterator<Item = &[f64; 2]> {
-        self.beams
-            .iter()
-            .flatten()
-            .chain(&self.bodies)
-            .chain(&self.joints)
-    }
-}
 
 /// One mode: its number, frequency, a short kind ("bending", "axial", …;
 /// empty for none) and the deformed geometry (amplitude scaled by the caller).
@@ -291,22 +271,77 @@ fn draw_geometry<DB: DrawingBackend>(
     look: &Look,
 ) -> Result<(), PlotError> {
     let to = |p: &[f64; 2]| -> Option<Pt> { Some((map.coord(p[0])?, map.coord(p[1])?)) };
+    let thin = ShapeStyle {
+        stroke_width: 1,
+        ..look.joint
+    };
+    let ground = UNDEFORMED.stroke_width(1);
     for beam in &g.beams {
         let pts: Vec<Pt> = beam.iter().filter_map(to).collect();
         let pts = thin_to_pixels(chart, &pts, MIN_SEGMENT_PX);
         chart.draw_series(LineSeries::new(pts, look.line))?;
     }
-    chart.draw_series(
-        g.bodies
-            .iter()
-            .filter_map(to)
-            .map(|p| EmptyElement::at(p) + Rectangle::new([(-7, -7), (7, 7)], look.body)),
-    )?;
-    chart.draw_series(g.joints.iter().filter_map(to).map(|p| {
-        EmptyElement::at(p)
-            + Circle::new((0, 0), 5, BACKGROUND.filled())
-            + Circle::new((0, 0), 5, look.joint)
-    }))?;
+    for spring in &g.springs {
+        chart.draw_series(LineSeries::new(spring.iter().filter_map(to), thin))?;
+    }
+    for rail in g.joints.iter().filter_map(|j| j.rail) {
+        chart.draw_series(LineSeries::new(rail.iter().filter_map(to), look.joint))?;
+    }
+    let h = MARKER_HALF as i32;
+    let square = |p: Pt| EmptyElement::at(p) + Rectangle::new([(-h, -h), (h, h)], look.body);
+    for body in &g.bodies {
+        let pts: Vec<Pt> = body.iter().filter_map(to).collect();
+        match pts.len() {
+            0 => {}
+            1 => {
+                chart.draw_series(pts.into_iter().map(square))?;
+            }
+            2 => {
+                let link = ShapeStyle {
+                    stroke_width: look.line.stroke_width + 3,
+                    ..look.body
+                };
+                chart.draw_series(LineSeries::new(pts, link))?;
+            }
+            _ => {
+                chart.draw_series(std::iter::once(Polygon::new(pts.clone(), look.body)))?;
+            }
+        }
+    }
+    chart.draw_series(g.masses.iter().filter_map(to).map(square))?;
+    let r = JOINT_RADIUS.round() as i32;
+    for j in &g.joints {
+        let Some(p) = to(&j.at) else { continue };
+        for sym in scene::symbols(j) {
+            let px: Vec<(i32, i32)> = sym
+                .offsets
+                .iter()
+                .map(|o| (o[0].round() as i32, o[1].round() as i32))
+                .collect();
+            let style = if sym.part == SymbolPart::Hatch {
+                ground
+            } else {
+                thin
+            };
+            let mut path = px.clone();
+            if sym.closed {
+                path.push(px[0]);
+            }
+            chart.draw_series(std::iter::once(
+                EmptyElement::at(p) + PathElement::new(path, style),
+            ))?;
+        }
+        let fill = if j.kind == JointKind::Weld {
+            look.joint.color.filled()
+        } else {
+            BACKGROUND.filled()
+        };
+        chart.draw_series(std::iter::once(
+            EmptyElement::at(p)
+                + Circle::new((0, 0), r as u32, fill)
+                + Circle::new((0, 0), r as u32, look.joint),
+        ))?;
+    }
     Ok(())
 }
 

@@ -22,8 +22,9 @@
 
 use super::svg::{fmt_px, View};
 use crate::analysis::Mode;
-use crate::output::figures::{assembly_geometry, mode_amplitude, ModeShapeSettings};
-use crate::output::plot::Geometry;
+use crate::output::figures::{assembly_motion, mode_amplitude, ModeShapeSettings};
+use crate::output::plot::scene::{self, SymbolPart, JOINT_RADIUS, MARKER_HALF};
+use crate::output::plot::{Geometry, JointKind};
 use crate::system::System;
 use std::fmt::Write;
 
@@ -47,11 +48,13 @@ pub fn mode_frames(
     settings: &ModeShapeSettings,
 ) -> ModeFrames {
     let a = mode_amplitude(system, q, &mode.shape, settings);
+    let (at, rate) = assembly_motion(system, q, &mode.shape, settings.points_per_element);
     let frames = (0..PHASES)
         .map(|k| {
-            let c = a * (2.0 * std::f64::consts::PI * k as f64 / PHASES as f64).cos();
-            let deformed: Vec<f64> = q.iter().zip(&mode.shape).map(|(q, p)| q + c * p).collect();
-            assembly_geometry(system, &deformed, settings.points_per_element)
+            at.moved(
+                &rate,
+                a * (2.0 * std::f64::consts::PI * k as f64 / PHASES as f64).cos(),
+            )
         })
         .collect();
     ModeFrames {
@@ -73,110 +76,171 @@ pub fn points_attr(view: &View, line: &[[f64; 2]]) -> String {
     s
 }
 
-/// Half the side of a body marker [px].
-const BODY: f64 = 4.0;
-/// Radius of a joint circle [px].
-const JOINT: f64 = 3.0;
+/// One drawn SVG element: its tag, class, fixed attributes and the
+/// attributes that can move between frames (in order).
+#[derive(Debug, Clone, PartialEq)]
+struct Prim {
+    tag: &'static str,
+    class: String,
+    fixed: Vec<(&'static str, String)>,
+    attrs: Vec<(&'static str, String)>,
+}
 
-fn square(view: &View, p: [f64; 2]) -> String {
-    let (x, y) = view.px(p);
-    let c = [
-        (x - BODY, y - BODY),
-        (x + BODY, y - BODY),
-        (x + BODY, y + BODY),
-        (x - BODY, y + BODY),
-    ];
-    c.iter()
-        .map(|(x, y)| format!("{},{}", fmt_px(*x), fmt_px(*y)))
+/// The SVG `points` of pixel points.
+fn pixel_points(pts: impl Iterator<Item = (f64, f64)>) -> String {
+    pts.map(|(x, y)| format!("{},{}", fmt_px(x), fmt_px(y)))
         .collect::<Vec<_>>()
         .join(" ")
 }
 
+fn line(class: &str, points: String) -> Prim {
+    Prim {
+        tag: "polyline",
+        class: class.to_string(),
+        fixed: Vec::new(),
+        attrs: vec![("points", points)],
+    }
+}
+
+/// A square of half-side `h` px around pixel `c`.
+fn square(c: (f64, f64), h: f64) -> String {
+    let (x, y) = c;
+    pixel_points(
+        [
+            (x - h, y - h),
+            (x + h, y - h),
+            (x + h, y + h),
+            (x - h, y + h),
+        ]
+        .into_iter(),
+    )
+}
+
+/// The elements that draw `g` (see [`crate::output::plot::scene`]), in an
+/// order and number that depend only on the assembly, so that frames of
+/// one motion pair up element by element.
+fn prims(view: &View, g: &Geometry) -> Vec<Prim> {
+    let mut v = Vec::new();
+    for b in &g.beams {
+        v.push(line("beam", points_attr(view, b)));
+    }
+    for s in &g.springs {
+        v.push(line("spring", points_attr(view, s)));
+    }
+    for j in &g.joints {
+        if let Some(rail) = j.rail {
+            v.push(line("rail", points_attr(view, &rail)));
+        }
+    }
+    for b in &g.bodies {
+        v.push(match b.len() {
+            1 => Prim {
+                tag: "polygon",
+                class: "body".into(),
+                fixed: Vec::new(),
+                attrs: vec![("points", square(view.px(b[0]), MARKER_HALF))],
+            },
+            2 => line("body link", points_attr(view, b)),
+            _ => Prim {
+                tag: "polygon",
+                class: "body".into(),
+                fixed: Vec::new(),
+                attrs: vec![("points", points_attr(view, b))],
+            },
+        });
+    }
+    for m in &g.masses {
+        v.push(Prim {
+            tag: "polygon",
+            class: "body mass".into(),
+            fixed: Vec::new(),
+            attrs: vec![("points", square(view.px(*m), MARKER_HALF))],
+        });
+    }
+    for (i, j) in g.joints.iter().enumerate() {
+        let (x, y) = view.px(j.at);
+        for sym in scene::symbols(j) {
+            let pts = pixel_points(sym.offsets.iter().map(|o| (x + o[0], y + o[1])));
+            let class = match sym.part {
+                SymbolPart::Hatch => "hatch",
+                SymbolPart::Ground | SymbolPart::Joint => "ground",
+            };
+            let tag = if sym.closed { "polygon" } else { "polyline" };
+            v.push(Prim {
+                tag,
+                class: class.into(),
+                fixed: Vec::new(),
+                attrs: vec![("points", pts)],
+            });
+        }
+        let kind = match j.kind {
+            JointKind::Pin => "pin",
+            JointKind::Weld => "weld",
+            JointKind::Slider => "slider",
+        };
+        let support = if j.ground { " support" } else { "" };
+        v.push(Prim {
+            tag: "circle",
+            class: format!("joint {kind}{support}"),
+            fixed: vec![("data-joint", i.to_string()), ("r", fmt_px(JOINT_RADIUS))],
+            attrs: vec![("cx", fmt_px(x)), ("cy", fmt_px(y))],
+        });
+    }
+    v
+}
+
 /// `<animate>` of `attribute` through `values` (one per phase), repeating.
-fn animate(attribute: &str, values: &[String]) -> String {
+fn animate(attribute: &str, values: &[&str]) -> String {
     let mut v = values.join(";");
     v.push(';');
-    v.push_str(&values[0]);
+    v.push_str(values[0]);
     format!(
         "<animate attributeName=\"{attribute}\" dur=\"{PERIOD_S}s\" repeatCount=\"indefinite\" values=\"{v}\"/>"
     )
 }
 
+/// The elements of `frames` (one list per frame, paired by index), each
+/// attribute that differs between frames animated through them.
+fn write_prims(s: &mut String, frames: &[Vec<Prim>]) {
+    for (i, p) in frames[0].iter().enumerate() {
+        let _ = write!(s, "<{} class=\"{}\"", p.tag, p.class);
+        for (name, value) in &p.fixed {
+            let _ = write!(s, " {name}=\"{value}\"");
+        }
+        let mut moving = String::new();
+        for (k, (name, value)) in p.attrs.iter().enumerate() {
+            let _ = write!(s, " {name}=\"{value}\"");
+            let values: Vec<&str> = frames.iter().map(|f| f[i].attrs[k].1.as_str()).collect();
+            if values.iter().any(|v| *v != value) {
+                moving.push_str(&animate(name, &values));
+            }
+        }
+        if moving.is_empty() {
+            s.push_str("/>");
+        } else {
+            let _ = write!(s, ">{moving}</{}>", p.tag);
+        }
+    }
+}
+
 /// The geometry `g` drawn with class `class` (static).
 pub fn geometry_svg(view: &View, g: &Geometry, class: &str) -> String {
     let mut s = format!("<g class=\"{class}\">");
-    for line in &g.beams {
-        let _ = write!(s, "<polyline points=\"{}\"/>", points_attr(view, line));
-    }
-    for b in &g.bodies {
-        let _ = write!(
-            s,
-            "<polygon class=\"body\" points=\"{}\"/>",
-            square(view, *b)
-        );
-    }
-    for j in &g.joints {
-        let (x, y) = view.px(*j);
-        let _ = write!(
-            s,
-            "<circle class=\"joint\" cx=\"{}\" cy=\"{}\" r=\"{JOINT}\"/>",
-            fmt_px(x),
-            fmt_px(y)
-        );
-    }
+    write_prims(&mut s, &[prims(view, g)]);
     s.push_str("</g>");
     s
 }
 
 /// The animated deformed geometry of `frames` (class `anim`).
 pub fn animated_svg(view: &View, frames: &ModeFrames) -> String {
-    let first = &frames.frames[0];
     let mut s = String::from("<g class=\"deformed anim\">");
-    for (i, line) in first.beams.iter().enumerate() {
-        let values: Vec<String> = frames
-            .frames
-            .iter()
-            .map(|f| points_attr(view, &f.beams[i]))
-            .collect();
-        let _ = write!(
-            s,
-            "<polyline points=\"{}\">{}</polyline>",
-            points_attr(view, line),
-            animate("points", &values)
-        );
-    }
-    for (i, b) in first.bodies.iter().enumerate() {
-        let values: Vec<String> = frames
-            .frames
-            .iter()
-            .map(|f| square(view, f.bodies[i]))
-            .collect();
-        let _ = write!(
-            s,
-            "<polygon class=\"body\" points=\"{}\">{}</polygon>",
-            square(view, *b),
-            animate("points", &values)
-        );
-    }
-    for (i, j) in first.joints.iter().enumerate() {
-        let (x, y) = view.px(*j);
-        let px: Vec<(f64, f64)> = frames.frames.iter().map(|f| view.px(f.joints[i])).collect();
-        let cx: Vec<String> = px.iter().map(|p| fmt_px(p.0)).collect();
-        let cy: Vec<String> = px.iter().map(|p| fmt_px(p.1)).collect();
-        let _ = write!(
-            s,
-            "<circle class=\"joint\" cx=\"{}\" cy=\"{}\" r=\"{JOINT}\">{}{}</circle>",
-            fmt_px(x),
-            fmt_px(y),
-            animate("cx", &cx),
-            animate("cy", &cy)
-        );
-    }
+    let all: Vec<Vec<Prim>> = frames.frames.iter().map(|f| prims(view, f)).collect();
+    write_prims(&mut s, &all);
     s.push_str("</g>");
     s
 }
 
 /// Every point of `g` [SI: m].
 pub fn all_points(g: &Geometry) -> impl Iterator<Item = &[f64; 2]> {
-    g.beams.iter().flatten().chain(&g.bodies).chain(&g.joints)
+    g.points()
 }

@@ -52,13 +52,19 @@ figure.mode { border: 1px solid #eee; padding: 0.3rem; }
 figure.mode svg { width: 100%; }
 figcaption { font-size: 0.9rem; text-align: center; }
 .undeformed polyline { fill: none; stroke: #bbb; stroke-width: 1.5; }
-.undeformed .body { fill: #ccc; }
+.undeformed .body { fill: #ccc; fill-opacity: 0.6; stroke: #bbb; }
 .undeformed .joint { fill: #fff; stroke: #999; }
+.undeformed .weld { fill: #999; }
 .deformed polyline { fill: none; stroke: var(--accent); stroke-width: 2.2; }
-.deformed .body { fill: var(--accent); }
+.deformed .body { fill: var(--accent); fill-opacity: 0.45; stroke: var(--accent); }
 .deformed .joint { fill: #fff; stroke: var(--accent); }
+.deformed .weld { fill: var(--accent); }
+.undeformed .link, .deformed .link { fill: none; stroke-width: 5; stroke-linecap: round; }
+.undeformed .spring, .deformed .spring { fill: none; stroke: #009e73; stroke-width: 1.2; }
+.undeformed .rail, .deformed .rail { fill: none; stroke: #555; stroke-width: 2; }
+.undeformed .ground, .deformed .ground { fill: #fff; stroke: #555; stroke-width: 1.2; }
+.undeformed .hatch, .deformed .hatch { fill: none; stroke: #777; stroke-width: 1; }
 .still { display: none; }
-.spring { stroke: #009e73; stroke-width: 1.5; stroke-dasharray: 4 3; }
 .contact { fill: #d55e00; }
 .load { stroke: #cc79a7; stroke-width: 2; }
 marker path { fill: #cc79a7; }

@@ -104,8 +104,8 @@ fn at(system: &System, p: Vector2<f64>) -> [f64; 2] {
     [p.x, p.y]
 }
 
-/// The assembly at `q`, to scale: beams, bodies and joints as the mode
-/// panels draw them, springs as dashed lines between their points,
+/// The assembly at `q`, to scale: beams, bodies, springs, joints and
+/// supports as the mode panels draw them,
 /// contacts as diamonds at their moving point, loads as arrows (length
 /// proportional to the force, the largest a tenth of the drawing) and
 /// sensors as rings; a scale bar of a round length in mm.
@@ -113,22 +113,6 @@ pub fn assembly_svg(system: &System, q: &[f64], geometry: &Geometry, width: f64)
     let view = View::fit(super::animate::all_points(geometry), width, 30.0);
     let mut s = view.open("assembly", &format!("the assembly {}", system.name));
     s.push_str(&super::animate::geometry_svg(&view, geometry, "undeformed"));
-    for f in &system.force_elements {
-        let pair = f.pair();
-        let (a, b) = (
-            view.px(at(system, pair.a.position(q))),
-            view.px(at(system, pair.b.position(q))),
-        );
-        let _ = write!(
-            s,
-            "<line class=\"spring\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"><title>{}</title></line>",
-            fmt_px(a.0),
-            fmt_px(a.1),
-            fmt_px(b.0),
-            fmt_px(b.1),
-            escape(f.label())
-        );
-    }
     for c in &system.contacts {
         let (x, y) = view.px(at(
             system,
