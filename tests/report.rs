@@ -330,3 +330,67 @@ fn the_damping_column_is_there_only_for_a_damped_model() {
     let zeta = format!("{:.3} %", 100.0 * (20.0 / (2.0 * w) + 1e-7 * w / 2.0));
     assert!(page.html.contains(&zeta), "{zeta}");
 }
+
+/// The cells of each `<table>` of `html`, row by row (header rows left out).
+fn tables(html: &str) -> Vec<Vec<Vec<String>>> {
+    html.split("<table>")
+        .skip(1)
+        .map(|t| {
+            let body = t.split("</table>").next().unwrap();
+            let body = body.split("<tbody>").nth(1).unwrap_or("");
+            body.split("<tr>")
+                .skip(1)
+                .map(|row| {
+                    row.split("<td")
+                        .skip(1)
+                        .map(|c| {
+                            let c = &c[c.find('>').unwrap() + 1..];
+                            c.split("</td>").next().unwrap().trim().to_string()
+                        })
+                        .collect()
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn no_section_or_table_column_is_empty() {
+    use ancf_modal::commands::report::{run, ReportRequest};
+    use ancf_modal::commands::ModelInput;
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    // The cantilever has no `reference`: no comparison with an experiment.
+    let cantilever = ModelInput::from_file(&root.join("models/cantilever.json")).unwrap();
+    let builtin = ModelInput::load(None).unwrap();
+    for (input, comparison) in [(cantilever, false), (builtin, true)] {
+        let html = run(&input, &ReportRequest::default()).unwrap().html;
+        assert_eq!(
+            html.contains("<section id=\"comparison\""),
+            comparison,
+            "{}",
+            input.model.name
+        );
+        for section in html.split("<section").skip(1) {
+            let section = section.split("</section>").next().unwrap();
+            let after_title = section.split("</h2>").nth(1).unwrap_or("");
+            assert!(
+                after_title.contains("<table")
+                    || after_title.contains("<svg")
+                    || after_title.contains("<li>")
+                    || after_title.contains("<p"),
+                "empty section: {}",
+                &section[..section.len().min(120)]
+            );
+        }
+        for t in tables(&html) {
+            let columns = t.iter().map(|r| r.len()).max().unwrap_or(0);
+            for c in 0..columns {
+                assert!(
+                    t.iter().any(|r| r.get(c).is_some_and(|v| !v.is_empty())),
+                    "{}: a table with an empty column {c}: {t:?}",
+                    input.model.name
+                );
+            }
+        }
+    }
+}

@@ -5,7 +5,9 @@
 //!   request of the page in Chromium's net log;
 //! - with the animations paused at phase 0 and at half the period
 //!   (`#freeze=`), the two screenshots differ inside the mode panels and
-//!   are pixel-identical outside them;
+//!   are pixel-identical outside them; phases of equal cos 2πP (0.25 and
+//!   0.75, 0.125 and 0.875) draw alike, and 0.25 (zero amplitude) differs
+//!   from 0 in every panel;
 //! - no horizontal overflow at 1280 px and at 400 px;
 //! - printed to PDF, with JavaScript and without, every section's title
 //!   and every mode's caption is on a page (pdftotext), and every page
@@ -250,6 +252,29 @@ fn the_report_works_in_a_real_browser() {
     assert!(
         changed.iter().all(|&c| c > 0),
         "pixels changed per panel: {changed:?}"
+    );
+    // `#freeze=P` is phase P of cos 2πP: the shapes at 0.25 and 0.75 (both
+    // at zero amplitude) and at 0.125 and 0.875 (both at cos π/4, frames of the
+    // animation) are drawn
+    // alike, pixel for pixel; 0.25 differs from 0 in every panel.
+    let (_, quarter) = browser.screenshot(&url(&page, "freeze=0.25"), 1280, height, "c.png");
+    let (_, three) = browser.screenshot(&url(&page, "freeze=0.75"), 1280, height, "d.png");
+    assert!(quarter == three, "freeze=0.25 and 0.75 draw differently");
+    let (_, tenth) = browser.screenshot(&url(&page, "freeze=0.125"), 1280, height, "e.png");
+    let (_, ninth) = browser.screenshot(&url(&page, "freeze=0.875"), 1280, height, "f.png");
+    assert!(tenth == ninth, "freeze=0.125 and 0.875 draw differently");
+    let mut flat = vec![0usize; wide.panels.len()];
+    for (i, (pa, pq)) in a.chunks(3).zip(quarter.chunks(3)).enumerate() {
+        if pa != pq {
+            let (x, y) = ((i as u32 % w) as f64 + 0.5, (i as u32 / w) as f64 + 0.5);
+            if let Some(k) = inside(x, y) {
+                flat[k] += 1;
+            }
+        }
+    }
+    assert!(
+        flat.iter().all(|&c| c > 0),
+        "freeze=0 against 0.25 per panel: {flat:?}"
     );
 
     // Printed, with and without JavaScript: every section's title and

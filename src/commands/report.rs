@@ -156,10 +156,8 @@ pub fn of_identified(
 ) -> Result<Report, CommandError> {
     let model = &input.model;
     let output = &id.document.output;
-    let mut sections = vec![
-        comparison_section(output, id.paper),
-        impulse_section(model, &id.impulse),
-    ];
+    let mut sections: Vec<_> = comparison_section(output, id.paper).into_iter().collect();
+    sections.push(impulse_section(model, &id.impulse));
     if let Some(c) = &output.calibration {
         sections.push(calibration_section(c));
     }

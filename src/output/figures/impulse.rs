@@ -5,10 +5,11 @@
 //!   acceleration [m/s²], shown with the SI prefix that makes the largest
 //!   value a number in 1…1000, e.g. mm/s or µm), over the applied half-sine
 //!   force pulse F(t) [N] in a second panel on the same time axis; below
-//!   them the same two panels zoomed on the first [`ZOOM_PERIODS`] periods
-//!   of the first bending mode (2.2 ms for the paper's assembly: the pulse
-//!   and the first oscillations, which a 100 ms record shows only as a
-//!   solid band).
+//!   them the same two panels zoomed on up to [`ZOOM_PERIODS`] periods of
+//!   the first bending mode from the blow (2.2 ms for the paper's assembly:
+//!   the pulse and the first oscillations, which a 100 ms record shows only
+//!   as a solid band), within a quarter of the record ([`zoom_window`]; its
+//!   title says what it covers).
 //! * [`spectrum_figure`] — the amplitude spectrum 20·log₁₀|X(f)| [dB re 1
 //!   signal unit] from 0 to the Nyquist frequency f_s/2 [SI: Hz, shown in
 //!   kHz]: the identified peaks marked and labelled with their frequency,
@@ -50,21 +51,50 @@ fn max_abs(v: &[f64]) -> f64 {
         .fold(0.0, |m, x| m.max(x.abs()))
 }
 
-/// Periods of the first bending mode the zoomed panels show.
+/// Most periods of the first bending mode the zoomed panels show.
 pub const ZOOM_PERIODS: f64 = 10.0;
+/// Longest zoom as a fraction of the record: a longer one shows nothing
+/// the whole record does not.
+const ZOOM_MOST: f64 = 0.25;
+/// Fewest whole periods worth a zoom.
+const ZOOM_FEWEST: f64 = 2.0;
 
-/// End of the zoom [SI: s]: [`ZOOM_PERIODS`] periods of the first bending
-/// eigenfrequency (2 % of the record without one), within the record.
-pub fn zoom_end(result: &ImpulseResult) -> f64 {
-    let t0 = result.time.first().copied().unwrap_or(0.0);
-    let t1 = result.time.last().copied().unwrap_or(0.0);
-    let span = match result.modal.first_bending() {
-        Some(m) if m.frequency_hz > 0.0 => ZOOM_PERIODS / m.frequency_hz,
-        _ => 0.02 * (t1 - t0),
+/// The zoomed window: its start and end [SI: s] and what it covers, as
+/// its title says it. Up to [`ZOOM_PERIODS`] whole periods of the first
+/// bending eigenfrequency, counted from the blow at t = 0 (or the record's
+/// start after it), within a quarter of the record; without a bending
+/// mode, 2 % of the record. `None` when fewer than two periods fit.
+pub fn zoom_window(result: &ImpulseResult) -> Option<(f64, f64, String)> {
+    let t0 = result.time.first().copied()?;
+    let t1 = result.time.last().copied()?;
+    let start = t0.max(0.0);
+    let record = t1 - t0;
+    let (span, what) = match result.modal.first_bending() {
+        Some(m) if m.frequency_hz > 0.0 => {
+            let fit = (ZOOM_MOST * record * m.frequency_hz).floor();
+            let periods = ZOOM_PERIODS.min(fit);
+            if periods < ZOOM_FEWEST {
+                return None;
+            }
+            (
+                periods / m.frequency_hz,
+                format!(
+                    "{periods:.0} periods of the first bending mode ({:.1} Hz)",
+                    m.frequency_hz
+                ),
+            )
+        }
+        _ => (0.02 * record, "2 % of the record".to_string()),
     };
-    // Counted from the blow at t = 0 when the record starts ahead of it
-    // (the pre-trigger of a sampled record).
-    (t0.max(0.0) + span).min(t1)
+    let end = start + span;
+    (end < t1 && end > t0).then(|| {
+        let title = format!(
+            "{:.3} to {:.3} ms: {what}, from the blow",
+            1e3 * t0,
+            1e3 * end
+        );
+        (t0, end, title)
+    })
 }
 
 /// The signal and force panels over the samples up to `end` (and one
@@ -93,7 +123,7 @@ fn response_panels(result: &ImpulseResult, end: f64) -> Vec<Panel> {
 }
 
 /// Sensor signal over the force pulse, against time in ms: the whole
-/// record, and below it the first milliseconds ([`zoom_end`]).
+/// record, and below it the window of [`zoom_window`].
 pub fn response_figure(model_name: &str, result: &ImpulseResult) -> Figure {
     let t1 = result.time.last().copied().unwrap_or(0.0);
     let mut whole = LineFigure::new(
@@ -102,19 +132,10 @@ pub fn response_figure(model_name: &str, result: &ImpulseResult) -> Figure {
         Scale::ms(),
     );
     whole.panels = response_panels(result, t1);
-    let end = zoom_end(result);
-    let t0 = result.time.first().copied().unwrap_or(0.0);
-    if !(end > t0 && end < t1) {
+    let Some((t0, end, title)) = zoom_window(result) else {
         return whole.into();
-    }
-    let mut zoom = LineFigure::new(
-        format!(
-            "First {:.2} ms: the pulse and the first oscillations",
-            1e3 * (end - t0)
-        ),
-        "Time",
-        Scale::ms(),
-    );
+    };
+    let mut zoom = LineFigure::new(title, "Time", Scale::ms());
     zoom.x_range = Some((t0, end));
     zoom.panels = response_panels(result, end);
     // The whole record's force panel above names the curve.

@@ -83,7 +83,9 @@ marker path { fill: #cc79a7; }
 "#;
 
 /// Mode picker, amplitude slider and play/pause; `#freeze=P` in the
-/// address pauses every animation at phase P of its period (a link to one
+/// address pauses every animation at phase P of its period, drawing each
+/// mode at cos 2πP of its amplitude (0 and 1 the largest deflection, 0.5
+/// the opposite one, 0.25 and 0.75 the undeformed pass; a link to one
 /// frame, and what the browser checks use), `#probe` appends the page's
 /// layout as JSON in a hidden `<pre id="probe">` (the browser checks read
 /// it from the DOM). Without script the page works the same, animated by
@@ -189,7 +191,7 @@ pub fn document(p: &Provenance, nav: &[(String, String)], modes: &[usize], body:
     for n in modes {
         let _ = write!(s, "<option value=\"{n}\">{n}</option>");
     }
-    s.push_str("</select></label><label>amplitude <input id=\"amplitude\" type=\"range\" min=\"0\" max=\"2\" step=\"0.05\" value=\"1\"></label><button id=\"play\" type=\"button\">Pause</button></div></header><main>");
+    s.push_str("</select></label><label>amplitude <input id=\"amplitude\" type=\"range\" min=\"0\" max=\"2\" step=\"0.05\" value=\"1\"></label><button id=\"play\" type=\"button\">Pause</button><span class=\"note\">A link ending in #freeze=P shows phase P: each shape at cos 2πP of its amplitude (0 the largest deflection, 0.25 none).</span></div></header><main>");
     s.push_str(body);
     let _ = writeln!(s, "</main><script>{script}</script></body></html>");
     s

@@ -146,8 +146,10 @@ pub fn switch_off_section(r: &SwitchOffResult) -> Section {
 
 /// The first bending frequency against the experiment (the paper's Table 3
 /// for the paper's assembly, else the model's reference or the measured
-/// records), as `identify` prints it.
-pub fn comparison_section(output: &IdentifyOutput, paper: bool) -> Section {
+/// records), as `identify` prints it; `None` without an experiment (the
+/// impulse section holds the frequencies then).
+pub fn comparison_section(output: &IdentifyOutput, paper: bool) -> Option<Section> {
+    output.experiment_hz?;
     let pct = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:+.2} %"));
     let rows = output
         .table
@@ -163,15 +165,10 @@ pub fn comparison_section(output: &IdentifyOutput, paper: bool) -> Section {
         })
         .collect();
     let mut notes = vec![format!("Supports: {}.", output.supports)];
-    match (&output.reference_source, output.experiment_hz) {
-        (Some(source), Some(_)) => notes.push(format!("Experiment: {source}.")),
-        (_, None) => notes.push(
-            "No experiment to compare with: the model has no `reference` and no measured records were given."
-                .into(),
-        ),
-        _ => {}
+    if let Some(source) = &output.reference_source {
+        notes.push(format!("Experiment: {}.", source.trim_end_matches('.')));
     }
-    Section {
+    Some(Section {
         id: "comparison".into(),
         title: if paper {
             "First bending frequency (the paper's Table 3)".into()
@@ -191,7 +188,7 @@ pub fn comparison_section(output: &IdentifyOutput, paper: bool) -> Section {
         }],
         preformatted: Vec::new(),
         figures: Vec::new(),
-    }
+    })
 }
 
 /// The equivalent-geometry fit: what was calibrated, to what, and the
