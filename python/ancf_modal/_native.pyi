@@ -19,6 +19,7 @@ __all__ = [
     "ModalResult",
     "Model",
     "ModelError",
+    "ModelWarning",
     "StaticResult",
     "SweepResult",
     "SwitchOffResult",
@@ -40,6 +41,13 @@ class AnalysisError(RuntimeError):
     """An analysis that failed on a valid model: a solver failure, a loss of
     stability, an internal error."""
 
+class ModelWarning(UserWarning):
+    """A warning of the model or of a run (the command line's ``warning:``
+    lines): sizes that look like other units, a state that is not an
+    equilibrium, beyond beam theory, a run that ended early, a note on
+    measured records. Raised at the call that gives it (``Model.from_json``
+    and ``with_params`` for the model's, the analysis for its own)."""
+
 @final
 class Model:
     """A model: an assembly of ANCF beams, rigid bodies and point masses with
@@ -50,7 +58,8 @@ class Model:
         """Reads a model file (a path) or JSON text (a str starting with ``{``).
 
         Raises ModelError with the command line's message for a file that
-        cannot be read, malformed JSON or an invalid value."""
+        cannot be read, malformed JSON or an invalid value; a
+        ``ModelWarning`` for each size that looks like another unit."""
     @staticmethod
     def builtin(name: str = "rcbo_free_free") -> "Model":
         """A shipped model by the file stem of ``models/`` (see
@@ -273,7 +282,7 @@ class ModalResult:
         ``unbalanced_n`` [N], ``force_scale_n`` [N], ``tolerance``, ``at``
         (the coordinate), ``constraint_violation``, ``free_fall``. A state
         that is not one, or an unstable one, also gives a
-        ``RuntimeWarning`` when ``Model.modal`` returns."""
+        ``ModelWarning`` when ``Model.modal`` returns."""
     @property
     def solver(self) -> str:
         """``dense`` or ``sparse shift-invert Lanczos``."""
@@ -534,7 +543,7 @@ class SwitchOffResult:
         """The time to the distance at half the step [s]."""
     @property
     def warnings(self) -> List[str]:
-        """Things the reader must know (also raised as ``RuntimeWarning``)."""
+        """Things the reader must know (also raised as ``ModelWarning``)."""
     def to_dict(self) -> Dict[str, Any]:
         """The library's JSON document (``switch-off --json``)."""
     def write_csv(self, path: Union[str, "os.PathLike[str]"]) -> None:

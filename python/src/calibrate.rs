@@ -111,7 +111,7 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_, '_>) -> PyResult<PyCa
     };
     let input = model.input();
     let run = compute(py, move || calibrate(&input, &request).map_err(failure))?;
-    crate::warn_runtime(py, run.document.own_warnings())?;
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyCalibrationResult {
         source: model.source.clone(),
         run,

@@ -41,6 +41,7 @@ pub fn run(
     let run = compute(py, move || {
         convergence(&input, &request).map_err(Failure::from)
     })?;
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyConvergenceResult { run })
 }
 

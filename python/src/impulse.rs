@@ -61,7 +61,7 @@ pub fn run(model: &PyModel, py: Python<'_>, e: Experiment<'_>) -> PyResult<PyImp
     let request = e.request()?;
     let input = model.input();
     let run = compute(py, move || impulse(&input, &request).map_err(Failure::from))?;
-    crate::warn_runtime(py, run.document.own_warnings())?;
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyImpulseResult { run })
 }
 

@@ -47,9 +47,9 @@ pub fn run(
     let input = model.input();
     let run = compute(py, move || modal(&input, &request).map_err(Failure::from))?;
     // The analysis's own warnings (not an equilibrium, unstable, beam
-    // theory) as Python warnings (`RuntimeWarning`); the model's were
+    // theory) as Python warnings (`ModelWarning`); the model's were
     // given when it was read. `to_dict()["warnings"]` lists them all.
-    crate::warn_runtime(py, run.document.own_warnings())?;
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyModalResult {
         source: model.label(),
         run,

@@ -20,6 +20,7 @@ pub fn run(model: &PyModel, py: Python<'_>, load_scale: f64) -> PyResult<PyStati
     let input = model.input();
     let request = StaticRequest { load_scale };
     let run = compute(py, move || statics(&input, &request).map_err(Failure::from))?;
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyStaticResult { run })
 }
 

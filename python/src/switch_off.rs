@@ -54,7 +54,7 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_>) -> PyResult<PySwitch
         .iter()
         .map(|w| format!("{label}: {w}"))
         .collect();
-    crate::warn_runtime(py, &own)?;
+    crate::warn(py, &own)?;
     Ok(PySwitchOffResult { run })
 }
 

@@ -22,7 +22,7 @@ pub fn run(
     let run = compute(py, move || {
         transient(&input, &request).map_err(Failure::from)
     })?;
-    crate::warn_runtime(py, run.document.own_warnings())?;
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyTransientResult { run })
 }
 

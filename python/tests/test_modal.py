@@ -238,7 +238,7 @@ def test_a_reference_that_is_no_equilibrium_is_said_and_warned(cli):
     # equilibrium (as the command line says); its negative eigenvalue is
     # never reported at 0 Hz, and the warning arrives as a Python warning.
     model = ancf_modal.Model.builtin("rcbo_switch_off")
-    with pytest.warns(RuntimeWarning, match="not an equilibrium"):
+    with pytest.warns(ancf_modal.ModelWarning, match="not an equilibrium"):
         result = model.modal(modes=6)
     doc = cli.json("modal", "models/rcbo_switch_off.json", "--modes", "6")
     assert result.equilibrium == doc["equilibrium"]
@@ -258,7 +258,7 @@ def test_a_reference_that_is_no_equilibrium_is_said_and_warned(cli):
 
 def test_prestressed_modes_are_paired_by_shape(cli):
     model = ancf_modal.Model.builtin("rcbo_switch_off")
-    with pytest.warns(RuntimeWarning, match="unstressed modes' state"):
+    with pytest.warns(ancf_modal.ModelWarning, match="unstressed modes' state"):
         result = model.modal(prestress=True, modes=12)
     doc = result.to_dict()
     assert doc["reference_equilibrium"]["balanced"] is False

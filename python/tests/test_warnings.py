@@ -1,11 +1,14 @@
 """Warnings reach Python twice, as the command line gives them: raised with
-``warnings.warn`` (a ``UserWarning``) and kept in the result documents'
-``warnings`` (``to_dict()``), the same text as the command line's
-``warning:`` lines. The cases: a model whose part sizes disagree by orders
-of magnitude (a 150 µm arm typed as 150 among micrometre parts), and the
-UFF datasets ``frf_files`` skipped (Simcenter Testlab's 1858 qualifiers
-beside an FRF; pyuff's sample ``tests/data/pyuff/1858.uff``, MIT)."""
+``warnings.warn`` as ``ancf_modal.ModelWarning`` (a ``UserWarning``) at the
+user's call that gave them and kept in the result documents' ``warnings``
+(``to_dict()``), the same text as the command line's ``warning:`` lines.
+The cases: a model whose part sizes disagree by orders of magnitude (a 150
+µm arm typed as 150 among micrometre parts), a steel cantilever whose
+section height is typed in metres where millimetres were meant, and the UFF
+datasets ``frf_files`` skipped (Simcenter Testlab's 1858 qualifiers beside
+an FRF; pyuff's sample ``tests/data/pyuff/1858.uff``, MIT)."""
 
+import inspect
 import json
 import math
 import warnings
@@ -56,7 +59,7 @@ def test_consistent_sizes_raise_no_warning():
 def test_sizes_that_disagree_are_python_warnings_and_in_the_document(tmp_path, cli):
     path = tmp_path / "micro.json"
     path.write_text(json.dumps(micro(150.0)))
-    with pytest.warns(UserWarning) as record:
+    with pytest.warns(ancf_modal.ModelWarning) as record:
         model = ancf_modal.Model.from_json(str(path))
     texts = [str(w.message) for w in record]
     assert len(texts) == 2, texts
@@ -70,7 +73,7 @@ def test_sizes_that_disagree_are_python_warnings_and_in_the_document(tmp_path, c
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         fine = ancf_modal.Model.from_json(json.dumps(micro(150e-6)))
-    with pytest.warns(UserWarning, match="beam `arm`"):
+    with pytest.warns(ancf_modal.ModelWarning, match="beam `arm`"):
         fine.with_params({"beams[arm].length": 150.0})
 
 
@@ -100,7 +103,7 @@ def test_skipped_uff_datasets_are_a_python_warning(tmp_path, cli):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         a = ancf_modal.frf_files([alone])
-    with pytest.warns(UserWarning) as record:
+    with pytest.warns(ancf_modal.ModelWarning) as record:
         b = ancf_modal.frf_files([mixed])
     texts = [str(w.message) for w in record]
     assert len(texts) == 1 and texts[0].startswith(f"{mixed}: 2 UFF datasets"), texts
@@ -110,3 +113,54 @@ def test_skipped_uff_datasets_are_a_python_warning(tmp_path, cli):
     assert da.pop("files") == [str(alone)] and db.pop("files") == [str(mixed)]
     assert da == db, "the FRF reads as alone"
     assert cli.json("frf", str(mixed))["warnings"] == texts
+
+
+def test_one_category_a_user_warning():
+    assert issubclass(ancf_modal.ModelWarning, UserWarning)
+    assert ancf_modal.ModelWarning.__module__ == "ancf_modal"
+    assert not issubclass(ancf_modal.ModelWarning, RuntimeWarning)
+
+
+def steel_cantilever(height):
+    """A steel cantilever 40 mm long, 5 mm wide, clamped at s = 0; `height`
+    [m] is the section's bending-plane size."""
+    return {
+        "name": "steel cantilever",
+        "beams": [
+            {
+                "id": "blade",
+                "start": [0.0, 0.0],
+                "angle_deg": 0.0,
+                "length": 40e-3,
+                "elements": 8,
+                "section": {"height": height, "width": 5e-3},
+                "material": {"young": 210e9, "density": 7850.0},
+            }
+        ],
+        "joints": [
+            {"id": "clamp", "type": "weld", "a": {"ground": [0.0, 0.0]},
+             "b": {"beam": "blade", "s": 0.0}}
+        ],
+    }
+
+
+def test_a_warning_points_at_the_callers_line(tmp_path):
+    # The record's file and line are the call in this file (stack level:
+    # the frame that called the extension), not the package's internals.
+    path = tmp_path / "steel.json"
+    path.write_text(json.dumps(steel_cantilever(0.5)))
+    calls = {}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        calls["from_json"] = inspect.currentframe().f_lineno + 1
+        model = ancf_modal.Model.from_json(str(path))
+        calls["modal"] = inspect.currentframe().f_lineno + 1
+        model.modal(modes=12)
+        calls["with_params"] = inspect.currentframe().f_lineno + 1
+        model.with_params({"beams[blade].section.width": 6e-3})
+    assert len(caught) == 3, [str(w.message) for w in caught]
+    assert [(w.filename, w.lineno) for w in caught] == [(__file__, n) for n in calls.values()]
+    assert all(w.category is ancf_modal.ModelWarning for w in caught)
+    texts = [str(w.message) for w in caught]
+    assert "height/length" in texts[0] and "height/length" in texts[2]
+    assert "Timoshenko" in texts[1]
