@@ -11,7 +11,8 @@ Units are SI throughout (m, kg, s, N, Pa), frequencies in Hz. Errors are
 ``AnalysisError`` (a ``RuntimeError``: the analysis failed), with the
 command line's one-line message. Each of the command line's ``warning:``
 lines is a ``ModelWarning`` (a ``UserWarning``), raised at the call that
-gave it (the model's when it is read, a run's own when it returns).
+gave it (the model's when it is read, a run's own when it returns) and
+listed at the end of the model's and the result's ``repr``.
 """
 
 from ._native import (

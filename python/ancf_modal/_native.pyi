@@ -46,12 +46,14 @@ class ModelWarning(UserWarning):
     lines): sizes that look like other units, a state that is not an
     equilibrium, beyond beam theory, a run that ended early, a note on
     measured records. Raised at the call that gives it (``Model.from_json``
-    and ``with_params`` for the model's, the analysis for its own)."""
+    and ``with_params`` for the model's, the analysis for its own) and
+    listed at the end of the ``repr``."""
 
 @final
 class Model:
     """A model: an assembly of ANCF beams, rigid bodies and point masses with
-    joints, springs, loads and sensors (the JSON model file, SI units)."""
+    joints, springs, loads and sensors (the JSON model file, SI units);
+    ``repr`` names it and lists its unit warnings as ``warning:`` lines."""
 
     @staticmethod
     def from_json(path_or_text: Union[str, "os.PathLike[str]"]) -> "Model":
@@ -243,7 +245,8 @@ class Model:
 
 @final
 class ModalResult:
-    """The result of ``Model.modal``; ``repr`` is the command line's table."""
+    """The result of ``Model.modal``; ``repr`` is the command line's table
+    and its ``warning:`` lines."""
 
     @property
     def frequencies_hz(self) -> npt.NDArray[np.float64]:
@@ -301,7 +304,8 @@ class ModalResult:
 
 @final
 class ImpulseResult:
-    """The result of ``Model.impulse``; ``repr`` is the command line's report."""
+    """The result of ``Model.impulse``; ``repr`` is the command line's report
+    and its ``warning:`` lines."""
 
     @property
     def time(self) -> npt.NDArray[np.float64]:
@@ -344,7 +348,8 @@ class ImpulseResult:
 
 @final
 class StaticResult:
-    """The result of ``Model.static``; ``repr`` is the command line's table."""
+    """The result of ``Model.static``; ``repr`` is the command line's table
+    and its ``warning:`` lines."""
 
     @property
     def q(self) -> npt.NDArray[np.float64]:
@@ -363,7 +368,8 @@ class StaticResult:
 
 @final
 class CalibrationResult:
-    """The result of ``Model.calibrate``; ``repr`` is the command line's table."""
+    """The result of ``Model.calibrate``; ``repr`` is the command line's table
+    and its ``warning:`` lines."""
 
     @property
     def parameters(self) -> Dict[str, float]:
@@ -390,7 +396,8 @@ class CalibrationResult:
 
 @final
 class ConvergenceResult:
-    """The result of ``Model.convergence``; ``repr`` is the command line's table."""
+    """The result of ``Model.convergence``; ``repr`` is the command line's table
+    and its ``warning:`` lines."""
 
     @property
     def elements(self) -> List[int]:
@@ -415,7 +422,7 @@ class ConvergenceResult:
 @final
 class FrfResult:
     """Measured FRFs and the modes fitted to them; ``repr`` is the command
-    line's table."""
+    line's table and its ``warning:`` lines."""
 
     @property
     def freq(self) -> npt.NDArray[np.float64]:
@@ -466,7 +473,7 @@ class FrfResult:
 @final
 class IdentifyResult:
     """The result of ``Model.identify``; ``repr`` is the command line's
-    report."""
+    report and its ``warning:`` lines."""
 
     @property
     def experiment_hz(self) -> Optional[float]:
@@ -493,7 +500,8 @@ class IdentifyResult:
 
 @final
 class SweepResult:
-    """The result of ``sweep``; ``repr`` is the command line's table."""
+    """The result of ``sweep``; ``repr`` is the command line's table
+    and its ``warning:`` lines."""
 
     @property
     def names(self) -> List[str]:
@@ -518,7 +526,8 @@ class SweepResult:
 
 @final
 class SwitchOffResult:
-    """The result of ``Model.switch_off``; ``repr`` is the command line's report."""
+    """The result of ``Model.switch_off``; ``repr`` is the command line's report
+    and its ``warning:`` lines."""
 
     @property
     def time_to_distance_s(self) -> Optional[float]:
@@ -555,7 +564,8 @@ class SwitchOffResult:
 
 @final
 class TransientResult:
-    """The result of ``Model.transient``; ``repr`` is the command line's report."""
+    """The result of ``Model.transient``; ``repr`` is the command line's report
+    and its ``warning:`` lines."""
 
     @property
     def time(self) -> npt.NDArray[np.float64]:

@@ -150,7 +150,9 @@ impl PyIdentifyResult {
         })
     }
 
+    /// The command line's report, then its `warning:` lines (the run's
+    /// warnings, as `to_dict()["warnings"]`).
     fn __repr__(&self) -> String {
-        self.run.text(None)
+        crate::with_warnings(self.run.text(None), &self.run.document.warnings)
     }
 }

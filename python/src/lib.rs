@@ -39,6 +39,21 @@ pub(crate) fn warn(py: Python<'_>, texts: &[String]) -> PyResult<()> {
     Ok(())
 }
 
+/// A result's `repr`: `text` (the command line's report) followed by one
+/// `warning: …` line per warning of the run, as the command line's
+/// terminal shows them after the report; `text` alone without warnings.
+pub(crate) fn with_warnings(text: String, warnings: &[String]) -> String {
+    use std::fmt::Write;
+    let mut s = text;
+    if !warnings.is_empty() && !s.is_empty() && !s.ends_with('\n') {
+        s.push('\n');
+    }
+    for w in warnings {
+        let _ = writeln!(s, "warning: {w}");
+    }
+    s
+}
+
 /// A JSON document as Python objects (dicts, lists, floats …): what every
 /// result's `to_dict()` returns.
 pub(crate) fn json_to_python<'py>(

@@ -582,11 +582,16 @@ impl PyModel {
         crate::transient::run(self, py, r)
     }
 
+    /// `<ancf_modal.Model "name" from SOURCE>`, then one `warning: …` line
+    /// per unit warning of the model.
     fn __repr__(&self) -> String {
-        format!(
+        let head = format!(
             "<ancf_modal.Model {:?} from {}>",
             self.model.name,
             self.label()
-        )
+        );
+        crate::with_warnings(head, &self.unit_warnings())
+            .trim_end()
+            .to_string()
     }
 }
