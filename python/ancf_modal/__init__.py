@@ -9,7 +9,10 @@ whose flexible parts are ANCF beams, from Python: numpy in and out.
 Units are SI throughout (m, kg, s, N, Pa), frequencies in Hz. Errors are
 ``ModelError`` (a ``ValueError``: bad model, parameter or argument) and
 ``AnalysisError`` (a ``RuntimeError``: the analysis failed), with the
-command line's one-line message.
+command line's one-line message. Each of the command line's ``warning:``
+lines is a ``ModelWarning`` (a ``UserWarning``), raised at the call that
+gave it (the model's when it is read, a run's own when it returns) and
+listed at the end of the model's and the result's ``repr``.
 """
 
 from ._native import (
@@ -22,6 +25,7 @@ from ._native import (
     ModalResult,
     Model,
     ModelError,
+    ModelWarning,
     StaticResult,
     SweepResult,
     SwitchOffResult,
@@ -43,6 +47,7 @@ __all__ = [
     "ModalResult",
     "Model",
     "ModelError",
+    "ModelWarning",
     "StaticResult",
     "SweepResult",
     "SwitchOffResult",

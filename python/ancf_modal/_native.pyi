@@ -19,6 +19,7 @@ __all__ = [
     "ModalResult",
     "Model",
     "ModelError",
+    "ModelWarning",
     "StaticResult",
     "SweepResult",
     "SwitchOffResult",
@@ -40,17 +41,27 @@ class AnalysisError(RuntimeError):
     """An analysis that failed on a valid model: a solver failure, a loss of
     stability, an internal error."""
 
+class ModelWarning(UserWarning):
+    """A warning of the model or of a run (the command line's ``warning:``
+    lines): sizes that look like other units, a state that is not an
+    equilibrium, beyond beam theory, a run that ended early, a note on
+    measured records. Raised at the call that gives it (``Model.from_json``
+    and ``with_params`` for the model's, the analysis for its own) and
+    listed at the end of the ``repr``."""
+
 @final
 class Model:
     """A model: an assembly of ANCF beams, rigid bodies and point masses with
-    joints, springs, loads and sensors (the JSON model file, SI units)."""
+    joints, springs, loads and sensors (the JSON model file, SI units);
+    ``repr`` names it and lists its unit warnings as ``warning:`` lines."""
 
     @staticmethod
     def from_json(path_or_text: Union[str, "os.PathLike[str]"]) -> "Model":
         """Reads a model file (a path) or JSON text (a str starting with ``{``).
 
         Raises ModelError with the command line's message for a file that
-        cannot be read, malformed JSON or an invalid value."""
+        cannot be read, malformed JSON or an invalid value; a
+        ``ModelWarning`` for each size that looks like another unit."""
     @staticmethod
     def builtin(name: str = "rcbo_free_free") -> "Model":
         """A shipped model by the file stem of ``models/`` (see
@@ -234,7 +245,8 @@ class Model:
 
 @final
 class ModalResult:
-    """The result of ``Model.modal``; ``repr`` is the command line's table."""
+    """The result of ``Model.modal``; ``repr`` is the command line's table
+    and its ``warning:`` lines."""
 
     @property
     def frequencies_hz(self) -> npt.NDArray[np.float64]:
@@ -273,7 +285,7 @@ class ModalResult:
         ``unbalanced_n`` [N], ``force_scale_n`` [N], ``tolerance``, ``at``
         (the coordinate), ``constraint_violation``, ``free_fall``. A state
         that is not one, or an unstable one, also gives a
-        ``RuntimeWarning`` when ``Model.modal`` returns."""
+        ``ModelWarning`` when ``Model.modal`` returns."""
     @property
     def solver(self) -> str:
         """``dense`` or ``sparse shift-invert Lanczos``."""
@@ -292,7 +304,8 @@ class ModalResult:
 
 @final
 class ImpulseResult:
-    """The result of ``Model.impulse``; ``repr`` is the command line's report."""
+    """The result of ``Model.impulse``; ``repr`` is the command line's report
+    and its ``warning:`` lines."""
 
     @property
     def time(self) -> npt.NDArray[np.float64]:
@@ -335,7 +348,8 @@ class ImpulseResult:
 
 @final
 class StaticResult:
-    """The result of ``Model.static``; ``repr`` is the command line's table."""
+    """The result of ``Model.static``; ``repr`` is the command line's table
+    and its ``warning:`` lines."""
 
     @property
     def q(self) -> npt.NDArray[np.float64]:
@@ -354,7 +368,8 @@ class StaticResult:
 
 @final
 class CalibrationResult:
-    """The result of ``Model.calibrate``; ``repr`` is the command line's table."""
+    """The result of ``Model.calibrate``; ``repr`` is the command line's table
+    and its ``warning:`` lines."""
 
     @property
     def parameters(self) -> Dict[str, float]:
@@ -381,7 +396,8 @@ class CalibrationResult:
 
 @final
 class ConvergenceResult:
-    """The result of ``Model.convergence``; ``repr`` is the command line's table."""
+    """The result of ``Model.convergence``; ``repr`` is the command line's table
+    and its ``warning:`` lines."""
 
     @property
     def elements(self) -> List[int]:
@@ -406,7 +422,7 @@ class ConvergenceResult:
 @final
 class FrfResult:
     """Measured FRFs and the modes fitted to them; ``repr`` is the command
-    line's table."""
+    line's table and its ``warning:`` lines."""
 
     @property
     def freq(self) -> npt.NDArray[np.float64]:
@@ -457,7 +473,7 @@ class FrfResult:
 @final
 class IdentifyResult:
     """The result of ``Model.identify``; ``repr`` is the command line's
-    report."""
+    report and its ``warning:`` lines."""
 
     @property
     def experiment_hz(self) -> Optional[float]:
@@ -484,7 +500,8 @@ class IdentifyResult:
 
 @final
 class SweepResult:
-    """The result of ``sweep``; ``repr`` is the command line's table."""
+    """The result of ``sweep``; ``repr`` is the command line's table
+    and its ``warning:`` lines."""
 
     @property
     def names(self) -> List[str]:
@@ -509,7 +526,8 @@ class SweepResult:
 
 @final
 class SwitchOffResult:
-    """The result of ``Model.switch_off``; ``repr`` is the command line's report."""
+    """The result of ``Model.switch_off``; ``repr`` is the command line's report
+    and its ``warning:`` lines."""
 
     @property
     def time_to_distance_s(self) -> Optional[float]:
@@ -534,7 +552,7 @@ class SwitchOffResult:
         """The time to the distance at half the step [s]."""
     @property
     def warnings(self) -> List[str]:
-        """Things the reader must know (also raised as ``RuntimeWarning``)."""
+        """Things the reader must know (also raised as ``ModelWarning``)."""
     def to_dict(self) -> Dict[str, Any]:
         """The library's JSON document (``switch-off --json``)."""
     def write_csv(self, path: Union[str, "os.PathLike[str]"]) -> None:
@@ -546,7 +564,8 @@ class SwitchOffResult:
 
 @final
 class TransientResult:
-    """The result of ``Model.transient``; ``repr`` is the command line's report."""
+    """The result of ``Model.transient``; ``repr`` is the command line's report
+    and its ``warning:`` lines."""
 
     @property
     def time(self) -> npt.NDArray[np.float64]:

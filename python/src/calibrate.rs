@@ -111,7 +111,7 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_, '_>) -> PyResult<PyCa
     };
     let input = model.input();
     let run = compute(py, move || calibrate(&input, &request).map_err(failure))?;
-    crate::warn_runtime(py, run.document.own_warnings())?;
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyCalibrationResult {
         source: model.source.clone(),
         run,
@@ -211,7 +211,9 @@ impl PyCalibrationResult {
         compute(py, || self.run.write_plot(&path).map_err(Failure::from))
     }
 
+    /// The command line's report, then its `warning:` lines (the run's
+    /// warnings, as `to_dict()["warnings"]`).
     fn __repr__(&self) -> String {
-        self.run.text()
+        crate::with_warnings(self.run.text(), &self.run.document.warnings)
     }
 }

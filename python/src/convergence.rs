@@ -41,6 +41,7 @@ pub fn run(
     let run = compute(py, move || {
         convergence(&input, &request).map_err(Failure::from)
     })?;
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyConvergenceResult { run })
 }
 
@@ -106,7 +107,9 @@ impl PyConvergenceResult {
         compute(py, || self.run.write_plot(&path).map_err(Failure::from))
     }
 
+    /// The command line's report, then its `warning:` lines (the run's
+    /// warnings, as `to_dict()["warnings"]`).
     fn __repr__(&self) -> String {
-        self.run.text()
+        crate::with_warnings(self.run.text(), &self.run.document.warnings)
     }
 }

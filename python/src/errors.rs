@@ -1,7 +1,8 @@
 //! Library errors as Python exceptions with the command line's one-line
-//! message, and the GIL-free, panic-safe way every computation runs.
+//! message, its warnings' category, and the GIL-free, panic-safe way every
+//! computation runs.
 
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyRuntimeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 
 pyo3::create_exception!(
@@ -15,6 +16,12 @@ pyo3::create_exception!(
     AnalysisError,
     PyRuntimeError,
     "An analysis that failed on a valid model: a solver failure, a loss of stability, an internal error."
+);
+pyo3::create_exception!(
+    ancf_modal,
+    ModelWarning,
+    PyUserWarning,
+    "A warning of the model or of a run (the command line's `warning:` lines): sizes that look like other units, a state that is not an equilibrium, beyond beam theory, a run that ended early, a note on measured records."
 );
 
 /// Why a computation failed, decided without the GIL and turned into a

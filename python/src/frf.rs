@@ -98,14 +98,14 @@ fn rows(name: &str, a: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<f64>>> {
 }
 
 /// Runs the request (with the GIL released) and raises the records' notes
-/// as Python `UserWarning`s (the command line's `warning:` lines; the
-/// model's were raised when it was read).
+/// as `ModelWarning`s (the command line's `warning:` lines; the model's
+/// were raised when it was read).
 fn run(py: Python<'_>, model: Option<&PyModel>, request: FrfRequest) -> PyResult<PyFrfResult> {
     let input = model.map(PyModel::input);
     let run = compute(py, move || {
         frf_run(input.as_ref(), &request).map_err(Failure::from)
     })?;
-    crate::warn_all(py, run.document.own_warnings())?;
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyFrfResult { run })
 }
 
@@ -302,7 +302,9 @@ impl PyFrfResult {
         compute(py, || self.run.write_plot(&path).map_err(Failure::from))
     }
 
+    /// The command line's report, then its `warning:` lines (the run's
+    /// warnings, as `to_dict()["warnings"]`).
     fn __repr__(&self) -> String {
-        self.run.text()
+        crate::with_warnings(self.run.text(), &self.run.document.warnings)
     }
 }

@@ -50,24 +50,15 @@ impl Request<'_> {
     }
 }
 
-/// Raises a run's own warnings on `model`: the analyses' (named by the
-/// model's source) as `modal` raises them (RuntimeWarning), the measured
-/// records' notes (named by their files) as `frf_files` raises them
-/// (UserWarning). The model's were raised when it was read.
-pub fn warn_own(py: Python<'_>, model: &PyModel, own: &[String]) -> PyResult<()> {
-    let prefix = format!("{}: ", model.label());
-    let (analyses, notes): (Vec<String>, Vec<String>) =
-        own.iter().cloned().partition(|w| w.starts_with(&prefix));
-    crate::warn_runtime(py, &analyses)?;
-    crate::warn_all(py, &notes)
-}
-
 /// `identify` on `model`.
 pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_>) -> PyResult<PyIdentifyResult> {
     let request = r.into_request()?;
     let input = model.input();
     let run = compute(py, || identify(&input, &request).map_err(Failure::from))?;
-    warn_own(py, model, run.document.own_warnings())?;
+    // The run's own warnings: the analyses' (named by the model's source)
+    // and the measured records' notes (named by their files); the model's
+    // were raised when it was read.
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyIdentifyResult { input, run })
 }
 
@@ -159,7 +150,9 @@ impl PyIdentifyResult {
         })
     }
 
+    /// The command line's report, then its `warning:` lines (the run's
+    /// warnings, as `to_dict()["warnings"]`).
     fn __repr__(&self) -> String {
-        self.run.text(None)
+        crate::with_warnings(self.run.text(None), &self.run.document.warnings)
     }
 }

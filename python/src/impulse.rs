@@ -61,7 +61,7 @@ pub fn run(model: &PyModel, py: Python<'_>, e: Experiment<'_>) -> PyResult<PyImp
     let request = e.request()?;
     let input = model.input();
     let run = compute(py, move || impulse(&input, &request).map_err(Failure::from))?;
-    crate::warn_runtime(py, run.document.own_warnings())?;
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyImpulseResult { run })
 }
 
@@ -160,7 +160,9 @@ impl PyImpulseResult {
         compute(py, || self.run.write_plot(&path).map_err(Failure::from))
     }
 
+    /// The command line's report, then its `warning:` lines (the run's
+    /// warnings, as `to_dict()["warnings"]`).
     fn __repr__(&self) -> String {
-        self.run.text()
+        crate::with_warnings(self.run.text(), &self.run.document.warnings)
     }
 }

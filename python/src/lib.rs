@@ -2,7 +2,7 @@
 //! over the library (convert → call → wrap). Every computation runs with the
 //! GIL released ([`errors::compute`]); library errors arrive as
 //! `ancf_modal.ModelError` / `ancf_modal.AnalysisError` with the command
-//! line's one-line message.
+//! line's one-line message, warnings as `ancf_modal.ModelWarning`.
 
 mod builtin;
 mod calibrate;
@@ -22,35 +22,36 @@ mod transient;
 
 use pyo3::prelude::*;
 
-/// Raises each of `texts` as a Python `UserWarning` (the command line's
-/// `warning:` lines about the model).
-pub(crate) fn warn_all(py: Python<'_>, texts: &[String]) -> PyResult<()> {
-    warn_as(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), texts)
-}
-
-/// Raises each of `texts` as a Python `RuntimeWarning` (an analysis's own
-/// warnings: not an equilibrium, unstable, beam theory).
-pub(crate) fn warn_runtime(py: Python<'_>, texts: &[String]) -> PyResult<()> {
-    warn_as(
-        py,
-        &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
-        texts,
-    )
-}
-
-fn warn_as(
-    py: Python<'_>,
-    category: &Bound<'_, pyo3::types::PyType>,
-    texts: &[String],
-) -> PyResult<()> {
+/// Raises each of `texts` as `ancf_modal.ModelWarning` (a `UserWarning`):
+/// the command line's `warning:` lines, the model's when it is read and a
+/// run's own when the call that ran it returns. Stack level 1 is the
+/// Python frame that called the extension (the methods are native): the
+/// warning points at the user's call.
+pub(crate) fn warn(py: Python<'_>, texts: &[String]) -> PyResult<()> {
+    let category = py.get_type::<errors::ModelWarning>();
     for t in texts {
         // A C string ends at a NUL: one inside the text (an id may hold
         // `\u0000`) is written out.
         let message = std::ffi::CString::new(t.replace('\0', "\\0"))
             .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
-        PyErr::warn(py, category, &message, 1)?;
+        PyErr::warn(py, &category, &message, 1)?;
     }
     Ok(())
+}
+
+/// A result's `repr`: `text` (the command line's report) followed by one
+/// `warning: …` line per warning of the run, as the command line's
+/// terminal shows them after the report; `text` alone without warnings.
+pub(crate) fn with_warnings(text: String, warnings: &[String]) -> String {
+    use std::fmt::Write;
+    let mut s = text;
+    if !warnings.is_empty() && !s.is_empty() && !s.ends_with('\n') {
+        s.push('\n');
+    }
+    for w in warnings {
+        let _ = writeln!(s, "warning: {w}");
+    }
+    s
 }
 
 /// A JSON document as Python objects (dicts, lists, floats …): what every
@@ -77,6 +78,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", ancf::results::provenance::tool_version())?;
     m.add("ModelError", py.get_type::<errors::ModelError>())?;
     m.add("AnalysisError", py.get_type::<errors::AnalysisError>())?;
+    m.add("ModelWarning", py.get_type::<errors::ModelWarning>())?;
     m.add_class::<model::PyModel>()?;
     m.add_class::<modal::PyModalResult>()?;
     m.add_class::<frf::PyFrfResult>()?;

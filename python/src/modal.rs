@@ -47,9 +47,10 @@ pub fn run(
     let input = model.input();
     let run = compute(py, move || modal(&input, &request).map_err(Failure::from))?;
     // The analysis's own warnings (not an equilibrium, unstable, beam
-    // theory) as Python warnings (`RuntimeWarning`); the model's were
-    // given when it was read. `to_dict()["warnings"]` lists them all.
-    crate::warn_runtime(py, run.document.own_warnings())?;
+    // theory) as Python warnings (`ModelWarning`); the model's were
+    // given when it was read. `to_dict()["warnings"]` and the repr list
+    // them all.
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyModalResult {
         source: model.label(),
         run,
@@ -224,7 +225,9 @@ impl PyModalResult {
         compute(py, || self.run.write_plot(&path).map_err(Failure::from))
     }
 
+    /// The command line's report, then its `warning:` lines (the run's
+    /// warnings, as `to_dict()["warnings"]`).
     fn __repr__(&self) -> String {
-        self.run.text()
+        crate::with_warnings(self.run.text(), &self.run.document.warnings)
     }
 }

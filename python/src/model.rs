@@ -51,19 +51,16 @@ impl PyModel {
         self.source.to_string()
     }
 
-    /// This model, after raising its unit warnings
-    /// ([`Model::unit_warnings`]) as Python `UserWarning`s, named by its
-    /// source as the command line's `warning:` lines name them (the result
-    /// documents' `warnings` hold them too).
+    /// The model's unit warnings ([`Model::unit_warnings`]), named by its
+    /// source as the command line's `warning:` lines name them.
+    fn unit_warnings(&self) -> Vec<String> {
+        self.input().unit_warnings()
+    }
+
+    /// This model, after raising its unit warnings as `ModelWarning`s (the
+    /// result documents' `warnings` and the reprs hold them too).
     fn warned(self, py: Python<'_>) -> PyResult<PyModel> {
-        let label = self.label();
-        let texts: Vec<String> = self
-            .model
-            .unit_warnings()
-            .iter()
-            .map(|w| format!("{label}: {w}"))
-            .collect();
-        crate::warn_all(py, &texts)?;
+        crate::warn(py, &self.unit_warnings())?;
         Ok(self)
     }
 }
@@ -158,7 +155,7 @@ impl PyModel {
         } else {
             Source::File(PathBuf::from(format!("models/{name}.json")))
         };
-        compute(py, move || PyModel::parse(text, source))
+        compute(py, move || PyModel::parse(text, source))?.warned(py)
     }
 
     /// The names `Model.builtin` accepts.
@@ -585,11 +582,16 @@ impl PyModel {
         crate::transient::run(self, py, r)
     }
 
+    /// `<ancf_modal.Model "name" from SOURCE>`, then one `warning: …` line
+    /// per unit warning of the model.
     fn __repr__(&self) -> String {
-        format!(
+        let head = format!(
             "<ancf_modal.Model {:?} from {}>",
             self.model.name,
             self.label()
-        )
+        );
+        crate::with_warnings(head, &self.unit_warnings())
+            .trim_end()
+            .to_string()
     }
 }

@@ -111,5 +111,5 @@ pub fn run(
         page.write().map_err(Failure::from)?;
         Ok(page)
     })?;
-    crate::identify::warn_own(py, model, page.own_warnings())
+    crate::warn(py, page.own_warnings())
 }

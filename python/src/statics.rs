@@ -20,6 +20,7 @@ pub fn run(model: &PyModel, py: Python<'_>, load_scale: f64) -> PyResult<PyStati
     let input = model.input();
     let request = StaticRequest { load_scale };
     let run = compute(py, move || statics(&input, &request).map_err(Failure::from))?;
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyStaticResult { run })
 }
 
@@ -58,7 +59,9 @@ impl PyStaticResult {
         crate::json_to_python(py, &self.run.document.document())
     }
 
+    /// The command line's report, then its `warning:` lines (the run's
+    /// warnings, as `to_dict()["warnings"]`).
     fn __repr__(&self) -> String {
-        self.run.text()
+        crate::with_warnings(self.run.text(), &self.run.document.warnings)
     }
 }

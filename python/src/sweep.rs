@@ -117,9 +117,9 @@ pub fn run(
     }
     let j = &job;
     let run = compute(py, move || Ok(j.finish(done)))?;
-    // The points' own warnings as Python warnings (`RuntimeWarning`); the
+    // The points' own warnings as Python warnings (`ModelWarning`); the
     // model's were given when it was read.
-    crate::warn_runtime(py, run.document.own_warnings())?;
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PySweepResult { run })
 }
 
@@ -270,8 +270,10 @@ impl PySweepResult {
         crate::json_to_python(py, &doc)
     }
 
+    /// The command line's report, then its `warning:` lines (the run's
+    /// warnings, as `to_dict()["warnings"]`).
     fn __repr__(&self) -> String {
-        self.run.text()
+        crate::with_warnings(self.run.text(), &self.run.document.warnings)
     }
 }
 

@@ -54,7 +54,7 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_>) -> PyResult<PySwitch
         .iter()
         .map(|w| format!("{label}: {w}"))
         .collect();
-    crate::warn_runtime(py, &own)?;
+    crate::warn(py, &own)?;
     Ok(PySwitchOffResult { run })
 }
 
@@ -153,7 +153,9 @@ impl PySwitchOffResult {
         compute(py, || self.run.write_plot(&path).map_err(Failure::from))
     }
 
+    /// The command line's report (its own warnings among its lines), then
+    /// its `warning:` lines (the model's).
     fn __repr__(&self) -> String {
-        self.run.text()
+        crate::with_warnings(self.run.text(), &self.run.document.warnings)
     }
 }

@@ -22,7 +22,7 @@ pub fn run(
     let run = compute(py, move || {
         transient(&input, &request).map_err(Failure::from)
     })?;
-    crate::warn_runtime(py, run.document.own_warnings())?;
+    crate::warn(py, run.document.own_warnings())?;
     Ok(PyTransientResult { run })
 }
 
@@ -82,7 +82,9 @@ impl PyTransientResult {
         compute(py, || self.run.write_plot(&path).map_err(Failure::from))
     }
 
+    /// The command line's report, then its `warning:` lines (the run's
+    /// warnings, as `to_dict()["warnings"]`).
     fn __repr__(&self) -> String {
-        self.run.text()
+        crate::with_warnings(self.run.text(), &self.run.document.warnings)
     }
 }

@@ -35,6 +35,15 @@ class Cli:
         assert p.returncode == 0, p.stderr
         return json.loads(p.stdout)
 
+    def shown(self, *args: str) -> str:
+        """What a successful run shows on a terminal: its report (stdout),
+        then its `warning:` lines (stderr), as a result's `repr` shows
+        them."""
+        p = self.run(*args)
+        assert p.returncode == 0, p.stderr
+        lines = [l + "\n" for l in p.stderr.splitlines() if l.startswith("warning: ")]
+        return p.stdout + "".join(lines)
+
     def error(self, *args: str) -> str:
         """The one `Error:` line of a failing run, without `Error: `."""
         p = self.run(*args)

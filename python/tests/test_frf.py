@@ -64,9 +64,9 @@ def test_arrays_equal_files(tmp_path, hits):
     if hits == 1:
         force, velocity = force[0], velocity[0]
     # A taper on impact records is warned about, from arrays and files alike.
-    with pytest.warns(UserWarning, match="tapers the blow"):
+    with pytest.warns(ancf_modal.ModelWarning, match="tapers the blow"):
         a = ancf_modal.frf(force, velocity, FS, window="hann")
-    with pytest.warns(UserWarning, match="tapers the blow"):
+    with pytest.warns(ancf_modal.ModelWarning, match="tapers the blow"):
         b = ancf_modal.frf_files(paths, window="hann")
     # The files' rate comes from their time column: equal to round-off.
     assert np.allclose(a.freq, b.freq, rtol=1e-9, atol=0)

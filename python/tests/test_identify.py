@@ -24,10 +24,11 @@ def test_builtin_model_gives_the_command_lines_document_and_files(tmp_path, cli)
     assert p.returncode == 0, p.stderr
     doc = cli.json("identify", "--end-time", "0.01", "--calibrate")
     # No note on records (none given): only the modal analysis's own
-    # warnings, as `modal` raises them (RuntimeWarning).
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", UserWarning)
+    # warnings, as `modal` raises them, and the document's.
+    with pytest.warns(ancf_modal.ModelWarning) as caught:
         r = ancf_modal.Model.builtin().identify(end_time=0.01, calibrate=True)
+    assert [str(w.message) for w in caught] == doc["warnings"]
+    assert all("beam theory" in w for w in doc["warnings"]), doc["warnings"]
     assert without_version(r.to_dict()) == without_version(doc)
     # The paper's Table 3: the experiment is the paper's 4600 Hz.
     assert r.paper and r.experiment_hz == doc["experiment_hz"] == 4600.0
@@ -57,7 +58,7 @@ def test_another_model_with_measured_records(tmp_path, cli):
     doc = cli.json("identify", *model_args("cantilever"), *flags, *measured)
     model = ancf_modal.Model.builtin("cantilever")
     # The taper on the records is warned of, as `frf_files` warns of it.
-    with pytest.warns(UserWarning, match="hann window tapers the blow"):
+    with pytest.warns(ancf_modal.ModelWarning, match="hann window tapers the blow"):
         r = model.identify(end_time=0.01, sample_rate=0.0, window="rect",
                            measured=[sig], measured_window="hann")
     mine = r.to_dict()
@@ -70,11 +71,13 @@ def test_another_model_with_measured_records(tmp_path, cli):
     measured = ["--measured", str(sig), "--measured-window", "exponential:0.01",
                 "--measured-band", "3000:6000"]
     banded = cli.json("identify", *model_args("cantilever"), *flags, *measured)
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", UserWarning)  # no note on these records
+    with pytest.warns(ancf_modal.ModelWarning) as caught:
         r = model.identify(end_time=0.01, sample_rate=0.0, window="rect", measured=[sig],
                            measured_window="exponential:0.01", measured_band=(3000.0, 6000.0))
     assert without_version(r.to_dict()) == without_version(banded)
+    # No note on these records: the warnings are the modal analysis's.
+    assert [str(w.message) for w in caught] == banded["warnings"]
+    assert all("beam theory limits it" in w for w in banded["warnings"])
     assert r.experiment_hz == banded["experiment_hz"]
     assert abs(r.experiment_hz - 4568.6) < 1.0
     assert np.allclose(r.to_dict()["measured"]["band_hz"], [3000.0, 6000.0])

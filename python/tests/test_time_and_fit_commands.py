@@ -52,7 +52,7 @@ def test_impulse_is_the_command_lines(cli, name):
     result = ancf_modal.Model.builtin(name).impulse(**IMPULSE)
     doc = cli.json("impulse", *model_args(name), *flags(**IMPULSE))
     same_document(result.to_dict(), doc)
-    assert repr(result) == cli.run("impulse", *model_args(name), *flags(**IMPULSE)).stdout
+    assert repr(result) == cli.shown("impulse", *model_args(name), *flags(**IMPULSE))
 
 
 def test_impulse_files_are_the_command_lines(cli, tmp_path):
@@ -85,7 +85,7 @@ def test_transient_is_the_command_lines(cli, name, extra):
     args = {**TRANSIENT, **extra}
     result = ancf_modal.Model.builtin(name).transient(**args)
     same_document(result.to_dict(), cli.json("transient", *model_args(name), *flags(**args)))
-    assert repr(result) == cli.run("transient", *model_args(name), *flags(**args)).stdout
+    assert repr(result) == cli.shown("transient", *model_args(name), *flags(**args))
 
 
 def test_transient_carries_the_models_warnings_as_the_command_line(cli, tmp_path):
@@ -135,7 +135,7 @@ def test_switch_off_is_the_command_lines(cli, name, extra):
     result = ancf_modal.Model.builtin(name).switch_off(**args)
     model = [f"models/{name}.json"]
     same_document(result.to_dict(), cli.json("switch-off", *model, *flags(**args)))
-    assert repr(result) == cli.run("switch-off", *model, *flags(**args)).stdout
+    assert repr(result) == cli.shown("switch-off", *model, *flags(**args))
 
 
 def test_switch_off_files_are_the_command_lines(cli, tmp_path):
@@ -172,7 +172,7 @@ def test_calibrate_is_the_command_lines(cli, name, target):
     result = ancf_modal.Model.builtin(name).calibrate(target_hz=target)
     args = [*model_args(name), "--target", str(target)]
     same_document(result.to_dict(), cli.json("calibrate", *args))
-    assert repr(result) == cli.run("calibrate", *args).stdout
+    assert repr(result) == cli.shown("calibrate", *args)
 
 
 @pytest.mark.parametrize(
