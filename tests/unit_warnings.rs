@@ -209,8 +209,10 @@ fn a_length_typed_in_micrometres_names_the_part_and_the_lever_arm() {
     let (json, lines) = modal_warnings(&micro(150e-6));
     assert!(json.is_empty() && lines.is_empty(), "{json:?} {lines:?}");
     let (json, lines) = modal_warnings(&micro(150.0));
-    assert_eq!(json.len(), 2, "the arm and the mass: {json:?}");
-    assert_eq!(lines.len(), 2, "{lines:?}");
+    // The arm, the mass, and the eigen-solve's accuracy they limit.
+    assert_eq!(json.len(), 3, "the arm, the mass, the accuracy: {json:?}");
+    assert_eq!(lines.len(), 3, "{lines:?}");
+    assert!(json[2].contains("the eigen-solve certifies"), "{}", json[2]);
     // 150 m against the 200 µm base: 750,000 times; the mass's point is the
     // arm's tip, (200e-6 + 150) − 350e-6 = 149.99985 m from its centre,
     // 749,999 times its 200 µm.
@@ -231,12 +233,13 @@ fn a_length_typed_in_micrometres_names_the_part_and_the_lever_arm() {
     }
 }
 
-/// The table's accuracy warning line of a `modal` report.
-fn accuracy_warning(stdout: &str) -> &str {
-    stdout
+/// The accuracy warning of a `modal` run (a `warning:` line on stderr,
+/// after the model's name).
+fn accuracy_warning(stderr: &str) -> &str {
+    stderr
         .lines()
-        .find(|l| l.starts_with("warning: the eigen-solve certifies"))
-        .unwrap_or_else(|| panic!("an accuracy warning: {stdout}"))
+        .find(|l| l.starts_with("warning: ") && l.contains(": the eigen-solve certifies"))
+        .unwrap_or_else(|| panic!("an accuracy warning: {stderr}"))
 }
 
 #[test]
@@ -245,15 +248,20 @@ fn the_accuracy_warning_names_the_parts_whose_sizes_disagree() {
     // the round-off of a fine mesh (8 elements in all).
     let (code, stdout, stderr) = run(&micro(150.0), &["modal", "--modes", "3"]);
     assert_eq!(code, Some(0), "{stderr}");
-    let w = accuracy_warning(&stdout);
+    assert!(
+        !stdout.contains("warning:"),
+        "warnings go to stderr: {stdout}"
+    );
+    let w = accuracy_warning(&stderr);
     assert!(
         w.contains("parts whose sizes disagree by orders of magnitude limit them: beam `arm`, rigid body `mass`")
             && !w.contains("round-off"),
         "{w}"
     );
     // The same assembly in consistent units certifies its frequencies.
-    let (_, stdout, _) = run(&micro(150e-6), &["modal", "--modes", "3"]);
+    let (_, stdout, stderr) = run(&micro(150e-6), &["modal", "--modes", "3"]);
     assert!(!stdout.contains("warning:"), "{stdout}");
+    assert!(!stderr.contains("eigen-solve certifies"), "{stderr}");
 }
 
 #[test]
@@ -268,7 +276,7 @@ fn the_accuracy_warning_of_a_very_fine_mesh_names_its_round_off() {
     model["beams"][0]["elements"] = json!(2000);
     let (code, stdout, stderr) = run(&model, &["modal", "--modes", "3"]);
     assert_eq!(code, Some(0), "{stderr}");
-    let w = accuracy_warning(&stdout);
+    let w = accuracy_warning(&stderr);
     assert!(
         w.contains("the round-off of the stiffest entries limits them: a very fine mesh")
             && !w.contains("sizes"),
@@ -330,7 +338,7 @@ fn the_accuracy_warning_names_a_value_in_other_units() {
         &["modal", "--modes", "3"],
     );
     assert_eq!(code, Some(0), "{stderr}");
-    let w = accuracy_warning(&stdout);
+    let w = accuracy_warning(&stderr);
     assert!(
         w.contains("values that look like other units than SI limit them: beams[0].section.height")
             && !w.contains("fine mesh"),

@@ -107,13 +107,6 @@ pub fn modal_table(model: &Model, r: &ModalResult) -> String {
             );
         }
     }
-    if let Some(worst) = r.accuracy_warning() {
-        let _ = writeln!(
-            s,
-            "warning: {}",
-            accuracy_warning_text(worst, &model.unit_warnings())
-        );
-    }
     s
 }
 

@@ -129,6 +129,12 @@ pub fn run(input: &ModelInput, request: &ModalRequest) -> Result<ModalRun, Comma
         let mut own = crate::results::modal::reference_warnings(&r);
         own.extend(crate::results::modal::loads_left_out(&system, &r));
         own.extend(crate::analysis::shear::beam_theory_warnings(&r));
+        if let Some(worst) = r.accuracy_warning() {
+            let units = model.unit_warnings();
+            own.push(crate::output::modal_report::accuracy_warning_text(
+                worst, &units,
+            ));
+        }
         if let Some(other) = &request.mac {
             output.mac = Some(mac_against(&system, &r, other, &settings)?);
         }
