@@ -274,7 +274,7 @@ fn the_accuracy_warning_of_a_very_fine_mesh_names_its_round_off() {
     .unwrap();
     let mut model: Value = serde_json::from_str(&text).unwrap();
     model["beams"][0]["elements"] = json!(2000);
-    let (code, stdout, stderr) = run(&model, &["modal", "--modes", "3"]);
+    let (code, _, stderr) = run(&model, &["modal", "--modes", "3"]);
     assert_eq!(code, Some(0), "{stderr}");
     let w = accuracy_warning(&stderr);
     assert!(
@@ -333,7 +333,7 @@ fn the_accuracy_warning_names_a_value_in_other_units() {
     // The height typed in millimetres (1.0 for 1 mm): the 0.3 m ruler is
     // a metre-high block on 50 N/m springs, the table's bound is loose,
     // and the warning names the height, not a fine mesh (20 elements).
-    let (code, stdout, stderr) = run(
+    let (code, _, stderr) = run(
         &ruler_on_foam(1.0, [0.2328, -0.02]),
         &["modal", "--modes", "3"],
     );
