@@ -36,9 +36,28 @@ pub fn report_request(out: PathBuf, prestress: bool) -> ReportRequest {
     ReportRequest {
         out,
         prestress,
-        command_line: std::env::args().collect::<Vec<_>>().join(" "),
+        command_line: command_line(std::env::args()),
         ..ReportRequest::default()
     }
+}
+
+/// The command as a user types it: the program by its file name (not the
+/// path it ran from, which is the machine's, not the command's), each
+/// argument with a space or a quote in single quotes.
+fn command_line(args: impl Iterator<Item = String>) -> String {
+    args.enumerate()
+        .map(|(i, a)| {
+            if i == 0 {
+                let name = std::path::Path::new(&a).file_name();
+                name.map_or(a.clone(), |n| n.to_string_lossy().into_owned())
+            } else if a.is_empty() || a.contains([' ', '\'', '"', '\t']) {
+                format!("'{}'", a.replace('\'', "'\\''"))
+            } else {
+                a
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 pub fn run(args: ReportArgs) -> Result<Warnings> {
@@ -51,4 +70,20 @@ pub fn run(args: ReportArgs) -> Result<Warnings> {
     page.write()?;
     outln!("report written to {}", page.out.display());
     Ok(page.warnings)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_command_line_names_the_program_not_its_path() {
+        let args = [
+            "/home/me/build/target/release/ancf-modal",
+            "report",
+            "my model.json",
+        ];
+        assert_eq!(
+            super::command_line(args.iter().map(|s| s.to_string())),
+            "ancf-modal report 'my model.json'"
+        );
+    }
 }

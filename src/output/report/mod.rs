@@ -95,8 +95,10 @@ pub struct ReportInput<'a> {
 /// Largest displacement of an animated mode, as a fraction of the
 /// diagonal of the assembly's bounding box.
 pub const AMPLITUDE_OF_DIAGONAL: f64 = 0.15;
-/// Width of the drawings [px].
+/// Width of the mode drawings [px].
 const WIDTH: f64 = 560.0;
+/// Widest drawing of the assembly [px]: the page's text width.
+const ASSEMBLY_WIDTH: f64 = 1140.0;
 /// Beam samples per element in the animations.
 const POINTS_PER_ELEMENT: usize = 8;
 
@@ -118,7 +120,7 @@ pub fn report_html(input: &ReportInput) -> Result<String, PlotError> {
         let _ = write!(
             body,
             "<section id=\"assembly\"><h2>Assembly</h2>{}<p class=\"note\">{}</p></section>",
-            svg::assembly_svg(first.system, first.q, &g, WIDTH),
+            svg::assembly_svg(first.system, first.q, &g, ASSEMBLY_WIDTH),
             escape(input.description)
         );
     }

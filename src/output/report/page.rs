@@ -45,6 +45,7 @@ th, td { padding: 0.2rem 0.6rem; border-bottom: 1px solid #eee; text-align: left
 td.num { text-align: right; font-variant-numeric: tabular-nums; }
 caption { text-align: left; font-weight: 600; padding-bottom: 0.3rem; }
 svg { max-width: 100%; height: auto; }
+svg.assembly { display: block; margin: 0 auto; }
 pre { font-size: 0.8rem; overflow-x: auto; max-width: 100%; background: #f8f8f8; padding: 0.5rem; }
 .mode-grid { display: grid; grid-template-columns: repeat(auto-fill, minmax(260px, 1fr)); gap: 1rem; }
 figure { margin: 0; }

@@ -52,6 +52,43 @@ impl View {
         }
     }
 
+    /// The mapping that draws `points` [SI: m] as large as fits in
+    /// `max_width` × `max_height` pixels with `margin` pixels on every
+    /// side, the panel cut to the drawing (no empty band beside it), at
+    /// least `min_height` pixels high so that symbols fit around a flat
+    /// assembly, with a band of [`SCALE_BAR_BAND`] pixels below it.
+    pub fn fit_box(
+        points: &[[f64; 2]],
+        (max_width, max_height): (f64, f64),
+        min_height: f64,
+        margin: f64,
+    ) -> View {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in points {
+            for i in 0..2 {
+                lo[i] = lo[i].min(p[i]);
+                hi[i] = hi[i].max(p[i]);
+            }
+        }
+        if !(lo[0].is_finite() && hi[0].is_finite()) {
+            return View::fit(points.iter(), max_width, margin);
+        }
+        let span = [(hi[0] - lo[0]).max(1e-12), (hi[1] - lo[1]).max(1e-12)];
+        let (iw, ih) = (max_width - 2.0 * margin, max_height - 2.0 * margin);
+        let scale = (iw / span[0]).min(ih / span[1]);
+        let width = span[0] * scale + 2.0 * margin;
+        let height = (span[1] * scale + 2.0 * margin).max(min_height);
+        // The band for the scale bar under the drawing.
+        View {
+            width,
+            height: height + SCALE_BAR_BAND,
+            x0: lo[0],
+            y0: lo[1] - ((height - 2.0 * margin) / scale - span[1]) / 2.0 - SCALE_BAR_BAND / scale,
+            scale,
+            margin,
+        }
+    }
+
     /// The pixel of model point `p` [SI: m].
     pub fn px(&self, p: [f64; 2]) -> (f64, f64) {
         (
@@ -104,13 +141,22 @@ fn at(system: &System, p: Vector2<f64>) -> [f64; 2] {
     [p.x, p.y]
 }
 
-/// The assembly at `q`, to scale: beams, bodies, springs, joints and
+/// Height of the band under a [`View::fit_box`] drawing that holds its
+/// scale bar [px].
+pub const SCALE_BAR_BAND: f64 = 22.0;
+
+/// Tallest drawing of the assembly [px].
+const ASSEMBLY_MAX_HEIGHT: f64 = 520.0;
+
+/// The assembly at `q`, to scale, as large as fits `width` pixels wide and
+/// [`ASSEMBLY_MAX_HEIGHT`] high: beams, bodies, springs, joints and
 /// supports as the mode panels draw them,
 /// contacts as diamonds at their moving point, loads as arrows (length
 /// proportional to the force, the largest a tenth of the drawing) and
 /// sensors as rings; a scale bar of a round length in mm.
 pub fn assembly_svg(system: &System, q: &[f64], geometry: &Geometry, width: f64) -> String {
-    let view = View::fit(super::animate::all_points(geometry), width, 30.0);
+    let points: Vec<[f64; 2]> = super::animate::all_points(geometry).copied().collect();
+    let view = View::fit_box(&points, (width, ASSEMBLY_MAX_HEIGHT), 120.0, 30.0);
     let mut s = view.open("assembly", &format!("the assembly {}", system.name));
     s.push_str(&super::animate::geometry_svg(&view, geometry, "undeformed"));
     for c in &system.contacts {
