@@ -563,3 +563,52 @@ fn switch_off_sweeps_carry_node0_traces_that_cross_2_mm_at_their_time() {
         .iter()
         .all(|p| p.node0.is_none() && p.result.is_some()));
 }
+
+#[test]
+fn a_model_warning_is_given_once_and_a_point_says_only_what_its_values_add() {
+    // The blade's height typed as 1.1 (millimetres meant): the model warns
+    // of height/length = 44 once, not again at each of the three points.
+    let dir = tempfile::tempdir().unwrap();
+    let mut thick = blade();
+    thick["beams"][0]["section"]["height"] = json!(1.1);
+    let m = write(dir.path(), "thick.json", &thick);
+    let args = [
+        "sweep",
+        m.to_str().unwrap(),
+        "--param",
+        "beams[blade].material.young=1e11:2e11:3",
+        "--quantity",
+        "first_bending_hz",
+    ];
+    let (code, _, stderr) = run(&args);
+    assert_eq!(code, 0, "{stderr}");
+    let lines: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("warning:"))
+        .collect();
+    assert_eq!(
+        lines.iter().filter(|l| l.contains("height/length")).count(),
+        1,
+        "{stderr}"
+    );
+    assert!(!stderr.contains("point "), "{stderr}");
+    // A sweep whose last value makes the height suspicious says so for
+    // that point alone.
+    let m = write(dir.path(), "blade.json", &blade());
+    let args = [
+        "sweep",
+        m.to_str().unwrap(),
+        "--param",
+        "beams[blade].section.height=1.1e-3:1.1:2",
+        "--quantity",
+        "first_bending_hz",
+    ];
+    let (code, _, stderr) = run(&args);
+    assert_eq!(code, 0, "{stderr}");
+    let points: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.contains("height/length"))
+        .collect();
+    assert_eq!(points.len(), 1, "{stderr}");
+    assert!(points[0].contains("point 1: "), "{stderr}");
+}

@@ -182,7 +182,20 @@ impl Sweep {
         let outcome = self
             .model_at(&values)
             .and_then(|m| {
-                warnings = m.unit_warnings().iter().map(|w| w.to_string()).collect();
+                // A point says only what its values add to the model's own
+                // unit warnings (the run gives those once).
+                let base: Vec<String> = self
+                    .model
+                    .unit_warnings()
+                    .iter()
+                    .map(|w| w.to_string())
+                    .collect();
+                warnings = m
+                    .unit_warnings()
+                    .iter()
+                    .map(|w| w.to_string())
+                    .filter(|w| !base.contains(w))
+                    .collect();
                 evaluate(&self.settings.quantity, &m, &self.model, &eval)
             })
             .map_err(|e| crate::error::chain_text(&e));
