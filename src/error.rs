@@ -98,7 +98,9 @@ pub enum Problem {
     #[error("a direction must have non-zero length")]
     ZeroDirection,
     #[error(
-        "the points do not coincide initially: a is at {a:?}, b at {b:?}, a gap of {gap:.3e} m"
+        "the points do not coincide initially: a is at {}, b at {}, a gap of {gap:.3e} m",
+        point_text(.a),
+        point_text(.b)
     )]
     PointsApart { gap: f64, a: [f64; 2], b: [f64; 2] },
     #[error("point b is {gap:.3e} m off the slider axis through point a")]
@@ -403,4 +405,29 @@ pub fn chain_text(e: &dyn std::error::Error) -> String {
         cause = c.source();
     }
     line
+}
+
+/// A point [SI: m] as `[x, y]` to the picometre (the round-off of a
+/// rotated offset, 4.9e-18 m, is not a coordinate the user typed).
+fn point_text(p: &[f64; 2]) -> String {
+    let r = |x: f64| {
+        let v = (x * 1e12).round() / 1e12;
+        if v == 0.0 {
+            0.0
+        } else {
+            v
+        }
+    };
+    format!("[{}, {}]", r(p[0]), r(p[1]))
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_point_is_written_to_the_picometre() {
+        // A 90° rotation of (0.08, 0) and 0.025 + 0.05 as computed.
+        let p = [4.898587196589413e-18, -0.07500000000000001];
+        assert_eq!(super::point_text(&p), "[0, -0.075]");
+        assert_eq!(super::point_text(&[1.5e-6, -2.0]), "[0.0000015, -2]");
+    }
 }

@@ -447,3 +447,49 @@ fn zero_load_gives_the_reference_frequencies() {
         );
     }
 }
+
+#[test]
+fn a_pendulum_at_its_balanced_reference_is_said_to_leave_gravity_out() {
+    // A 2 kg sign (I = 0.05 kg m²) hanging 0.3 m under a hinge with a
+    // torsion spring of 10 N m/rad, under gravity (outside-eyes trial of
+    // issue 36): the reference balances gravity, but plain `modal` leaves
+    // out its pendulum stiffness m g d. About the hinge J = I + m d².
+    use ancf_modal::commands::modal::{run, ModalRequest};
+    use ancf_modal::commands::ModelInput;
+    use ancf_modal::error::Source;
+    let (m, i, d, kt, g) = (2.0, 0.05, 0.3, 10.0, 9.81);
+    let sign = serde_json::json!({
+        "name": "sign", "gravity": [0.0, -g],
+        "rigid_bodies": [{"id": "sign", "mass": m, "inertia": i, "position": [0.0, 0.0]}],
+        "joints": [{"id": "hinge", "type": "pin", "a": {"ground": [0.0, d]},
+            "b": {"body": "sign", "local": [0.0, d]}, "torsion_stiffness": kt}]
+    });
+    let input = ModelInput::parse(&sign.to_string(), Source::BuiltIn).unwrap();
+    let j = i + m * d * d;
+    let hz = |k: f64| (k / j).sqrt() / (2.0 * std::f64::consts::PI);
+    let plain = run(&input, &ModalRequest::default()).unwrap();
+    let f = plain.outcome.result().modes[0].frequency_hz;
+    assert!((f / hz(kt) - 1.0).abs() < 1e-9, "{f} against {}", hz(kt));
+    let said = plain.document.warnings.iter().any(|w| {
+        w.contains("gravity acts at the reference, which balances them") && w.contains("prestress")
+    });
+    assert!(said, "{:?}", plain.document.warnings);
+    let stressed = ModalRequest {
+        prestress: true,
+        ..ModalRequest::default()
+    };
+    let pre = run(&input, &stressed).unwrap();
+    let f = pre.outcome.result().modes[0].frequency_hz;
+    let want = hz(kt + m * g * d);
+    assert!((f / want - 1.0).abs() < 1e-9, "{f} against {want}");
+    // Without gravity nothing is left out, and nothing is said.
+    let mut free = sign.clone();
+    free["gravity"] = serde_json::json!([0.0, 0.0]);
+    let input = ModelInput::parse(&free.to_string(), Source::BuiltIn).unwrap();
+    let run_free = run(&input, &ModalRequest::default()).unwrap();
+    assert!(
+        run_free.document.warnings.is_empty(),
+        "{:?}",
+        run_free.document.warnings
+    );
+}

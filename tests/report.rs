@@ -394,3 +394,123 @@ fn no_section_or_table_column_is_empty() {
         }
     }
 }
+
+#[test]
+fn every_drawn_point_lies_inside_its_panel() {
+    // The slider-crank has a ground pin (a triangle on hatched ground) and
+    // a rail: every point of every SVG element, symbols too, inside its
+    // panel's viewBox (outside-eyes trial of issue 36: a ground pin's
+    // hatching was cut off below the mode panels).
+    use ancf_modal::commands::report::{run, ReportRequest};
+    use ancf_modal::commands::ModelInput;
+    // A simply supported beam: the pin's triangle is the lowest thing drawn.
+    let beam = serde_json::json!({
+        "name": "simply supported",
+        "beams": [{"id": "b", "start": [0.0, 0.0], "angle_deg": 0.0, "length": 0.5,
+            "elements": 8, "section": {"height": 0.005, "width": 0.02},
+            "material": {"young": 210e9, "density": 7850.0}}],
+        "joints": [
+            {"id": "pin", "type": "pin", "a": {"ground": [0.0, 0.0]}, "b": {"beam": "b", "s": 0.0}},
+            {"id": "roller", "type": "slider", "a": {"ground": [0.5, 0.0]},
+                "b": {"beam": "b", "s": 0.5}, "axis": [1.0, 0.0]}]
+    });
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/slider_crank.json");
+    let inputs = [
+        ModelInput::from_file(&path).unwrap(),
+        ModelInput::parse(&beam.to_string(), ancf_modal::error::Source::BuiltIn).unwrap(),
+    ];
+    let pages: Vec<String> = inputs
+        .iter()
+        .map(|i| run(i, &ReportRequest::default()).unwrap().html)
+        .collect();
+    let panels: Vec<&str> = pages
+        .iter()
+        .flat_map(|html| svg_parts(html))
+        .filter(|p| p.contains("class=\"mode-shape\"") || p.contains("class=\"assembly\""))
+        .collect();
+    assert!(panels.len() > 2);
+    for panel in panels {
+        let doc = roxmltree::Document::parse(panel).unwrap();
+        let root = doc.root_element();
+        let v: Vec<f64> = root
+            .attribute("viewBox")
+            .unwrap()
+            .split_whitespace()
+            .map(|x| x.parse().unwrap())
+            .collect();
+        let inside = |p: [f64; 2]| p[0] >= v[0] && p[0] <= v[2] && p[1] >= v[1] && p[1] <= v[3];
+        for n in doc.descendants() {
+            let mut points = Vec::new();
+            if let Some(p) = n.attribute("points") {
+                points.extend(pixels(p));
+            }
+            if n.has_tag_name("animate") && n.attribute("attributeName") == Some("points") {
+                for frame in n.attribute("values").unwrap().split(';') {
+                    points.extend(pixels(frame));
+                }
+            }
+            if let (Some(x), Some(y)) = (n.attribute("cx"), n.attribute("cy")) {
+                points.push([x.parse().unwrap(), y.parse().unwrap()]);
+            }
+            for p in points {
+                assert!(
+                    inside(p),
+                    "{:?} at {p:?} outside {v:?}",
+                    n.attribute("class")
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_report_gives_the_impulse_and_modal_warnings_their_commands_give() {
+    // The outside-eyes trial's gripper finger with its height typed as 2.0
+    // (millimetres meant): `impulse` warns that the first bending mode
+    // lies above the pass band and that the step is too coarse for it;
+    // the report (identify's run) gave neither.
+    use assert_cmd::cargo::cargo_bin_cmd;
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let model = root.join("tests/data/gripper_height_in_mm.json");
+    let dir = tempfile::tempdir().unwrap();
+    let flags = [
+        "--end-time",
+        "0.05",
+        "--step",
+        "2e-5",
+        "--sample-rate",
+        "10000",
+    ];
+    let warnings = |command: &str, extra: &[&str]| -> Vec<String> {
+        let out = cargo_bin_cmd!("ancf-modal")
+            .arg(command)
+            .arg(&model)
+            .args(flags)
+            .args(extra)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8_lossy(&out.stderr)
+            .lines()
+            .filter(|l| l.starts_with("warning: "))
+            .map(String::from)
+            .collect()
+    };
+    let impulse = warnings("impulse", &[]);
+    let report = warnings("report", &["--out", "r.html"]);
+    assert!(impulse.len() >= 3, "{impulse:?}");
+    for w in &impulse {
+        assert!(report.contains(w), "report lacks {w}: {report:?}");
+    }
+    let html = std::fs::read_to_string(dir.path().join("r.html")).unwrap();
+    assert!(
+        html.contains("above the acquisition&#39;s pass band"),
+        "the page lists it"
+    );
+}

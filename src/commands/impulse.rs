@@ -138,13 +138,21 @@ pub fn run_with_progress(
         .map_err(|e| CommandError::impulse(input.label(), e))?;
     let reference = reference_hz(&input.model);
     let output = ImpulseOutput::new(&input.model.name, &result, reference);
-    let mut own: Vec<String> = result.blind_sentence().into_iter().collect();
-    own.extend(scale_warnings(&result));
+    let own = impulse_warnings(&result);
     Ok(ImpulseRun {
         model: input.model.clone(),
         document: Run::of(input, output).warn(input, own),
         result,
     })
+}
+
+/// The impulse run's own warnings (`impulse`'s and those it adds to
+/// `identify` and `report`): a sensor blind to the first bending mode,
+/// settings that do not fit the model's scale.
+pub fn impulse_warnings(result: &ImpulseResult) -> Vec<String> {
+    let mut own: Vec<String> = result.blind_sentence().into_iter().collect();
+    own.extend(scale_warnings(result));
+    own
 }
 
 /// Fewer steps per period of the first bending mode than this is a warning.

@@ -165,11 +165,31 @@ pub fn loads_left_out(system: &crate::System, result: &ModalResult) -> Option<St
     // not a pre-stress).
     let start = crate::analysis::statics::start::START_TIME;
     let b = unbalanced_force(system, &system.q0, None, start, 1.0);
-    (!b.is_balanced(BALANCE_TOLERANCE)).then(|| {
-        format!(
+    if !b.is_balanced(BALANCE_TOLERANCE) {
+        return Some(format!(
             "the reference does not balance the model's constant loads (unbalanced {:.3e} N on {}): the modes at the reference leave the loads out, so these are the unstressed modes; the pre-stressed analysis (prestress) linearizes at the loads' static equilibrium",
             b.unbalanced,
             system.dof_label(b.worst_dof)
+        ));
+    }
+    // Balanced but loaded (a pendulum hanging under gravity, a string
+    // pulled straight): the loads still stiffen the modes.
+    let mut external = vec![0.0; system.ndof()];
+    system.external_force(&system.q0, start, 1.0, &mut external);
+    let what = match (
+        system.gravity.norm() > 0.0,
+        system
+            .loads
+            .iter()
+            .any(|l| l.force.norm() > 0.0 && l.time.value(start) != 0.0),
+    ) {
+        (true, true) => "the constant loads and gravity act",
+        (true, false) => "gravity acts",
+        (false, _) => "the constant loads act",
+    };
+    external.iter().any(|f| *f != 0.0).then(|| {
+        format!(
+            "{what} at the reference, which balances them: the modes at the reference leave out the stiffening they cause (a pendulum's gravity, a string's tension), so these are the unstressed modes; the pre-stressed analysis (prestress) includes it"
         )
     })
 }

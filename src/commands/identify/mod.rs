@@ -110,14 +110,15 @@ pub fn run_with_progress(
     };
     let (modal, modal_output) = crate::results::modal::modal(model, &system, &modal_settings)
         .map_err(|e| CommandError::analysis(input.label(), e))?;
-    // The modal analysis's own warnings, as `modal` gives them.
-    let mut own = crate::results::modal::reference_warnings(&modal);
-    own.extend(crate::analysis::shear::beam_theory_warnings(&modal));
+    // The modal analysis's and the impulse's own warnings, as `modal` and
+    // `impulse` give them.
+    let mut own = super::modal::reference_modal_warnings(model, &system, &modal);
     let impulse =
         run_impulse(model, &settings, progress).map_err(|source| CommandError::Impulse {
             model: input.label(),
             source,
         })?;
+    own.extend(super::impulse::impulse_warnings(&impulse));
     let (measured, notes) = if request.measured.is_empty() {
         (None, Vec::new())
     } else {

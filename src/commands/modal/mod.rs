@@ -126,15 +126,7 @@ pub fn run(input: &ModelInput, request: &ModalRequest) -> Result<ModalRun, Comma
     } else {
         let (r, mut output) =
             crate::results::modal::modal(model, &system, &settings).map_err(fail)?;
-        let mut own = crate::results::modal::reference_warnings(&r);
-        own.extend(crate::results::modal::loads_left_out(&system, &r));
-        own.extend(crate::analysis::shear::beam_theory_warnings(&r));
-        if let Some(worst) = r.accuracy_warning() {
-            let units = model.unit_warnings();
-            own.push(crate::output::modal_report::accuracy_warning_text(
-                worst, &units,
-            ));
-        }
+        let own = reference_modal_warnings(model, &system, &r);
         if let Some(other) = &request.mac {
             output.mac = Some(mac_against(&system, &r, other, &settings)?);
         }
@@ -151,6 +143,27 @@ pub fn run(input: &ModelInput, request: &ModalRequest) -> Result<ModalRun, Comma
         outcome,
         document,
     })
+}
+
+/// The warnings of a modal analysis at the reference (`modal`'s, and
+/// those it adds to `identify` and `report`): not an equilibrium or
+/// unstable, loads the reference leaves out, beam theory, the
+/// eigen-solve's accuracy.
+pub fn reference_modal_warnings(
+    model: &crate::Model,
+    system: &System,
+    r: &crate::analysis::ModalResult,
+) -> Vec<String> {
+    let mut own = crate::results::modal::reference_warnings(r);
+    own.extend(crate::results::modal::loads_left_out(system, r));
+    own.extend(crate::analysis::shear::beam_theory_warnings(r));
+    if let Some(worst) = r.accuracy_warning() {
+        let units = model.unit_warnings();
+        own.push(crate::output::modal_report::accuracy_warning_text(
+            worst, &units,
+        ));
+    }
+    own
 }
 
 impl ModalRun {

@@ -25,6 +25,9 @@ type Polyline = Vec<[f64; 2]>;
 
 /// Zig-zag points of a drawn spring (between its two straight ends).
 const SPRING_ZIGS: usize = 8;
+/// Spring ends closer than this fraction of the assembly's size are one
+/// point (a torsion spring): no zig-zag is drawn.
+const COINCIDENT: f64 = 1e-9;
 /// A rail's half-length as a fraction of the assembly's size.
 const RAIL_HALF_FRACTION: f64 = 0.08;
 
@@ -94,14 +97,19 @@ pub fn assembly_motion(
         at.masses.push(p);
         rate.masses.push(v);
     }
+    let size = drawn_size(&at);
     for pair in system.force_elements.iter().map(|f| f.pair()) {
         let ((a, va), (b, vb)) = (point(&pair.a), point(&pair.b));
+        // A torsion spring's two points coincide (to round-off).
+        let length = (b[0] - a[0]).hypot(b[1] - a[1]);
+        if length <= COINCIDENT * size {
+            continue;
+        }
         if let Some((line, moving)) = zigzag(a, b, va, vb) {
             at.springs.push(line);
             rate.springs.push(moving);
         }
     }
-    let size = drawn_size(&at);
     for c in &system.constraints {
         let pair = c.pair();
         let ground = |a: &Anchor| matches!(a, Anchor::Ground { .. });

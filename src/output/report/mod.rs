@@ -99,6 +99,9 @@ pub const AMPLITUDE_OF_DIAGONAL: f64 = 0.15;
 const WIDTH: f64 = 560.0;
 /// Widest drawing of the assembly [px]: the page's text width.
 const ASSEMBLY_WIDTH: f64 = 1140.0;
+/// Margin of the mode panels [px]: room for the pixel-sized symbols of
+/// supports around the drawing.
+const SYMBOL_MARGIN: f64 = 22.0;
 /// Beam samples per element in the animations.
 const POINTS_PER_ELEMENT: usize = 8;
 
@@ -212,7 +215,9 @@ fn modes_section(id: &str, set: &ModeSet) -> String {
             .iter()
             .flat_map(|f| f.frames.iter().flat_map(all_points)),
     );
-    let view = View::fit(points, WIDTH / 2.0, 12.0);
+    // The margin holds the supports' symbols (a ground pin's triangle and
+    // hatching reach 19 px below its point).
+    let view = View::fit(points, WIDTH / 2.0, SYMBOL_MARGIN);
     s.push_str("<div class=\"mode-grid\">");
     for (m, f) in elastic.iter().zip(&frames) {
         let _ = write!(
