@@ -418,7 +418,7 @@ fn point_text(p: &[f64; 2]) -> String {
             v
         }
     };
-    format!("[{}, {}]", r(p[0]), r(p[1]))
+    format!("[{:?}, {:?}]", r(p[0]), r(p[1]))
 }
 
 #[cfg(test)]
@@ -427,7 +427,7 @@ mod tests {
     fn a_point_is_written_to_the_picometre() {
         // A 90° rotation of (0.08, 0) and 0.025 + 0.05 as computed.
         let p = [4.898587196589413e-18, -0.07500000000000001];
-        assert_eq!(super::point_text(&p), "[0, -0.075]");
-        assert_eq!(super::point_text(&[1.5e-6, -2.0]), "[0.0000015, -2]");
+        assert_eq!(super::point_text(&p), "[0.0, -0.075]");
+        assert_eq!(super::point_text(&[1.5e-6, -2.0]), "[1.5e-6, -2.0]");
     }
 }
