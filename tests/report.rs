@@ -160,7 +160,8 @@ fn animated_modes_draw_q0_plus_and_minus_a_phi() {
         for (g, p) in grey.iter().zip(beam0) {
             let m = to_model(*g);
             assert!(
-                (m[0] - p[0]).hypot(m[1] - p[1]) <= 0.01 / s,
+                // Each pixel is written to 0.01 px, the map's two ends too.
+                (m[0] - p[0]).hypot(m[1] - p[1]) <= 0.02 / s,
                 "undeformed drawn to scale"
             );
         }
