@@ -13,8 +13,9 @@ as the README's "Impulse experiment" describes ours.
 
 Exudyn: `ObjectANCFCable2D` elements on `NodePoint2DSlope1` nodes, the
 load's time function a symbolic (compiled, not Python) user function
-(`--python-load`: a Python one, as a Python user would write it first; on
-the 2-core machine 3.26 s against 1.92 s), the tip node's velocity recorded
+(`--python-load`: a Python one, as a Python user would write it first;
+on the shared 2-core machine 2.13 s against 1.91 s in quiet rounds, 3.26 s
+in a loaded one), the tip node's velocity recorded
 every step by an internal sensor (ancf-modal reads its sensor every step,
 then resamples), no solution file, dense linear solver, Newton's relative
 tolerance 1e-7 (its default 1e-8 is not reached at the first step: 1.6e-8
