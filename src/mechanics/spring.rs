@@ -24,6 +24,9 @@ pub trait ForceElement: std::fmt::Debug + Send + Sync {
     fn gradient(&self, q: &[f64], out: &mut PairGrad);
     /// ∂²U/∂q² (local), overwritten.
     fn hessian(&self, q: &[f64], out: &mut PairHess);
+    /// Whether the element has a damper (when not, [`ForceElement::damping`]
+    /// is always `false`).
+    fn has_damper(&self) -> bool;
     /// Damping force c ṡ ∂s/∂q (local, overwritten) and its q̇-Jacobian
     /// c ∂s/∂q ∂s/∂qᵀ; `false` when the element has no damper.
     fn damping(
@@ -96,6 +99,9 @@ impl ForceElement for LinearSpring {
             g * g.transpose() * self.stiffness + jac.transpose() * transverse * jac * (tension / l);
         self.pair.separation_hessian_dot(q, u * tension, out);
     }
+    fn has_damper(&self) -> bool {
+        self.damping != 0.0
+    }
     fn damping(
         &self,
         q: &[f64],
@@ -149,6 +155,9 @@ impl ForceElement for TorsionSpring {
         self.pair.relative_angle_derivatives(q, &mut g, Some(out));
         *out *= self.elastic_force(q);
         *out += g * g.transpose() * self.stiffness;
+    }
+    fn has_damper(&self) -> bool {
+        self.damping != 0.0
     }
     fn damping(
         &self,

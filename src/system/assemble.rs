@@ -289,6 +289,11 @@ impl System {
         out: &mut [f64],
         mut matrix: Option<&mut S>,
     ) -> bool {
+        // Nothing to zero or visit without a damper (a 2 KiB local Hessian
+        // zeroed twice a step in every undamped transient).
+        if !self.has_dampers() {
+            return false;
+        }
         let mut any = false;
         let (mut f, mut c) = (PairGrad::zeros(), PairHess::zeros());
         for fe in &self.force_elements {

@@ -212,6 +212,11 @@ impl System {
         String::from("$")
     }
 
+    /// Whether any spring or torsion spring has a damper.
+    pub fn has_dampers(&self) -> bool {
+        self.force_elements.iter().any(|f| f.has_damper())
+    }
+
     /// Springs, torsion springs and the elastic part of the contacts: every
     /// element with a potential.
     pub fn elastic_elements(&self) -> impl Iterator<Item = &dyn ForceElement> {

@@ -238,6 +238,8 @@ pub struct ImpulseResult {
     /// Static iterations of the equilibrium the run started from; `None`
     /// when it started at the reference.
     pub equilibrium_iterations: Option<usize>,
+    /// The integrator's counters; no energy books (the dissipations are 0:
+    /// the experiment reports no energy balance, `transient` does).
     pub stats: RunStats,
     pub settings: ImpulseSettings,
 }
@@ -381,7 +383,8 @@ pub fn run_impulse(
         damping: settings.transient.damping.or(model.damping),
         ..settings.transient
     };
-    let mut integrator = Integrator::new(&system, transient)?;
+    // The experiment reports no energy balance.
+    let mut integrator = Integrator::new(&system, transient)?.without_energy_books();
     let mut state = match &equilibrium {
         Some(eq) => integrator.state_after_release(eq.q.clone(), vec![0.0; system.ndof()])?,
         None => integrator.initial_state()?,

@@ -78,29 +78,27 @@ impl SensorProbe {
         &self.point.id
     }
 
-    /// Best fit of the beam's nodes and its rates.
-    fn fit(&self, st: &State) -> Fit {
+    /// Best fit of the beam's nodes and its rates up to the `order`-th
+    /// (1 or 2; the second rates are 0 when not asked for).
+    fn fit(&self, st: &State, order: usize) -> Fit {
         let n = self.nodes.len() as f64;
         let node = |x: &[f64], i: usize| Vector2::new(x[i], x[i + 1]);
+        let x = [&st.q, &st.v, &st.a];
         let mut c = [Vector2::zeros(); 3];
         for &i in &self.nodes {
-            c[0] += node(&st.q, i);
-            c[1] += node(&st.v, i);
-            c[2] += node(&st.a, i);
+            for o in 0..=order {
+                c[o] += node(x[o], i);
+            }
         }
         c.iter_mut().for_each(|x| *x /= n);
         // S = Σ P̃ × p̃, C = Σ P̃ · p̃ and their rates.
         let (mut s, mut cc) = ([0.0; 3], [0.0; 3]);
         for (k, &i) in self.nodes.iter().enumerate() {
             let p = self.reference[k];
-            let d = [
-                node(&st.q, i) - c[0],
-                node(&st.v, i) - c[1],
-                node(&st.a, i) - c[2],
-            ];
-            for o in 0..3 {
-                s[o] += p.x * d[o].y - p.y * d[o].x;
-                cc[o] += p.dot(&d[o]);
+            for o in 0..=order {
+                let d = node(x[o], i) - c[o];
+                s[o] += p.x * d.y - p.y * d.x;
+                cc[o] += p.dot(&d);
             }
         }
         let phi = s[0].atan2(cc[0]);
@@ -134,7 +132,14 @@ impl SensorProbe {
             };
             return value.dot(&self.direction);
         }
-        let fit = self.fit(st);
+        // The acceleration's fit only for an acceleration (the impulse
+        // reads a velocity at every step).
+        let order = if quantity == SensorQuantity::Acceleration {
+            2
+        } else {
+            1
+        };
+        let fit = self.fit(st, order);
         let rt = rot_t(fit.phi[0]);
         let j = jm();
         let w = r - fit.c[0];

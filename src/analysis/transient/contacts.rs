@@ -203,6 +203,10 @@ pub fn add_contact_dissipation<S: Scatter>(
     out: &mut [f64],
     mut matrix: Option<(f64, f64, &mut S)>,
 ) {
+    if sys.contacts.is_empty() {
+        // No 4 KiB of contact scratch zeroed at every residual.
+        return;
+    }
     let mut d = Dissipation::default();
     for (c, &w) in sys.contacts.iter().zip(impact) {
         let local = local_velocity(c.pair().dofs(), v);

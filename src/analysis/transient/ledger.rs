@@ -85,6 +85,10 @@ impl StepLedger {
         from: &State,
         to: &State,
     ) -> f64 {
+        if rayleigh.is_none() && !sys.has_dampers() {
+            // No damping force at any state: no books to keep.
+            return 0.0;
+        }
         if !(self.end_t == from.t && self.end_q == from.q) {
             self.end_any = damping_force(sys, rayleigh.as_deref_mut(), from, &mut self.end_force);
         }

@@ -121,10 +121,12 @@ pub struct RunStats {
     pub max_angle_residual: f64,
     /// Energy the model's damping absorbed (the springs' dampers and the
     /// Rayleigh damping), Σ ½(D₀ + D₁)ᵀΔq over the steps [SI: J]; 0
-    /// without damping.
+    /// without damping, or when the run keeps no energy books
+    /// ([`super::Integrator::without_energy_books`]: the impulse experiment).
     pub damping_dissipation: f64,
     /// Energy the integrator itself removed, Σ ½(a₀ + a₁)ᵀMΔq −
     /// ½(v₀ + v₁)ᵀMΔv over the steps [SI: J]: 0 at a spectral radius of 1,
-    /// positive below ([`super::ledger`]).
+    /// positive below ([`super::ledger`]); 0 when the run keeps no energy
+    /// books (the impulse experiment).
     pub numerical_dissipation: f64,
 }

@@ -350,6 +350,9 @@ impl ForceElement for ContactElement {
             }
         }
     }
+    fn has_damper(&self) -> bool {
+        false
+    }
     fn damping(&self, _: &[f64], _: &PairGrad, _: &mut PairGrad, _: &mut PairHess) -> bool {
         false
     }
