@@ -17,8 +17,9 @@
 //!   [`PointMarker`]s (e.g. identified peaks at (f, dB)). Axes may be
 //!   logarithmic.
 //! * [`ModeShapeFigure`] — a grid with one subplot per mode: the undeformed
-//!   geometry in grey (beam polylines, squares for rigid bodies and point
-//!   masses, small circles for joints), the deformed geometry in colour, and
+//!   geometry in grey (beams, body outlines, point masses, springs, joints
+//!   and supports as [`scene`] describes them), the deformed geometry in
+//!   colour, and
 //!   a title such as "Mode 1: 4577.3 Hz (bending)". x and y use one length
 //!   scale (equal aspect ratio). The caller scales the mode amplitude.
 //! * [`HeatMap`] — a value over a 2-D grid as coloured cells (viridis) with

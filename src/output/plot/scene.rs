@@ -114,8 +114,6 @@ impl Geometry {
 /// What a symbol's stroke is for (the SVG class and the figures' style).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SymbolPart {
-    /// The joint's own marker (a circle around its point).
-    Joint,
     /// Ground: a support's triangle, wall or track.
     Ground,
     /// Hatching on the ground side.
@@ -128,7 +126,6 @@ pub enum SymbolPart {
 pub struct SymbolPath {
     pub part: SymbolPart,
     pub closed: bool,
-    pub filled: bool,
     pub offsets: Vec<[f64; 2]>,
 }
 
@@ -169,7 +166,6 @@ fn hatch(a: [f64; 2], b: [f64; 2], side: [f64; 2], length: f64) -> Vec<SymbolPat
             SymbolPath {
                 part: SymbolPart::Hatch,
                 closed: false,
-                filled: false,
                 offsets: vec![p, q],
             }
         })
@@ -184,13 +180,11 @@ fn pin_support() -> Vec<SymbolPath> {
         SymbolPath {
             part: SymbolPart::Ground,
             closed: true,
-            filled: false,
             offsets: vec![[0.0, r], [-w, r + h], [w, r + h]],
         },
         SymbolPath {
             part: SymbolPart::Ground,
             closed: false,
-            filled: false,
             offsets: vec![[-w - 4.0, r + h], [w + 4.0, r + h]],
         },
     ];
@@ -210,7 +204,6 @@ fn clamp(toward: [f64; 2]) -> Vec<SymbolPath> {
     let mut v = vec![SymbolPath {
         part: SymbolPart::Ground,
         closed: false,
-        filled: false,
         offsets: vec![a, b],
     }];
     v.extend(hatch(a, b, [-t[0], -t[1]], 6.0));

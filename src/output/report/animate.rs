@@ -2,14 +2,15 @@
 //!
 //! A mode φ linearized at q moves the assembly through q + a·cos(2πt/T)·φ.
 //! The panel holds the undeformed geometry in grey and the deformed one in
-//! colour, each drawn element sampled as the mode-shape figures sample it
-//! ([`crate::output::figures::assembly_geometry`]: beam centre lines from
-//! the shape functions, bodies and point masses at their positions, joints
-//! at their anchors). The deformed geometry is given at [`PHASES`] phases
-//! t/T = k/PHASES of one period, and every polyline, body marker and joint
-//! circle carries an `<animate>` whose `values` are those frames (the
-//! browser interpolates linearly between them and repeats). Frame 0 is
-//! q + a·φ, frame PHASES/2 is q − a·φ.
+//! colour, both from the one linear map of
+//! [`crate::output::figures::assembly_motion`] (every drawn point p moved
+//! to p + c·(∂p/∂q)·φ: beams, body outlines, point masses, springs, joints
+//! and rails), drawn as [`crate::output::plot::scene`] describes. The
+//! deformed geometry is given at [`PHASES`] phases t/T = k/PHASES of one
+//! period; every element whose attributes differ between frames carries an
+//! `<animate>` whose `values` are those frames (the browser interpolates
+//! linearly between them and repeats), the ground's symbols stay still.
+//! Frame 0 is q + a·φ, frame PHASES/2 is q − a·φ.
 //!
 //! Each panel also holds frame 0 as a still picture (class `still`),
 //! which the stylesheet shows instead of the animation in print and for
@@ -163,7 +164,7 @@ fn prims(view: &View, g: &Geometry) -> Vec<Prim> {
             let pts = pixel_points(sym.offsets.iter().map(|o| (x + o[0], y + o[1])));
             let class = match sym.part {
                 SymbolPart::Hatch => "hatch",
-                SymbolPart::Ground | SymbolPart::Joint => "ground",
+                SymbolPart::Ground => "ground",
             };
             let tag = if sym.closed { "polygon" } else { "polyline" };
             v.push(Prim {
