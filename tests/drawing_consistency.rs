@@ -25,7 +25,7 @@ use ancf_modal::output::figures::{assembly_geometry, ModeShapeSettings};
 use ancf_modal::output::report::animate::{animated_svg, mode_frames, PHASES};
 use ancf_modal::output::report::svg::View;
 use ancf_modal::{Model, System};
-use common::model;
+use common::{model, pixels};
 use nalgebra::Vector2;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
@@ -54,16 +54,6 @@ fn frames_of(node: roxmltree::Node, attribute: &str) -> Vec<String> {
         }
         None => vec![node.attribute(attribute).unwrap().to_string(); PHASES],
     }
-}
-
-fn pixels(points: &str) -> Vec<[f64; 2]> {
-    points
-        .split_whitespace()
-        .map(|p| {
-            let (x, y) = p.split_once(',').unwrap();
-            [x.parse().unwrap(), y.parse().unwrap()]
-        })
-        .collect()
 }
 
 fn distance(a: [f64; 2], b: (f64, f64)) -> f64 {

@@ -7,6 +7,8 @@
 //! half the period, with the largest displacement 15 % of the bounding
 //! box's diagonal (computed here, not by the library).
 
+mod common;
+
 use ancf_modal::analysis::impulse::{run_impulse, ImpulseSettings};
 use ancf_modal::analysis::modal::{modal, ModalSettings};
 use ancf_modal::output::figures::{assembly_geometry, response_figure, spectrum_figure};
@@ -14,6 +16,7 @@ use ancf_modal::output::plot::{Figure, PlotSize};
 use ancf_modal::output::report::animate::PHASES;
 use ancf_modal::output::report::{report_html, ModeSet, Provenance, ReportInput, Section};
 use ancf_modal::{Model, System};
+use common::pixels;
 
 fn paper_report() -> (System, String) {
     let model = Model::builtin();
@@ -105,15 +108,6 @@ fn the_report_is_well_formed_self_contained_and_small() {
 }
 
 /// The pixel pairs of a `points` list.
-fn pixels(points: &str) -> Vec<[f64; 2]> {
-    points
-        .split_whitespace()
-        .map(|p| {
-            let (x, y) = p.split_once(',').unwrap();
-            [x.parse().unwrap(), y.parse().unwrap()]
-        })
-        .collect()
-}
 
 #[test]
 fn animated_modes_draw_q0_plus_and_minus_a_phi() {

@@ -150,3 +150,14 @@ pub fn scaled_off(a: &[f64], b: &[f64], scale: f64) -> f64 {
         .fold(0.0f64, |m, (x, y)| m.max((x - y * scale).abs()))
         / peak
 }
+
+/// The points of an SVG `points` attribute ("x,y x,y …") [px].
+pub fn pixels(points: &str) -> Vec<[f64; 2]> {
+    points
+        .split_whitespace()
+        .map(|p| {
+            let (x, y) = p.split_once(',').unwrap();
+            [x.parse().unwrap(), y.parse().unwrap()]
+        })
+        .collect()
+}

@@ -25,16 +25,7 @@ impl View {
     /// wide (its height follows the points' aspect ratio, within
     /// [0.35, 1.2]·width), leaving `margin` pixels on every side.
     pub fn fit<'a>(points: impl Iterator<Item = &'a [f64; 2]>, width: f64, margin: f64) -> View {
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in points {
-            for i in 0..2 {
-                lo[i] = lo[i].min(p[i]);
-                hi[i] = hi[i].max(p[i]);
-            }
-        }
-        if !(lo[0].is_finite() && hi[0].is_finite()) {
-            (lo, hi) = ([0.0; 2], [1.0; 2]);
-        }
+        let (lo, hi) = bounds(points).unwrap_or(([0.0; 2], [1.0; 2]));
         let span = [(hi[0] - lo[0]).max(1e-12), (hi[1] - lo[1]).max(1e-12)];
         let inner = width - 2.0 * margin;
         let height = (inner * span[1] / span[0] + 2.0 * margin).clamp(0.35 * width, 1.2 * width);
@@ -63,16 +54,9 @@ impl View {
         min_height: f64,
         margin: f64,
     ) -> View {
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in points {
-            for i in 0..2 {
-                lo[i] = lo[i].min(p[i]);
-                hi[i] = hi[i].max(p[i]);
-            }
-        }
-        if !(lo[0].is_finite() && hi[0].is_finite()) {
+        let Some((lo, hi)) = bounds(points.iter()) else {
             return View::fit(points.iter(), max_width, margin);
-        }
+        };
         let span = [(hi[0] - lo[0]).max(1e-12), (hi[1] - lo[1]).max(1e-12)];
         let (iw, ih) = (max_width - 2.0 * margin, max_height - 2.0 * margin);
         let scale = (iw / span[0]).min(ih / span[1]);
@@ -106,6 +90,19 @@ impl View {
             h = fmt_px(self.height),
         )
     }
+}
+
+/// The lower-left and upper-right corners of `points` [SI: m]; `None`
+/// for no finite point.
+fn bounds<'a>(points: impl Iterator<Item = &'a [f64; 2]>) -> Option<([f64; 2], [f64; 2])> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in points {
+        for i in 0..2 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    }
+    (lo[0].is_finite() && hi[0].is_finite()).then_some((lo, hi))
 }
 
 /// A pixel coordinate with two decimals (trailing zeros dropped).
