@@ -52,7 +52,7 @@ use super::statics::balance::{unbalanced_force, Balance, BALANCE_TOLERANCE};
 use super::zero_modes::zero_modes;
 use crate::error::AnalysisError;
 use crate::linalg::dense::{solve_generalized, MassFactor};
-use crate::linalg::krylov::{lowest_modes, KrylovSettings};
+use crate::linalg::krylov::{lowest_modes_refined, KrylovSettings};
 use crate::linalg::null_space::{symmetrize, NullSpace, Projected};
 use crate::linalg::sparse::mul_vec;
 use crate::linalg::vector::{argmax_abs, dot};
@@ -406,6 +406,7 @@ pub fn modal(
             symmetrize(&mut m);
             Pencil::Dense { k, m }
         };
+        let mut precise = None;
         let (values, vectors, factor) = match &pencil {
             Pencil::Dense { k, m } => {
                 let (v, x, f) = dense_elastic(k, m, &z_reduced, elastic_wanted)
@@ -413,8 +414,25 @@ pub fn modal(
                 (v, x, Some(f))
             }
             Pencil::Sparse { k, m } => {
-                let r = lowest_modes(k, m, &z_reduced, &KrylovSettings::new(elastic_wanted))
-                    .map_err(|e| eigen_error(e, true))?;
+                // K_r x from strain variations: (DN)ᵀ K (DN x).
+                let products = |xs: &[&[f64]], out: &mut [Vec<f64>]| {
+                    let full: Vec<Vec<f64>> = xs.iter().map(|x| ns.expand(x)).collect();
+                    let refs: Vec<&[f64]> = full.iter().map(Vec::as_slice).collect();
+                    let mut kf = vec![Vec::new(); xs.len()];
+                    system.stiffness_products(at, &refs, &mut kf);
+                    for (o, f) in out.iter_mut().zip(&kf) {
+                        *o = ns.project_forces(f);
+                    }
+                };
+                let r = lowest_modes_refined(
+                    k,
+                    m,
+                    &z_reduced,
+                    &KrylovSettings::new(elastic_wanted),
+                    &products,
+                )
+                .map_err(|e| eigen_error(e, true))?;
+                precise = Some((r.residuals, r.guard_values, r.certified));
                 (r.values, r.vectors, None)
             }
         };
@@ -434,7 +452,11 @@ pub fn modal(
         // Plus the round-off of the energy form itself (R relative to U is
         // the relative error of ω², half of it of the frequency): a soft
         // mode among stiff elements carries the rounding of their terms.
-        let bounds = error_bounds(&pencil, factor.as_ref(), &vectors, &refined)
+        let raw = match &precise {
+            Some((bounds, _, _)) => precise_bounds(bounds, &refined, dim),
+            None => error_bounds(&pencil, factor.as_ref(), &vectors, &refined),
+        };
+        let bounds = raw
             .into_iter()
             .zip(&energies)
             .map(|(b, e)| b + 0.5 * e.roundoff / e.total().abs().max(f64::MIN_POSITIVE))
@@ -638,6 +660,18 @@ fn error_bounds(
             // Plus the round-off of the refined quotient itself, whose
             // sums run over all coordinates (√dim ε, typical accumulation).
             0.5 * dl / values[j].abs() + (dim as f64).sqrt() * f64::EPSILON
+        })
+        .collect()
+}
+
+/// The relative frequency error bound per mode from the refined solve's
+/// bounds on |θ − ω²| (½ of it relative to ω², plus the √dim ε of the
+/// refined quotient's sums as in [`error_bounds`]).
+fn precise_bounds(value_bounds: &[f64], values: &[f64], dim: usize) -> Vec<f64> {
+    (0..values.len())
+        .map(|j| {
+            let b = value_bounds.get(j).copied().unwrap_or(f64::INFINITY);
+            0.5 * b / values[j].abs() + (dim as f64).sqrt() * f64::EPSILON
         })
         .collect()
 }
