@@ -198,6 +198,15 @@ impl Shifted {
         Ok(())
     }
 
+    /// Solves for every column of `x` in place.
+    fn solve_block(&self, x: MatMut<'_, f64>) {
+        match &self.factor {
+            Factor::Llt(l) => l.solve_in_place(x),
+            Factor::Lu(l) => l.solve_in_place(x),
+            Factor::None => unreachable!("solve before factor"),
+        }
+    }
+
     fn solve(&self, x: &mut [f64]) {
         let n = x.len();
         let col = MatMut::from_column_major_slice_mut(x, n, 1);
@@ -344,7 +353,10 @@ fn modes(
     op.deflate(&mut b);
     let mut u = vec![0.0; n];
     let mut factorizations = 0;
-    for _ in 0..12 {
+    // Refined, the shift need only be of the right order: the block
+    // iteration, not Lanczos, sets the accuracy.
+    let shifts = 12;
+    for _ in 0..shifts {
         op.shifted.factor(sigma)?;
         factorizations += 1;
         // A few inverse-iteration steps with this factor, so that ρ
@@ -357,12 +369,31 @@ fn modes(
             let scale = 1.0 / umu.sqrt();
             b.iter_mut().zip(&u).for_each(|(bi, ui)| *bi = ui * scale);
         }
+        if let Some(products) = products {
+            // The iterate's Rayleigh quotient from the precise products:
+            // the factor's own estimate carries its error, which on a fine
+            // mesh exceeds λ₁ and walks the shift far below it.
+            let mut kb = vec![Vec::new()];
+            products(&[&b], &mut kb);
+            rho = dot(&b, &kb[0]) / op.m_dot(&b, &b);
+        }
         if !(rho.is_finite()) || rho <= 0.0 || -sigma <= 1.5 * rho {
             break;
         }
         sigma = -rho;
     }
-    let (mut values, mut vectors, mut steps) = lanczos(&mut op, &u, wanted, sigma, settings)?;
+    // Refined, Lanczos need only give the block a start: the Davidson
+    // steps converge it with precise products.
+    let lanczos_settings = if products.is_some() {
+        KrylovSettings {
+            tolerance: settings.tolerance.max(1e-6),
+            ..*settings
+        }
+    } else {
+        *settings
+    };
+    let (mut values, mut vectors, mut steps) =
+        lanczos(&mut op, &u, wanted, sigma, &lanczos_settings)?;
     if let Some(products) = products {
         return refine(
             &mut op,
@@ -436,31 +467,59 @@ struct Refinement {
     factorizations: usize,
 }
 
-/// M-orthonormalizes `w` against `basis` and itself (classical
-/// Gram–Schmidt, twice, in the M inner product), dropping columns that
-/// vanish; appends the survivors to `basis`.
-fn extend_basis(op: &mut Operator, basis: &mut Vec<Vec<f64>>, w: Vec<Vec<f64>>) {
-    let n = op.scratch.len();
-    let mut mw = vec![0.0; n];
-    for mut v in w {
-        op.deflate(&mut v);
-        let before = op.m_dot(&v, &v).max(0.0).sqrt();
-        if !(before > 0.0 && before.is_finite()) {
-            continue;
-        }
-        for _ in 0..2 {
-            mul_vec(op.m, &v, &mut mw);
-            let coefs: Vec<f64> = basis.iter().map(|q| dot(q, &mw)).collect();
-            for (q, c) in basis.iter().zip(&coefs) {
-                axpy(-c, q, &mut v);
-            }
-        }
-        let norm = op.m_dot(&v, &v).max(0.0).sqrt();
-        if norm > 1e-10 * before {
-            v.iter_mut().for_each(|x| *x /= norm);
-            basis.push(v);
-        }
+/// A B, sequential (a parallel product of these thin blocks waits on its
+/// barriers more than it computes on two busy cores).
+fn mm(a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> Mat<f64> {
+    let mut out = Mat::zeros(a.nrows(), b.ncols());
+    faer::linalg::matmul::matmul(out.as_mut(), faer::Accum::Replace, a, b, 1.0, Par::Seq);
+    out
+}
+
+/// M W for every column.
+fn m_block(m: &SparseColMat<usize, f64>, w: &Mat<f64>) -> Mat<f64> {
+    let mut out = Mat::zeros(w.nrows(), w.ncols());
+    for c in 0..w.ncols() {
+        mul_vec(m, w.col_as_slice(c), out.col_as_slice_mut(c));
     }
+    out
+}
+
+/// K W for every column, by the precise products.
+fn k_block(products: &StiffnessProducts, w: &Mat<f64>) -> Mat<f64> {
+    let refs: Vec<&[f64]> = (0..w.ncols()).map(|c| w.col_as_slice(c)).collect();
+    let mut out = vec![Vec::new(); refs.len()];
+    products(&refs, &mut out);
+    Mat::from_fn(w.nrows(), w.ncols(), |r, c| out[c][r])
+}
+
+/// Makes the columns of `w` M-orthogonal to X (M X given) and
+/// M-orthonormal among themselves (twice: block Gram–Schmidt, then the
+/// Gram matrix's eigenvectors, dropping directions that vanish).
+fn orthonormalize_against(
+    m: &SparseColMat<usize, f64>,
+    x: &Mat<f64>,
+    mx: &Mat<f64>,
+    mut w: Mat<f64>,
+) -> Result<Mat<f64>, EigenFailure> {
+    for _ in 0..2 {
+        if x.ncols() > 0 {
+            let c = mm(mx.transpose(), w.as_ref());
+            w -= mm(x.as_ref(), c.as_ref());
+        }
+        let mw = m_block(m, &w);
+        let g = mm(w.transpose(), mw.as_ref());
+        let g = Mat::from_fn(g.nrows(), g.ncols(), |i, j| 0.5 * (g[(i, j)] + g[(j, i)]));
+        let (vals, vecs) = symmetric_eigen_qr(&g, Par::Seq)?;
+        let top = vals.iter().fold(0.0f64, |a, &v| a.max(v));
+        let keep: Vec<usize> = (0..vals.len())
+            .filter(|&i| vals[i] > 1e-20 * top && vals[i] > 0.0)
+            .collect();
+        let t = Mat::from_fn(vecs.nrows(), keep.len(), |r, c| {
+            vecs[(r, keep[c])] / vals[keep[c]].sqrt()
+        });
+        w = mm(w.as_ref(), t.as_ref());
+    }
+    Ok(w)
 }
 
 /// Block Davidson refinement of Lanczos' modes with precise products
@@ -475,112 +534,104 @@ fn refine(
     let n = lanczos_vectors.nrows();
     let mut p = lanczos_values.len();
     let mut factorizations = run.factorizations;
-    let mut basis: Vec<Vec<f64>> = Vec::new();
-    let start: Vec<Vec<f64>> = (0..p)
-        .map(|c| lanczos_vectors.col_as_slice(c).to_vec())
-        .collect();
-    extend_basis(op, &mut basis, start);
-    let mut k_basis: Vec<Vec<f64>> = vec![Vec::new(); basis.len()];
-    {
-        let refs: Vec<&[f64]> = basis.iter().map(Vec::as_slice).collect();
-        products(&refs, &mut k_basis);
-    }
+    let deflate_block = |op: &Operator, w: &mut Mat<f64>| {
+        for c in 0..w.ncols() {
+            op.deflate(w.col_as_slice_mut(c));
+        }
+    };
+    let empty = Mat::<f64>::zeros(n, 0);
+    let mut start = lanczos_vectors;
+    deflate_block(op, &mut start);
+    // The state: Ritz vectors X, K X, M X and values θ. Starting from an
+    // empty block, the first extension is the Lanczos block itself.
+    let (mut x, mut kx, mut mx) = (empty.clone(), empty.clone(), empty.clone());
+    let mut theta: Vec<f64> = Vec::new();
+    let mut pending = Some(start);
+    let mut bounds: Vec<f64> = Vec::new();
     let mut certified = false;
     let mut perturbation = 0.0f64;
-    let mut theta: Vec<f64> = Vec::new();
-    let mut x: Vec<Vec<f64>> = Vec::new();
-    let mut residual_norms: Vec<f64> = Vec::new();
     for round in 0..3 {
         let mut previous_worst = f64::INFINITY;
-        for step in 0..REFINE_STEPS {
-            // Rayleigh–Ritz on the M-orthonormal basis with precise K.
-            let s = basis.len();
-            let mut a = Mat::from_fn(s, s, |i, j| dot(&basis[i], &k_basis[j]));
-            for i in 0..s {
-                for j in i + 1..s {
-                    let v = 0.5 * (a[(i, j)] + a[(j, i)]);
-                    a[(i, j)] = v;
-                    a[(j, i)] = v;
-                }
+        for step in 0..=REFINE_STEPS {
+            if let Some(w) = pending.take() {
+                // Rayleigh–Ritz on [X, W] with the precise products.
+                let w = orthonormalize_against(op.m, &x, &mx, w)?;
+                let kw = k_block(products, &w);
+                let (q, s) = (x.ncols(), x.ncols() + w.ncols());
+                let xkw = mm(x.transpose(), kw.as_ref());
+                let wkw = mm(w.transpose(), kw.as_ref());
+                let a = Mat::from_fn(s, s, |i, j| match (i < q, j < q) {
+                    (true, true) => {
+                        if i == j {
+                            theta[i]
+                        } else {
+                            0.0
+                        }
+                    }
+                    (true, false) => xkw[(i, j - q)],
+                    (false, true) => xkw[(j, i - q)],
+                    (false, false) => 0.5 * (wkw[(i - q, j - q)] + wkw[(j - q, i - q)]),
+                });
+                let (vals, vecs) = symmetric_eigen_qr(&a, Par::Seq)?;
+                let mut order: Vec<usize> = (0..s).collect();
+                order.sort_by(|&i, &j| vals[i].total_cmp(&vals[j]));
+                let keep = p.min(s);
+                theta = order.iter().take(keep).map(|&i| vals[i]).collect();
+                let y_top = Mat::from_fn(q, keep, |r, c| vecs[(r, order[c])]);
+                let y_bot = Mat::from_fn(s - q, keep, |r, c| vecs[(q + r, order[c])]);
+                let new_x = mm(x.as_ref(), y_top.as_ref()) + mm(w.as_ref(), y_bot.as_ref());
+                let new_kx = mm(kx.as_ref(), y_top.as_ref()) + mm(kw.as_ref(), y_bot.as_ref());
+                x = new_x;
+                kx = new_kx;
+                mx = m_block(op.m, &x);
             }
-            let (vals, vecs) = symmetric_eigen_qr(&a, Par::Seq)?;
-            let mut order: Vec<usize> = (0..s).collect();
-            order.sort_by(|&i, &j| vals[i].total_cmp(&vals[j]));
-            let keep = p.min(s);
-            theta = order.iter().take(keep).map(|&i| vals[i]).collect();
-            x = Vec::with_capacity(keep);
-            let mut kx: Vec<Vec<f64>> = Vec::with_capacity(keep);
-            for &i in order.iter().take(keep) {
-                let (mut xi, mut ki) = (vec![0.0; n], vec![0.0; n]);
-                for r in 0..s {
-                    let c = vecs[(r, i)];
-                    axpy(c, &basis[r], &mut xi);
-                    axpy(c, &k_basis[r], &mut ki);
-                }
-                x.push(xi);
-                kx.push(ki);
+            if step == REFINE_STEPS {
+                break;
             }
-            // Residuals r = Kx − θMx and their preconditioned forms
-            // w = P⁻¹r, M-orthogonal to the block (r is Euclidean-orthogonal
-            // to it by Galerkin, so (K − σM)⁻¹r is M-orthogonal to the
-            // block's modes; P is accurate away from the lowest modes).
-            let mxs: Vec<Vec<f64>> = x
-                .iter()
-                .map(|xi| {
-                    let mut out = vec![0.0; n];
-                    mul_vec(op.m, xi, &mut out);
-                    out
+            // Residuals r = Kx − θMx, the preconditioned w = P⁻¹r made
+            // M-orthogonal to the block (r is Euclidean-orthogonal to it
+            // by Galerkin, so (K − σM)⁻¹r is M-orthogonal to the block's
+            // modes; P is accurate away from the lowest modes).
+            let keep = x.ncols();
+            let r = Mat::from_fn(n, keep, |i, j| kx[(i, j)] - theta[j] * mx[(i, j)]);
+            let mut w = r.clone();
+            op.shifted.solve_block(w.as_mut());
+            deflate_block(op, &mut w);
+            let c = mm(mx.transpose(), w.as_ref());
+            w -= mm(x.as_ref(), c.as_ref());
+            bounds = (0..keep)
+                .map(|j| {
+                    // |θ − λ| ≤ η² (|θ − σ| + δ)/δ with η² = rᵀ(K − σM)⁻¹r
+                    // and δ the gap to the nearest other eigenvalue (a
+                    // component cₖ of x along mode k adds cₖ²|λₖ − λ| to the
+                    // Rayleigh quotient's error and cₖ²(λₖ − θ)²/(λₖ − σ)
+                    // to η²); twice that for P standing in for K − σM.
+                    let eta2 = dot(r.col_as_slice(j), w.col_as_slice(j)).abs();
+                    let t = theta[j];
+                    let gap = theta
+                        .iter()
+                        .enumerate()
+                        .filter(|&(i, v)| i != j && (v - t).abs() > 1e-6 * t.abs())
+                        .map(|(_, v)| (v - t).abs())
+                        .fold(f64::INFINITY, f64::min);
+                    if gap.is_finite() {
+                        2.0 * eta2 * ((t - run.sigma).abs() + gap) / gap
+                    } else {
+                        f64::INFINITY
+                    }
                 })
                 .collect();
-            let mut w: Vec<Vec<f64>> = Vec::with_capacity(keep);
-            residual_norms.clear();
-            for (j, (ki, &t)) in kx.iter().zip(&theta).enumerate() {
-                let r: Vec<f64> = ki.iter().zip(&mxs[j]).map(|(k, m)| k - t * m).collect();
-                let mut pr = r.clone();
-                op.shifted.solve(&mut pr);
-                op.deflate(&mut pr);
-                for (xi, mxi) in x.iter().zip(&mxs) {
-                    let c = dot(mxi, &pr);
-                    axpy(-c, xi, &mut pr);
-                }
-                // |θ − λ| ≤ η² (|θ − σ| + δ)/δ with η² = rᵀ(K − σM)⁻¹r and δ
-                // the gap to the nearest other eigenvalue (each component
-                // cₖ of x along mode k adds cₖ²|λₖ − λ| to the Rayleigh
-                // quotient's error and cₖ²(λₖ − θ)²/(λₖ − σ) to η²); twice
-                // that for P standing in for K − σM.
-                let eta2 = dot(&r, &pr).abs();
-                let gap = theta
-                    .iter()
-                    .enumerate()
-                    .filter(|&(i, v)| i != j && (v - t).abs() > 1e-6 * t.abs())
-                    .map(|(_, v)| (v - t).abs())
-                    .fold(f64::INFINITY, f64::min);
-                let bound = if gap.is_finite() {
-                    2.0 * eta2 * ((t - run.sigma).abs() + gap) / gap
-                } else {
-                    f64::INFINITY
-                };
-                residual_norms.push(bound);
-                w.push(pr);
-            }
-            let worst = residual_norms
+            let worst = bounds
                 .iter()
                 .zip(&theta)
                 .take(run.wanted)
                 .fold(0.0f64, |a, (b, t)| a.max(b / t.abs()));
             let stalled = worst >= 0.5 * previous_worst;
-            if worst <= 1e-14 || stalled || step + 1 == REFINE_STEPS {
+            if worst <= 1e-12 || stalled || step + 1 == REFINE_STEPS {
                 break;
             }
             previous_worst = worst;
-            basis = x.clone();
-            k_basis = kx;
-            let before = basis.len();
-            extend_basis(op, &mut basis, w);
-            let fresh: Vec<&[f64]> = basis[before..].iter().map(Vec::as_slice).collect();
-            let mut k_fresh = vec![Vec::new(); fresh.len()];
-            products(&fresh, &mut k_fresh);
-            k_basis.extend(k_fresh);
+            pending = Some(w);
         }
         // The factor's perturbation of the pencil, as seen on these modes.
         perturbation = lanczos_values
@@ -613,27 +664,17 @@ fn refine(
             certified = true;
             break;
         }
+        // Modes were skipped: go on with fresh directions (one per missing
+        // mode and a few more) beside the found ones.
         p += missing;
-        // Modes were skipped: start again from the found ones plus fresh
-        // directions (one per missing mode and a few more).
-        basis = x.clone();
-        let fresh: Vec<Vec<f64>> = (0..missing + GUARD)
-            .map(|c| {
-                (0..n)
-                    .map(|i| (2.3 * i as f64 + 0.7 * (round * 7 + c) as f64 + 0.1).sin())
-                    .collect()
-            })
-            .collect();
-        extend_basis(op, &mut basis, fresh);
-        let mut k_all = vec![Vec::new(); basis.len()];
-        let refs: Vec<&[f64]> = basis.iter().map(Vec::as_slice).collect();
-        products(&refs, &mut k_all);
-        k_basis = k_all;
+        pending = Some(Mat::from_fn(n, missing + GUARD, |i, c| {
+            (2.3 * i as f64 + 0.7 * (round * 7 + c) as f64 + 0.1).sin()
+        }));
     }
     let w = run.wanted.min(theta.len());
     let guard_values = theta[w..].to_vec();
-    let vectors = Mat::from_fn(n, w, |r, c| x[c][r]);
-    residual_norms.truncate(w);
+    let vectors = x.subcols(0, w).to_owned();
+    bounds.truncate(w);
     theta.truncate(w);
     Ok(KrylovModes {
         values: theta,
@@ -641,7 +682,7 @@ fn refine(
         shift: run.sigma,
         steps: run.steps,
         factorizations,
-        residuals: residual_norms,
+        residuals: bounds,
         guard_values,
         certified,
         perturbation,
@@ -676,6 +717,8 @@ fn lanczos(
         basis.push(std::mem::take(&mut v));
         // Two passes of classical Gram–Schmidt against the whole basis.
         let mut a = 0.0;
+        op.deflate(&mut w);
+        let mut b2 = 0.0;
         for pass in 0..2 {
             mul_vec(op.m, &w, &mut mw);
             let coefs: Vec<f64> = basis.iter().map(|q| dot(q, &mw)).collect();
@@ -685,10 +728,12 @@ fn lanczos(
             for (q, c) in basis.iter().zip(&coefs) {
                 axpy(-c, q, &mut w);
             }
+            // wᵀMw once w is M-orthogonal to the basis (and to the
+            // deflated space, which the basis is M-orthogonal to).
+            b2 = dot(&w, &mw);
         }
-        op.deflate(&mut w);
         alpha.push(a);
-        let b = op.m_dot(&w, &w).max(0.0).sqrt();
+        let b = b2.max(0.0).sqrt();
         let j = basis.len();
         let done = j >= wanted && (j - wanted).is_multiple_of(CHECK_EVERY) && {
             let (theta, s) = ritz(&alpha, &beta)?;

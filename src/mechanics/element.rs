@@ -204,6 +204,12 @@ fn combine_variation(de: &Vec8, c: &Vector4<f64>) -> Vector2<f64> {
     }
 }
 
+/// Σᵢ |cᵢ| |nodeᵢ|: the size of the nodal terms a combination cancels.
+#[inline]
+fn nodal_size(de: &Vec8, c: &Vector4<f64>) -> f64 {
+    (0..4).map(|i| c[i].abs() * node(de, i).norm()).sum()
+}
+
 /// The sum of the sizes of the terms [`combine_variation`] adds: its
 /// round-off is ε times this.
 #[inline]
@@ -266,6 +272,8 @@ struct BendingStatePoint {
     point: BendingPoint,
     c: f64,
     noise: f64,
+    /// Σᵢ|d1ᵢ||nodeᵢ|/|r'|: ε times this is r''s relative round-off.
+    slope_noise: f64,
 }
 
 struct StatePoints {
@@ -468,8 +476,13 @@ impl CableElement {
                 let (along, across) = (p.t.dot(&d1), p.n.dot(&d1));
                 ax += p.stretch * along * along;
                 bd += p.tension * across * across;
+                // The second-order term from the nodal values' own sizes
+                // (a rigid motion of stored, rounded nodes strains a short
+                // element by ε|r|/Le), the first-order one from the terms
+                // the difference form adds.
+                let nodal = nodal_size(de, &qp.d1);
+                cancel += p.stretch * nodal * nodal;
                 let vs = variation_size(de, &qp.d1);
-                cancel += p.stretch * vs * vs;
                 first += 2.0 * (p.stretch * along.abs() + p.tension.abs() * across.abs()) * vs;
                 stress += (p.tension * across * across).abs();
                 state += p.noise * across * across;
@@ -480,10 +493,18 @@ impl CableElement {
                 let dk = b.p.dot(&d1) + b.q.dot(&d2);
                 let second = d1.dot(&(b.h11 * d1)) + 2.0 * d1.dot(&(b.h12 * d2));
                 bd += p.c * (dk * dk + b.kappa * second);
+                let dk_nodal =
+                    b.p.norm() * nodal_size(de, &qp.d1) + b.q.norm() * nodal_size(de, &qp.d2);
+                cancel += p.c * dk_nodal * dk_nodal;
                 let dk_size = b.p.norm() * variation_size(de, &qp.d1)
                     + b.q.norm() * variation_size(de, &qp.d2);
-                cancel += p.c * dk_size * dk_size;
                 first += 2.0 * p.c * dk.abs() * dk_size;
+                // p and q carry the relative round-off of the state's r'.
+                first += 4.0
+                    * p.c
+                    * dk.abs()
+                    * p.slope_noise
+                    * (b.p.norm() * d1.norm() + b.q.norm() * d2.norm());
                 stress += (p.c * b.kappa * second).abs();
                 state += p.c * p.noise * second.abs();
             }
@@ -538,10 +559,12 @@ impl CableElement {
             let point = BendingPoint::new(e, qp);
             let (n1, n2) = (size_xy(&qp.d1), size_xy(&qp.d2));
             let noise = f64::EPSILON * (point.p.abs().dot(&n1) + point.q.abs().dot(&n2));
+            let slope_noise = size(&qp.d1) / combine(e, &qp.d1).norm().max(f64::MIN_POSITIVE);
             BendingStatePoint {
                 point,
                 c: 0.5 * qp.w * ei,
                 noise,
+                slope_noise,
             }
         });
         StatePoints { axial, bending }
