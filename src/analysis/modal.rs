@@ -477,7 +477,9 @@ pub fn modal(
                     &products,
                 )
                 .map_err(|e| eigen_error(e, true))?;
-                precise = Some((r.residuals, r.guard_values, r.certified));
+                if !r.residuals.is_empty() {
+                    precise = Some((r.residuals, r.guard_values, r.certified));
+                }
                 (r.values, r.vectors, None)
             }
         };

@@ -382,20 +382,9 @@ fn modes(
         }
         sigma = -rho;
     }
-    // Refined, Lanczos need only give the block a start: the Davidson
-    // steps converge it with precise products.
-    let lanczos_settings = if products.is_some() {
-        KrylovSettings {
-            tolerance: settings.tolerance.max(1e-6),
-            ..*settings
-        }
-    } else {
-        *settings
-    };
-    let (mut values, mut vectors, mut steps) =
-        lanczos(&mut op, &u, wanted, sigma, &lanczos_settings)?;
+    let (mut values, mut vectors, mut steps) = lanczos(&mut op, &u, wanted, sigma, settings)?;
     if let Some(products) = products {
-        return refine(
+        let refined = refine(
             &mut op,
             products,
             Refinement {
@@ -405,10 +394,19 @@ fn modes(
                 steps,
                 factorizations,
             },
-            values,
-            vectors,
-        );
+            values.clone(),
+            vectors.clone(),
+        )?;
+        if refined.values.len() == wanted_out && refined.residuals.iter().all(|b| b.is_finite()) {
+            return Ok(refined);
+        }
+        // The block lost directions, or a mode has no other mode to take a
+        // gap to (a small problem whose wanted and guard modes fill it):
+        // Lanczos' own result, certified below.
     }
+    let wanted = wanted_out;
+    values.truncate(wanted);
+    vectors = vectors.subcols(0, values.len()).to_owned();
     // The certificate: no eigenvalue below the highest one found was
     // skipped (a start vector poor in some mode, or the second copy of a
     // repeated value). Each missing one is searched for from a fresh start

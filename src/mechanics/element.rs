@@ -609,10 +609,9 @@ impl CableElement {
     }
 }
 
-/// r'' at a quadrature point with each of its components along and across
-/// r' snapped to zero when below the round-off of forming it from the
-/// nodal values (4 ε Σᵢ |d2ᵢ| |nodeᵢ|), as [`axial_strain`] does for the
-/// strain. Nodes of a straight beam stored at rounded positions give an
+/// r'' at a quadrature point with its component along r' snapped to zero
+/// when below the round-off of forming it from the nodal values
+/// (4 ε Σᵢ |d2ᵢ| |nodeᵢ|), as [`axial_strain`] does for the strain. Nodes of a straight beam stored at rounded positions give an
 /// r'' of ε|r|/Le² (7e-6 /m at 100,000 elements of a 1 m beam): it is no
 /// curvature, but ∂κ/∂r' = Jr''/|r'|² − … turns it into a coupling of the
 /// slope with the curvature variation that moved f₁ by 8e-9.
@@ -627,8 +626,11 @@ fn snapped_second_derivative(e: &Vec8, d2: &Vector4<f64>, r1: Vector2<f64>) -> V
     let tol = 4.0 * f64::EPSILON * size;
     let (t, n) = (r1 / l, Vector2::new(-r1.y, r1.x) / l);
     let (along, across) = (t.dot(&r2), n.dot(&r2));
-    let snap = |v: f64| if v.abs() <= tol { 0.0 } else { v };
-    t * snap(along) + n * snap(across)
+    // Only the component along r' (a stretch gradient, which κ sees only
+    // through ∂κ/∂r'): the one across is the curvature, which a small
+    // vibration's state has of this size and must keep.
+    let along = if along.abs() <= tol { 0.0 } else { along };
+    t * along + n * across
 }
 
 /// Curvature and its first and second derivatives with respect to (r', r'').
