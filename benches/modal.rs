@@ -1,7 +1,8 @@
 //! Modal analysis speed: the built-in paper assembly, the bare 8-element
 //! blade (the case Exudyn's dense eigen call is quoted for), a 2,000-element
-//! cantilever (sparse path, lowest 10 modes) and free square grids of
-//! welded beams of 1k and 10k elements.
+//! cantilever (sparse path, lowest 10 modes), free square grids of
+//! welded beams of 1k and 10k elements, and issue 37's 1 m steel
+//! cantilever at 10k to 100k elements (12 modes).
 //! Run: `cargo bench --bench modal`.
 
 use ancf_modal::analysis::{modal_at_reference, ModalSettings};
@@ -112,6 +113,34 @@ fn bench(c: &mut Criterion) {
         );
     }
     group.finish();
+    // Issue 37: the 1 m steel cantilever (10 × 20 mm) where a factor of
+    // K − σM carries more round-off than λ₁ (refined by precise products).
+    let twelve = ModalSettings {
+        modes: Some(12),
+        ..settings
+    };
+    let mut fine = c.benchmark_group("fine mesh");
+    fine.sample_size(10);
+    for elements in [10_000, 20_000, 50_000, 100_000] {
+        let model = steel_cantilever(elements);
+        fine.bench_function(
+            format!("modal: 1 m steel cantilever, {elements} elements, 12 modes"),
+            |b| b.iter(|| modal_at_reference(&System::new(&model), &twelve).unwrap()),
+        );
+    }
+    fine.finish();
+}
+
+/// Issue 37's cantilever: 1 m of steel, 10 mm (bending) × 20 mm, welded to
+/// the ground at s = 0.
+fn steel_cantilever(elements: usize) -> ValidModel {
+    let json = format!(
+        r#"{{"name": "c", "beams": [{{"id": "b", "start": [0, 0], "angle_deg": 0, "length": 1.0,
+        "elements": {elements}, "section": {{"height": 0.01, "width": 0.02}},
+        "material": {{"young": 210e9, "density": 7850}}}}],
+        "joints": [{{"type": "weld", "a": {{"ground": [0, 0]}}, "b": {{"beam": "b", "s": 0}}}}]}}"#
+    );
+    Model::from_json(&json, Source::BuiltIn).unwrap()
 }
 
 criterion_group!(benches, bench);

@@ -209,10 +209,15 @@ fn a_length_typed_in_micrometres_names_the_part_and_the_lever_arm() {
     let (json, lines) = modal_warnings(&micro(150e-6));
     assert!(json.is_empty() && lines.is_empty(), "{json:?} {lines:?}");
     let (json, lines) = modal_warnings(&micro(150.0));
-    // The arm, the mass, and the eigen-solve's accuracy they limit.
-    assert_eq!(json.len(), 3, "the arm, the mass, the accuracy: {json:?}");
-    assert_eq!(lines.len(), 3, "{lines:?}");
-    assert!(json[2].contains("the eigen-solve certifies"), "{}", json[2]);
+    // The arm and the mass; since issue 37 the sparse solve's refinement
+    // certifies the modes their sizes used to spoil (no accuracy warning).
+    assert_eq!(json.len(), 2, "the arm, the mass: {json:?}");
+    assert_eq!(lines.len(), 2, "{lines:?}");
+    assert!(
+        json.iter()
+            .all(|w| !w.contains("the eigen-solve certifies")),
+        "{json:?}"
+    );
     // 150 m against the 200 µm base: 750,000 times; the mass's point is the
     // arm's tip, (200e-6 + 150) − 350e-6 = 149.99985 m from its centre,
     // 749,999 times its 200 µm.
@@ -233,30 +238,28 @@ fn a_length_typed_in_micrometres_names_the_part_and_the_lever_arm() {
     }
 }
 
-/// The accuracy warning of a `modal` run (a `warning:` line on stderr,
-/// after the model's name).
-fn accuracy_warning(stderr: &str) -> &str {
-    stderr
-        .lines()
-        .find(|l| l.starts_with("warning: ") && l.contains(": the eigen-solve certifies"))
-        .unwrap_or_else(|| panic!("an accuracy warning: {stderr}"))
-}
-
 #[test]
-fn the_accuracy_warning_names_the_parts_whose_sizes_disagree() {
-    // The issue's run: the table's accuracy warning blames the sizes, not
-    // the round-off of a fine mesh (8 elements in all).
+fn parts_whose_sizes_disagree_no_longer_spoil_the_default_solve() {
+    // The issue's run (8 elements in all): the dense solve cannot resolve
+    // the modes (bounds ~1e6); since issue 37 it refuses them instead of
+    // printing them, and the default solver refines them by shift-invert
+    // with precise products, certifying them.
     let (code, stdout, stderr) = run(&micro(150.0), &["modal", "--modes", "3"]);
     assert_eq!(code, Some(0), "{stderr}");
     assert!(
         !stdout.contains("warning:"),
         "warnings go to stderr: {stdout}"
     );
-    let w = accuracy_warning(&stderr);
+    assert!(!stderr.contains("eigen-solve certifies"), "{stderr}");
+    let (code, _, stderr) = run(
+        &micro(150.0),
+        &["modal", "--modes", "3", "--solver", "dense"],
+    );
+    assert_eq!(code, Some(0), "{stderr}");
     assert!(
-        w.contains("parts whose sizes disagree by orders of magnitude limit them: beam `arm`, rigid body `mass`")
-            && !w.contains("round-off"),
-        "{w}"
+        stderr.contains("mode 1 is not reported as a frequency")
+            && stderr.contains("the dense solve's round-off limits it"),
+        "{stderr}"
     );
     // The same assembly in consistent units certifies its frequencies.
     let (_, stdout, stderr) = run(&micro(150e-6), &["modal", "--modes", "3"]);
@@ -265,23 +268,27 @@ fn the_accuracy_warning_names_the_parts_whose_sizes_disagree() {
 }
 
 #[test]
-fn the_accuracy_warning_of_a_very_fine_mesh_names_its_round_off() {
-    // The README's case: the 25 mm cantilever in 2,000 elements (bound
-    // ~5e-6): no sizes disagree, so the round-off is named.
+fn a_very_fine_mesh_is_certified() {
+    // The README's case: the 25 mm cantilever in 2,000 elements, whose
+    // bound was ~5e-6 with an accuracy warning before issue 37; the
+    // refined solve certifies it.
     let text = std::fs::read_to_string(
         Path::new(env!("CARGO_MANIFEST_DIR")).join("models/cantilever.json"),
     )
     .unwrap();
     let mut model: Value = serde_json::from_str(&text).unwrap();
     model["beams"][0]["elements"] = json!(2000);
-    let (code, _, stderr) = run(&model, &["modal", "--modes", "3"]);
+    let (code, stdout, stderr) = run(&model, &["modal", "--modes", "1", "--json"]);
     assert_eq!(code, Some(0), "{stderr}");
-    let w = accuracy_warning(&stderr);
-    assert!(
-        w.contains("the round-off of the stiffest entries limits them: a very fine mesh")
-            && !w.contains("sizes"),
-        "{w}"
-    );
+    assert!(!stderr.contains("eigen-solve certifies"), "{stderr}");
+    // And right: Euler–Bernoulli's f₁ (the mesh's own error is ~1e-13).
+    let v: Value = serde_json::from_str(&stdout).unwrap();
+    let f1 = v["modes"][0]["frequency_hz"].as_f64().expect("f1");
+    let (l, h, w, e, rho) = (25e-3f64, 1.1e-3f64, 5.2e-3f64, 127e9f64, 8940.0f64);
+    let ei = e * w * h.powi(3) / 12.0;
+    let beta = 1.875_104_068_711_961f64;
+    let exact = beta * beta / (2.0 * std::f64::consts::PI * l * l) * (ei / (rho * w * h)).sqrt();
+    assert!((f1 / exact - 1.0).abs() < 1e-7, "{f1} Hz vs {exact} Hz");
 }
 
 /// An aluminium ruler (0.3 m, 30 × `height` mm... in metres) on two foam
@@ -329,21 +336,16 @@ fn a_spring_point_in_millimetres_names_the_spring() {
 }
 
 #[test]
-fn the_accuracy_warning_names_a_value_in_other_units() {
+fn a_value_in_other_units_no_longer_spoils_the_default_solve() {
     // The height typed in millimetres (1.0 for 1 mm): the 0.3 m ruler is
-    // a metre-high block on 50 N/m springs, the table's bound is loose,
-    // and the warning names the height, not a fine mesh (20 elements).
+    // a metre-high block on 50 N/m springs; before issue 37 the table's
+    // bound was loose and warned; the refined solve certifies it.
     let (code, _, stderr) = run(
         &ruler_on_foam(1.0, [0.2328, -0.02]),
         &["modal", "--modes", "3"],
     );
     assert_eq!(code, Some(0), "{stderr}");
-    let w = accuracy_warning(&stderr);
-    assert!(
-        w.contains("values that look like other units than SI limit them: beams[0].section.height")
-            && !w.contains("fine mesh"),
-        "{w}"
-    );
+    assert!(!stderr.contains("eigen-solve certifies"), "{stderr}");
 }
 
 #[test]

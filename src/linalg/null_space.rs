@@ -192,6 +192,18 @@ impl NullSpace {
         out
     }
 
+    /// Nᵀ v (with a scaling D, (DN)ᵀ v): a full vector of generalized
+    /// forces in the reduced coordinates, as [`Projected`] maps a matrix.
+    pub fn project_forces(&self, v: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; self.dim];
+        for (g, &vg) in v.iter().enumerate() {
+            for &(r, z) in self.row(g) {
+                out[r] += z * vg;
+            }
+        }
+        out
+    }
+
     /// NᵀAN of a dense symmetric n × n matrix (symmetrized).
     pub fn project_dense(&self, a: &Mat<f64>) -> Mat<f64> {
         let mut out = Mat::zeros(self.dim, self.dim);

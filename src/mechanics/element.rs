@@ -189,6 +189,40 @@ fn combine(e: &Vec8, c: &Vector4<f64>) -> Vector2<f64> {
     node(e, 0) * c[0] + node(e, 1) * c[1] + node(e, 2) * c[2] + node(e, 3) * c[3]
 }
 
+/// [`combine`] of a variation, with the two position terms taken as one
+/// difference when their weights are opposite (they are, exactly, for
+/// d/dx and d²/dx² of the Hermite cubics): c₀(δr_A − δr_B) carries the
+/// round-off of the difference, not of the two nodal terms of size
+/// |c₀||δr| that cancel to it (on a 1e-5 m element, 1e10 times less for
+/// the curvature of a smooth mode).
+#[inline]
+fn combine_variation(de: &Vec8, c: &Vector4<f64>) -> Vector2<f64> {
+    if c[2] == -c[0] {
+        (node(de, 0) - node(de, 2)) * c[0] + node(de, 1) * c[1] + node(de, 3) * c[3]
+    } else {
+        combine(de, c)
+    }
+}
+
+/// Σᵢ |cᵢ| |nodeᵢ|: the size of the nodal terms a combination cancels.
+#[inline]
+fn nodal_size(de: &Vec8, c: &Vector4<f64>) -> f64 {
+    (0..4).map(|i| c[i].abs() * node(de, i).norm()).sum()
+}
+
+/// The sum of the sizes of the terms [`combine_variation`] adds: its
+/// round-off is ε times this.
+#[inline]
+fn variation_size(de: &Vec8, c: &Vector4<f64>) -> f64 {
+    if c[2] == -c[0] {
+        c[0].abs() * (node(de, 0) - node(de, 2)).norm()
+            + c[1].abs() * node(de, 1).norm()
+            + c[3].abs() * node(de, 3).norm()
+    } else {
+        (0..4).map(|i| c[i].abs() * node(de, i).norm()).sum()
+    }
+}
+
 /// The slope r' at an axial quadrature point, its length l and the axial
 /// strain l − 1, snapped to zero when it is below the round-off of forming
 /// r' from the nodal values (4 ε Σᵢ |d1ᵢ| |nodeᵢ|, relative to l).
@@ -209,6 +243,42 @@ fn axial_strain(e: &Vec8, d1: &Vector4<f64>) -> (Vector2<f64>, f64, f64) {
         eps
     };
     (r1, l, eps)
+}
+
+/// out[node i] += c[i] g, the two position terms as ± one product when
+/// their weights are opposite (the force pair of a difference).
+#[inline]
+fn add_spread(out: &mut Vec8, c: &Vector4<f64>, g: Vector2<f64>) {
+    let f0 = g * c[0];
+    let f2 = if c[2] == -c[0] { -f0 } else { g * c[2] };
+    for (i, f) in [(0, f0), (1, g * c[1]), (2, f2), (3, g * c[3])] {
+        out[2 * i] += f.x;
+        out[2 * i + 1] += f.y;
+    }
+}
+
+/// The state at an axial quadrature point: unit tangent and normal of r',
+/// ½wEA, the tension factor ½wEA·ε/l and its round-off.
+struct AxialPoint {
+    t: Vector2<f64>,
+    n: Vector2<f64>,
+    stretch: f64,
+    tension: f64,
+    noise: f64,
+}
+
+/// The state at a bending quadrature point, ½wEI and its curvature's round-off.
+struct BendingStatePoint {
+    point: BendingPoint,
+    c: f64,
+    noise: f64,
+    /// Σᵢ|d1ᵢ||nodeᵢ|/|r'|: ε times this is r''s relative round-off.
+    slope_noise: f64,
+}
+
+struct StatePoints {
+    axial: [AxialPoint; AXIAL_POINTS],
+    bending: [BendingStatePoint; BENDING_POINTS],
 }
 
 /// `J a` with J = [[0, 1], [−1, 0]], so that `bᵀ J a = b × a`… written out:
@@ -396,67 +466,137 @@ impl CableElement {
     /// computed once for all of them.
     pub fn add_quadratic_forms(&self, e: &Vec8, des: &[Vec8], out: &mut [EnergySplit]) {
         assert_eq!(des.len(), out.len(), "one output per variation");
+        let points = self.state_points(e);
+        for (de, o) in des.iter().zip(out.iter_mut()) {
+            let (mut ax, mut bd, mut cancel, mut stress) = (0.0, 0.0, 0.0, 0.0);
+            let (mut state, mut first) = (0.0, 0.0);
+            for (qp, p) in self.axial.iter().zip(&points.axial) {
+                let d1 = combine_variation(de, &qp.d1);
+                let (along, across) = (p.t.dot(&d1), p.n.dot(&d1));
+                ax += p.stretch * along * along;
+                bd += p.tension * across * across;
+                // The second-order term from the nodal values' own sizes
+                // (a rigid motion of stored, rounded nodes strains a short
+                // element by ε|r|/Le), the first-order one from the terms
+                // the difference form adds.
+                let nodal = nodal_size(de, &qp.d1);
+                cancel += p.stretch * nodal * nodal;
+                let vs = variation_size(de, &qp.d1);
+                first += 2.0 * (p.stretch * along.abs() + p.tension.abs() * across.abs()) * vs;
+                stress += (p.tension * across * across).abs();
+                state += p.noise * across * across;
+            }
+            for (qp, p) in self.bending.iter().zip(&points.bending) {
+                let b = &p.point;
+                let (d1, d2) = (combine_variation(de, &qp.d1), combine_variation(de, &qp.d2));
+                let dk = b.p.dot(&d1) + b.q.dot(&d2);
+                let second = d1.dot(&(b.h11 * d1)) + 2.0 * d1.dot(&(b.h12 * d2));
+                bd += p.c * (dk * dk + b.kappa * second);
+                let dk_nodal =
+                    b.p.norm() * nodal_size(de, &qp.d1) + b.q.norm() * nodal_size(de, &qp.d2);
+                cancel += p.c * dk_nodal * dk_nodal;
+                let dk_size = b.p.norm() * variation_size(de, &qp.d1)
+                    + b.q.norm() * variation_size(de, &qp.d2);
+                first += 2.0 * p.c * dk.abs() * dk_size;
+                // p and q carry the relative round-off of the state's r'.
+                first += 4.0
+                    * p.c
+                    * dk.abs()
+                    * p.slope_noise
+                    * (b.p.norm() * d1.norm() + b.q.norm() * d2.norm());
+                stress += (p.c * b.kappa * second).abs();
+                state += p.c * p.noise * second.abs();
+            }
+            o.axial += ax;
+            o.bending += bd;
+            o.roundoff += f64::EPSILON * (f64::EPSILON * cancel + first + stress) + state;
+        }
+    }
+
+    /// The state's quantities at every quadrature point, shared by the
+    /// quadratic forms and the products of the tangent.
+    ///
+    /// The state's own strain and curvature carry the round-off of the
+    /// sums that form r' and r'' from nodal values: a tension or curvature
+    /// of that size is not a stress, and the forms are uncertain by it
+    /// times their second-order terms. The curvature's is taken per
+    /// component (a beam along an axis has its transverse components, and
+    /// so κ, exactly zero); an axial strain snapped to zero
+    /// ([`axial_strain`]: below the round-off of forming r') is the
+    /// stress-free state it stands for and carries none.
+    fn state_points(&self, e: &Vec8) -> StatePoints {
         let CableSection { ea, ei, .. } = self.section;
-        // The state's quantities at every quadrature point, then each
-        // variation through all points with its sums in registers.
-        let size = |de: &Vec8, d: &Vector4<f64>| -> f64 {
-            (0..4).map(|i| d[i].abs() * node(de, i).norm()).sum()
+        let size =
+            |d: &Vector4<f64>| -> f64 { (0..4).map(|i| d[i].abs() * node(e, i).norm()).sum() };
+        let size_xy = |d: &Vector4<f64>| -> Vector2<f64> {
+            (0..4)
+                .map(|i| node(e, i).abs() * d[i].abs())
+                .fold(Vector2::zeros(), |a, b| a + b)
         };
-        // The state's own strain and curvature carry the round-off of the
-        // sums that form r' and r'' from nodal values (a straight
-        // reference has ε = κ = 0 only up to ε·Σ|Sᵢ'||eᵢ|): a tension or
-        // curvature of that size is not a stress, and the forms below are
-        // uncertain by it times their second-order terms.
-        // (tangent, normal, ½wEA, tension factor, its round-off) per point.
-        type AxialPoint = (Vector2<f64>, Vector2<f64>, f64, f64, f64);
-        let axial: [AxialPoint; AXIAL_POINTS] = std::array::from_fn(|k| {
+        let axial = std::array::from_fn(|k| {
             let d1 = &self.axial[k].d1;
             let (r1, l, eps) = axial_strain(e, d1);
             // The stretch term is axial; the tension term ε/l·|δr'⊥|²
             // acts on transverse motion (a string's stiffness) and
             // counts as bending.
             let stretch = 0.5 * self.axial[k].w * ea;
-            let tension_noise = stretch * f64::EPSILON * size(e, d1) / (l * l);
-            (
-                r1 / l,
-                perp_neg(r1) / l,
+            let noise = if eps == 0.0 {
+                0.0
+            } else {
+                stretch * f64::EPSILON * size(d1) / (l * l)
+            };
+            AxialPoint {
+                t: r1 / l,
+                n: perp_neg(r1) / l,
                 stretch,
-                stretch * eps / l,
-                tension_noise,
-            )
+                tension: stretch * eps / l,
+                noise,
+            }
         });
-        let bending: [(BendingPoint, f64, f64); BENDING_POINTS] = std::array::from_fn(|k| {
+        let bending = std::array::from_fn(|k| {
             let qp = &self.bending[k];
-            let b = BendingPoint::new(e, qp);
-            let kappa_noise =
-                f64::EPSILON * (b.p.norm() * size(e, &qp.d1) + b.q.norm() * size(e, &qp.d2));
-            (b, 0.5 * qp.w * ei, kappa_noise)
+            let point = BendingPoint::snapped(e, qp);
+            let (n1, n2) = (size_xy(&qp.d1), size_xy(&qp.d2));
+            let noise = f64::EPSILON * (point.p.abs().dot(&n1) + point.q.abs().dot(&n2));
+            let slope_noise = size(&qp.d1) / combine(e, &qp.d1).norm().max(f64::MIN_POSITIVE);
+            BendingStatePoint {
+                point,
+                c: 0.5 * qp.w * ei,
+                noise,
+                slope_noise,
+            }
         });
+        StatePoints { axial, bending }
+    }
+
+    /// K δe of the tangent at `e` for each variation, added into `out`
+    /// (one per variation): the gradient of [`CableElement::quadratic_form`],
+    /// formed from the strain variations at the quadrature points and
+    /// their stresses, so that a smooth variation's nodal forces carry the
+    /// round-off of its strains, not of the stiffness entries (of order
+    /// EI/Le³) that a product with the matrix cancels.
+    pub fn add_tangent_products(&self, e: &Vec8, des: &[Vec8], out: &mut [Vec8]) {
+        assert_eq!(des.len(), out.len(), "one output per variation");
+        let points = self.state_points(e);
         for (de, o) in des.iter().zip(out.iter_mut()) {
-            let (mut ax, mut bd, mut cancel, mut stress) = (0.0, 0.0, 0.0, 0.0);
-            let mut state = 0.0;
-            for (qp, &(t, n, stretch, tension, noise)) in self.axial.iter().zip(&axial) {
-                let d1 = combine(de, &qp.d1);
-                let (along, across) = (t.dot(&d1), n.dot(&d1));
-                ax += stretch * along * along;
-                bd += tension * across * across;
-                cancel += stretch * size(de, &qp.d1).powi(2);
-                stress += (tension * across * across).abs();
-                state += noise * across * across;
+            // ∂U₂/∂r' and ∂U₂/∂r'' per point, spread by the shape derivatives.
+            for (qp, p) in self.axial.iter().zip(&points.axial) {
+                let d1 = combine_variation(de, &qp.d1);
+                let (along, across) = (p.t.dot(&d1), p.n.dot(&d1));
+                let g1 = p.t * (2.0 * p.stretch * along) + p.n * (2.0 * p.tension * across);
+                add_spread(o, &qp.d1, g1);
             }
-            for (qp, (b, c, noise)) in self.bending.iter().zip(&bending) {
-                let (d1, d2) = (combine(de, &qp.d1), combine(de, &qp.d2));
+            for (qp, p) in self.bending.iter().zip(&points.bending) {
+                let b = &p.point;
+                let (d1, d2) = (combine_variation(de, &qp.d1), combine_variation(de, &qp.d2));
                 let dk = b.p.dot(&d1) + b.q.dot(&d2);
-                let second = d1.dot(&(b.h11 * d1)) + 2.0 * d1.dot(&(b.h12 * d2));
-                bd += c * (dk * dk + b.kappa * second);
-                let dk_size = b.p.norm() * size(de, &qp.d1) + b.q.norm() * size(de, &qp.d2);
-                cancel += c * dk_size * dk_size;
-                stress += (c * b.kappa * second).abs();
-                state += c * noise * second.abs();
+                let ck = p.c * b.kappa;
+                let g1 = b.p * (2.0 * p.c * dk)
+                    + ((b.h11 + b.h11.transpose()) * d1 + b.h12 * d2 * 2.0) * ck;
+                let g2 = b.q * (2.0 * p.c * dk) + b.h12.transpose() * d1 * (2.0 * ck);
+                add_spread(o, &qp.d1, g1);
+                add_spread(o, &qp.d2, g2);
             }
-            o.axial += ax;
-            o.bending += bd;
-            o.roundoff += f64::EPSILON * (f64::EPSILON * cancel + stress) + state;
         }
     }
 
@@ -466,6 +606,30 @@ impl CableElement {
         self.tangent_parts_into(e, out, &mut bending);
         *out += bending;
     }
+}
+
+/// r'' at a quadrature point with its component along r' snapped to zero
+/// when below the round-off of forming it from the nodal values
+/// (4 ε Σᵢ |d2ᵢ| |nodeᵢ|), as [`axial_strain`] does for the strain. Nodes of a straight beam stored at rounded positions give an
+/// r'' of ε|r|/Le² (7e-6 /m at 100,000 elements of a 1 m beam): it is no
+/// curvature, but ∂κ/∂r' = Jr''/|r'|² − … turns it into a coupling of the
+/// slope with the curvature variation that moved f₁ by 8e-9.
+#[inline]
+fn snapped_second_derivative(e: &Vec8, d2: &Vector4<f64>, r1: Vector2<f64>) -> Vector2<f64> {
+    let r2 = combine(e, d2);
+    let l = r1.norm();
+    if l == 0.0 {
+        return r2;
+    }
+    let size: f64 = (0..4).map(|i| d2[i].abs() * node(e, i).norm()).sum();
+    let tol = 4.0 * f64::EPSILON * size;
+    let (t, n) = (r1 / l, Vector2::new(-r1.y, r1.x) / l);
+    let (along, across) = (t.dot(&r2), n.dot(&r2));
+    // Only the component along r' (a stretch gradient, which κ sees only
+    // through ∂κ/∂r'): the one across is the curvature, which a small
+    // vibration's state has of this size and must keep.
+    let along = if along.abs() <= tol { 0.0 } else { along };
+    t * along + n * across
 }
 
 /// Curvature and its first and second derivatives with respect to (r', r'').
@@ -482,10 +646,25 @@ struct BendingPoint {
 }
 
 impl BendingPoint {
+    /// At the element's state, as the forces and the assembled tangent
+    /// see it (smooth in the state: a transient's Newton needs that).
     #[inline]
     fn new(e: &Vec8, qp: &QuadPoint) -> Self {
         let r1 = combine(e, &qp.d1);
-        let r2 = combine(e, &qp.d2);
+        Self::of(r1, combine(e, &qp.d2))
+    }
+
+    /// With r'''s round-off along r' snapped (see
+    /// [`snapped_second_derivative`]): the linearization the precise
+    /// products and the energy split use.
+    #[inline]
+    fn snapped(e: &Vec8, qp: &QuadPoint) -> Self {
+        let r1 = combine(e, &qp.d1);
+        Self::of(r1, snapped_second_derivative(e, &qp.d2, r1))
+    }
+
+    #[inline]
+    fn of(r1: Vector2<f64>, r2: Vector2<f64>) -> Self {
         let g = r1.norm_squared();
         let jr2 = perp_neg(r2); // ∂c/∂r'
         let jtr1 = Vector2::new(-r1.y, r1.x); // ∂c/∂r''
@@ -506,5 +685,43 @@ impl BendingPoint {
             h11,
             h12,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The strain-form product K δe equals the assembled tangent times δe
+    /// (to round-off of the tangent's entries) at a curved, stretched state,
+    /// and gives exactly zero for a rigid translation of the element.
+    #[test]
+    fn tangent_products_match_the_tangent_matrix() {
+        let el = CableElement::new(0.013, CableSection::rectangle(70e9, 2700.0, 2e-3, 5e-3));
+        let e = Vec8::from_column_slice(&[0.1, 0.2, 0.95, 0.31, 0.113, 0.2035, 0.97, 0.28]);
+        let mut k = Mat8::zeros();
+        el.tangent_into(&e, &mut k);
+        let des = [
+            Vec8::from_fn(|i, _| (1.3 * i as f64).sin()),
+            Vec8::from_fn(|i, _| (0.7 * i as f64 + 0.2).cos()),
+        ];
+        let mut out = [Vec8::zeros(); 2];
+        el.add_tangent_products(&e, &des, &mut out);
+        for (de, o) in des.iter().zip(&out) {
+            let expected = k * de;
+            let scale = k.abs().max() * de.abs().max();
+            for i in 0..8 {
+                assert!(
+                    (o[i] - expected[i]).abs() <= 1e-12 * scale,
+                    "entry {i}: {} against {}",
+                    o[i],
+                    expected[i]
+                );
+            }
+        }
+        let shift = Vec8::from_column_slice(&[0.3, -0.2, 0.0, 0.0, 0.3, -0.2, 0.0, 0.0]);
+        let mut rigid = [Vec8::zeros()];
+        el.add_tangent_products(&e, &[shift], &mut rigid);
+        assert!(rigid[0].iter().all(|&v| v == 0.0), "{:?}", rigid[0]);
     }
 }

@@ -48,6 +48,21 @@ pub struct Linearization<'a> {
     pub load_scale: f64,
 }
 
+/// A scatter target that adds A φ for each shape instead of storing A.
+struct Products<'a, 'b> {
+    phis: &'a [&'b [f64]],
+    out: &'a mut [Vec<f64>],
+}
+
+impl Scatter for Products<'_, '_> {
+    #[inline]
+    fn add(&mut self, i: usize, j: usize, v: f64) {
+        for (o, phi) in self.out.iter_mut().zip(self.phis) {
+            o[i] += v * phi[j];
+        }
+    }
+}
+
 fn element_vec(q: &[f64], dofs: &[usize; 8]) -> Vec8 {
     Vec8::from_fn(|i, _| q[dofs[i]])
 }
@@ -223,6 +238,52 @@ impl System {
                 scatter_mat(&dofs, &kt, out);
             }
         }
+        self.add_tangent_stiffness_of_joints_and_loads(at, out);
+    }
+
+    /// The products K φ of the tangent stiffness of
+    /// [`System::tangent_stiffness`] with several shapes, written into
+    /// `out` (one per shape). The beams' part is formed from strain
+    /// variations ([`crate::mechanics::element::CableElement::add_tangent_products`]):
+    /// a smooth shape's nodal forces keep the precision of its strains
+    /// where the assembled matrix's product cancels entries of order
+    /// EI/Le³ (the residual of a mode of a 100,000-element cantilever
+    /// would be all round-off).
+    pub fn stiffness_products(&self, at: &Linearization, phis: &[&[f64]], out: &mut [Vec<f64>]) {
+        assert_eq!(phis.len(), out.len(), "one output per shape");
+        for o in out.iter_mut() {
+            o.clear();
+            o.resize(self.ndof(), 0.0);
+        }
+        let q = at.q;
+        let mut des = vec![Vec8::zeros(); phis.len()];
+        let mut forces = vec![Vec8::zeros(); phis.len()];
+        for b in &self.beams {
+            for (k, el) in b.elements.iter().enumerate() {
+                let dofs = b.element_dofs(k);
+                for (de, phi) in des.iter_mut().zip(phis) {
+                    *de = element_vec(phi, &dofs);
+                }
+                forces.fill(Vec8::zeros());
+                el.add_tangent_products(&element_vec(q, &dofs), &des, &mut forces);
+                for (o, f) in out.iter_mut().zip(&forces) {
+                    for (i, &d) in dofs.iter().enumerate() {
+                        o[d] += f[i];
+                    }
+                }
+            }
+        }
+        let mut products = Products { phis, out };
+        self.add_tangent_stiffness_of_joints_and_loads(at, &mut products);
+    }
+
+    /// The tangent's terms from springs, loads and (with λ) constraints.
+    fn add_tangent_stiffness_of_joints_and_loads(
+        &self,
+        at: &Linearization,
+        out: &mut impl Scatter,
+    ) {
+        let q = at.q;
         let mut h = PairHess::zeros();
         for fe in self.elastic_elements() {
             fe.hessian(q, &mut h);

@@ -55,7 +55,7 @@ impl Default for ModalRequest {
 /// reference's.
 #[derive(Debug, Clone)]
 pub enum ModalOutcome {
-    Reference(ModalResult),
+    Reference(Box<ModalResult>),
     Prestressed(Box<PrestressedModal>),
 }
 
@@ -131,7 +131,7 @@ pub fn run(input: &ModelInput, request: &ModalRequest) -> Result<ModalRun, Comma
             output.mac = Some(mac_against(&system, &r, other, &settings)?);
         }
         (
-            ModalOutcome::Reference(r),
+            ModalOutcome::Reference(Box::new(r)),
             ModalJson::Reference(output),
             own,
         )
