@@ -239,6 +239,16 @@ class Model:
         the equilibrium under the loads); for a model with a half-sine or
         step load everything ``identify`` computes (its keyword arguments);
         the switch-off when the model releases something."""
+    def reduce(
+        self,
+        interface: Sequence[Tuple[str, float]],
+        modes: int = 8,
+        method: str = "craig-bampton",
+        prestress: bool = False,
+        keep_supports: bool = False,
+        load_scale: float = 1.0,
+    ) -> "ReducedBody":
+        """The model as a reduced flexible body (`ancf-modal reduce`)."""
     def static(self, load_scale: float = 1.0) -> "StaticResult":
         """The static equilibrium under the loads × load_scale [–] and
         gravity (``ancf-modal static``)."""
@@ -649,3 +659,19 @@ def frf_files(
 def _panic(message: str) -> None:
     """Panics inside the library's call wrapper (for the test suite: raises
     AnalysisError)."""
+
+class ReducedBody:
+    """A reduced flexible body: `Model.reduce`'s result."""
+
+    @property
+    def mass(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def stiffness(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def basis(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def rigid(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def check(self) -> Dict[str, Any]: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+    def save(self, path: Union[str, "os.PathLike[str]"]) -> None: ...

@@ -14,6 +14,7 @@ mod impulse;
 mod matrices;
 mod modal;
 mod model;
+mod reduce;
 mod report;
 mod statics;
 mod sweep;
@@ -90,6 +91,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<switch_off::PySwitchOffResult>()?;
     m.add_class::<transient::PyTransientResult>()?;
     m.add_class::<identify::PyIdentifyResult>()?;
+    m.add_class::<reduce::PyReducedBody>()?;
     m.add_function(wrap_pyfunction!(sweep::sweep_function, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_merge_function, m)?)?;
     m.add_function(wrap_pyfunction!(frf::frf, m)?)?;

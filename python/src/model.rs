@@ -289,6 +289,35 @@ impl PyModel {
         crate::modal::run(self, py, modes, prestress, solver, load_scale)
     }
 
+    /// The model as a reduced flexible body (the command line's
+    /// `reduce`): `interface` a list of (beam id, arc length [m]) points,
+    /// `modes` component modes, `method` "craig-bampton" or
+    /// "free-interface", at the static equilibrium with prestress=True
+    /// (loads × load_scale), ground supports removed unless keep_supports.
+    #[pyo3(signature = (interface, modes = 8, method = "craig-bampton", prestress = false, keep_supports = false, load_scale = 1.0))]
+    #[allow(clippy::too_many_arguments)]
+    fn reduce(
+        &self,
+        py: Python<'_>,
+        interface: Vec<(String, f64)>,
+        modes: i64,
+        method: &str,
+        prestress: bool,
+        keep_supports: bool,
+        load_scale: f64,
+    ) -> PyResult<crate::reduce::PyReducedBody> {
+        crate::reduce::run(
+            self,
+            py,
+            interface,
+            modes,
+            method,
+            prestress,
+            keep_supports,
+            load_scale,
+        )
+    }
+
     /// The paper's time-domain test (the command line's `impulse`): the
     /// model's half-sine loads (the hammer; `amplitude` [N] and `duration`
     /// [s] override them) excite it, generalized-α integrates `end_time`

@@ -26,6 +26,7 @@ mod identify;
 mod impulse;
 mod modal;
 mod output;
+mod reduce;
 mod report;
 mod statics;
 mod sweep;
@@ -76,6 +77,9 @@ pub enum Command {
     /// Measured hammer records (CSV, UFF 58) in: H1, H2, coherence, and the
     /// modes' frequencies and damping ratios (LSCF fit).
     Frf(frf::FrfArgs),
+    /// The assembly as a reduced flexible body (Craig–Bampton or
+    /// free-interface) for a multibody code such as Exudyn, with its check.
+    Reduce(reduce::ReduceArgs),
 }
 
 pub use common::print_warnings;
@@ -112,5 +116,6 @@ pub fn run(cli: Cli) -> Result<common::Warnings> {
             Ok(Vec::new())
         }
         Command::Frf(a) => frf::run(a),
+        Command::Reduce(a) => reduce::run(a),
     }
 }

@@ -35,6 +35,13 @@ pub enum CommandError {
         #[source]
         source: AnalysisError,
     },
+    /// The reduction of a valid model failed.
+    #[error("{model}")]
+    Reduce {
+        model: String,
+        #[source]
+        source: crate::analysis::reduce::ReduceError,
+    },
     /// A simulation of a valid model failed (or its settings are bad).
     #[error("{model}")]
     Simulation {
@@ -214,6 +221,11 @@ impl CommandError {
                     | SimulationError::ReleaseNeedsEquilibrium { .. }
             ),
             CommandError::Analysis { .. } => false,
+            CommandError::Reduce { source, .. } => matches!(
+                source,
+                crate::analysis::reduce::ReduceError::InterfaceNotFree { .. }
+                    | crate::analysis::reduce::ReduceError::NotHeld
+            ),
             // --- impulse, transient, switch-off, calibrate ---
             CommandError::Integration(e) => transient_input(e),
             CommandError::Impulse { source, .. } => super::impulse::is_input(source),

@@ -22,6 +22,7 @@
 //! | `frf` | [`frf::FrfRequest`] | [`frf::FrfRun`] |
 //! | `identify` | [`identify::IdentifyRequest`] | [`identify::IdentifyRun`] |
 //! | `sweep` | [`sweep::SweepRequest`] | [`sweep::SweepRun`] |
+//! | `reduce` | [`reduce::ReduceRequest`] | [`reduce::ReduceRun`] |
 //! | `sweep-merge` | [`sweep_merge::SweepMergeRequest`] | [`sweep::SweepRun`] |
 
 pub mod convergence;
@@ -30,6 +31,7 @@ pub mod frf;
 pub mod identify;
 pub mod input;
 pub mod modal;
+pub mod reduce;
 pub mod report;
 pub mod statics;
 // impulse, transient, switch-off, calibrate

@@ -15,6 +15,8 @@
 //!   factors, certified complete by [`inertia`];
 //! - [`inertia`]: the count of eigenvalues below a shift (Sylvester's law
 //!   on faer's sparse LDLᵀ);
+//! - [`subspace`]: Rayleigh–Ritz on a few (possibly dependent) columns:
+//!   the reduced models of component-mode synthesis;
 //! - [`vector`]: the few vector helpers (dot, norms, axpy) everyone shares.
 
 pub mod dense;
@@ -22,6 +24,7 @@ pub mod inertia;
 pub mod krylov;
 pub mod null_space;
 pub mod sparse;
+pub mod subspace;
 pub mod vector;
 
 pub use sparse::{Scatter, Triplets};

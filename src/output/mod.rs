@@ -9,6 +9,7 @@ pub mod modal_report;
 pub mod modal_uff;
 pub mod plot;
 pub mod records_uff;
+pub mod reduce_report;
 pub mod report;
 pub mod static_report;
 pub mod sweep_report;

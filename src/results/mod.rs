@@ -29,6 +29,7 @@ pub mod fit;
 pub mod identify;
 pub mod modal;
 pub mod provenance;
+pub mod reduce;
 pub mod statics;
 pub mod time;
 

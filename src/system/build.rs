@@ -36,16 +36,22 @@ fn all_points(model: &Model) -> impl Iterator<Item = &PointSpec> {
         .chain(model.contacts.iter().map(|c| c.point()))
 }
 
-/// Node arc lengths: uniform division plus attachment points.
-fn mesh_nodes(model: &Model, beam: &crate::model::Beam) -> Vec<f64> {
+/// Node arc lengths: uniform division plus attachment points, plus the
+/// `extra` arc lengths asked for on this beam (whatever
+/// `nodes_at_attachments` says).
+fn mesh_nodes(model: &Model, beam: &crate::model::Beam, extra: &[f64]) -> Vec<f64> {
     let l = beam.length;
     let n = beam.elements;
     let mut s: Vec<f64> = (0..=n).map(|k| l * k as f64 / n as f64).collect();
-    if beam.nodes_at_attachments {
-        let extra = all_points(model)
-            .filter(|p| p.beam.as_deref() == Some(beam.id.as_str()))
+    if beam.nodes_at_attachments || !extra.is_empty() {
+        let attachments = all_points(model)
+            .filter(|p| beam.nodes_at_attachments && p.beam.as_deref() == Some(beam.id.as_str()))
             .filter_map(|p| p.s);
-        s.extend(extra.map(|x| x.clamp(0.0, l)));
+        s.extend(
+            attachments
+                .chain(extra.iter().copied())
+                .map(|x| x.clamp(0.0, l)),
+        );
         s.sort_by(f64::total_cmp);
         s.dedup_by(|a, b| (*a - *b).abs() <= NODE_MERGE_TOLERANCE * l);
         // Keep the exact end points.
@@ -63,19 +69,27 @@ impl System {
     /// ([`Model::centre_of_mass`], kept as [`System::origin`]): inside,
     /// positions are O(the assembly's size) wherever the model sits.
     pub fn new(model: &ValidModel) -> System {
+        System::with_nodes(model, &[])
+    }
+
+    /// [`System::new`] with a mesh node at each of the material points
+    /// `nodes` too, given as (beam index, arc length [SI: m]): a point that
+    /// is not a mesh node is made one, as for attachments.
+    pub fn with_nodes(model: &ValidModel, nodes: &[(usize, f64)]) -> System {
         let assembly = model.assembly();
-        let mut sys = System::assemble(assembly);
+        let mut sys = System::assemble(assembly, nodes);
         sys.origin = v2(assembly.origin);
         sys
     }
 
-    fn assemble(assembly: &Assembly) -> System {
+    fn assemble(assembly: &Assembly, nodes: &[(usize, f64)]) -> System {
         let model = &assembly.model;
         let mut dof = 0;
         let mut q0 = Vec::new();
         let mut beams = Vec::new();
-        for b in &model.beams {
-            let node_s = mesh_nodes(model, b);
+        for (index, b) in model.beams.iter().enumerate() {
+            let extra: Vec<f64> = nodes.iter().filter(|n| n.0 == index).map(|n| n.1).collect();
+            let node_s = mesh_nodes(model, b, &extra);
             let section = CableSection::of(&b.section, &b.material);
             let elements = node_s
                 .windows(2)

@@ -16,12 +16,14 @@ mod energy;
 mod mass;
 mod release;
 mod rigid_motion;
+mod supports;
 mod transfer;
 
 pub use assemble::{EnergyBreakdown, Linearization};
 pub use mass::MassMatrix;
 pub use release::{ReleasedJoint, ReleasedSupport};
 pub use rigid_motion::{RigidMotions, SparseColumn};
+pub use supports::FreeBody;
 pub use transfer::TransferError;
 
 use crate::mechanics::anchor::Anchor;
@@ -210,6 +212,17 @@ impl System {
             }
         }
         String::from("$")
+    }
+
+    /// Numbers the constraints' rows again after constraints were removed.
+    fn renumber_constraints(&mut self) {
+        self.constraint_rows.clear();
+        let mut rows = 0;
+        for c in &self.constraints {
+            self.constraint_rows.push(rows);
+            rows += c.rows();
+        }
+        self.nrows = rows;
     }
 
     /// Whether any spring or torsion spring has a damper.

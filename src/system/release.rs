@@ -87,13 +87,7 @@ impl System {
                 });
             }
         }
-        self.constraint_rows.clear();
-        let mut rows = 0;
-        for c in &self.constraints {
-            self.constraint_rows.push(rows);
-            rows += c.rows();
-        }
-        self.nrows = rows;
+        self.renumber_constraints();
         self
     }
 }

@@ -92,20 +92,7 @@ pub struct ModalRun {
 
 /// Runs `modal` on `input`.
 pub fn run(input: &ModelInput, request: &ModalRequest) -> Result<ModalRun, CommandError> {
-    if request.modes < 1 {
-        return Err(CommandError::argument(
-            "modes",
-            request.modes,
-            "must be a whole number ≥ 1",
-        ));
-    }
-    if !request.load_scale.is_finite() {
-        return Err(CommandError::argument(
-            "load_scale",
-            request.load_scale,
-            "must be a finite number",
-        ));
-    }
+    super::checks::modes_and_load_scale(request.modes, request.load_scale)?;
     let model = &input.model;
     let system = System::new(model);
     let settings = ModalSettings {

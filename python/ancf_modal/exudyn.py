@@ -1,0 +1,118 @@
+"""A reduced body of ancf-modal (``Model.reduce``) in Exudyn.
+
+``add_flexible_body(mbs, body)`` builds Exudyn's ``FEMinterface`` from the
+body's 3D node form (node positions [m], mass [kg] and stiffness [N/m] over
+three translations per node, the basis over the same) and adds an
+``ObjectFFRFreducedOrder`` on a floating frame with Rxyz rotation
+parameters. The body is planar: the frame's out-of-plane motions (z,
+rotation about x and about y) are fixed to the ground. Exudyn is imported
+when the function is called, so ``ancf_modal`` does not need it.
+
+The basis is M-orthogonal to the rigid motions the frame carries (as
+Exudyn's ``excludeRigidBodyMotion``), so the frame and the modal
+coordinates never count a motion twice. Damping, if wanted, is Exudyn's
+Rayleigh damping on the modal coordinates.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, Sequence, Tuple
+
+import numpy as np
+
+
+def _csr(triplets: Sequence[Sequence[float]], size: int) -> Any:
+    from scipy.sparse import csr_matrix
+
+    t = np.asarray(triplets, dtype=float).reshape(-1, 3)
+    return csr_matrix(
+        (t[:, 2], (t[:, 0].astype(int), t[:, 1].astype(int))), shape=(size, size)
+    )
+
+
+def add_flexible_body(
+    mbs: Any,
+    body: Any,
+    position: Tuple[float, float, float] = (0.0, 0.0, 0.0),
+    clamp: Sequence[int] = (),
+) -> Dict[str, Any]:
+    """Adds ``body`` (an ``ancf_modal.ReducedBody``) to the Exudyn system ``mbs``.
+
+    ``position`` [m] is the frame's reference position: node positions are
+    the model's, so (0, 0, 0) puts the body where the model has it.
+    ``clamp`` lists interface points (indices into the body's interface)
+    to weld to the ground: the interface node and its virtual node are
+    each held in x and y (position and slope of the beam there).
+
+    Returns a dict: ``object`` (the ObjectFFRFreducedOrder), ``nodes``
+    (``rigid``: the frame's node, ``modal``: the modal coordinates' node),
+    ``markers`` (one MarkerSuperElementPosition per interface point, at the
+    interface node, for the user's joints), ``interface_nodes`` (per
+    interface point its node and virtual node), ``interface``
+    (the ``FEMinterface``) and ``cms`` (the ObjectFFRFreducedOrderInterface).
+    """
+    import exudyn as exu
+    import exudyn.itemInterface as eii
+    from exudyn.FEM import FEMinterface, ObjectFFRFreducedOrderInterface
+
+    doc = body.to_dict()
+    form = doc["nodes"]
+    positions = np.asarray(form["positions"], dtype=float)
+    size = 3 * len(positions)
+    fem = FEMinterface()
+    fem.nodes = {"Position": positions}
+    fem.massMatrix = _csr(form["mass"], size)
+    fem.stiffnessMatrix = _csr(form["stiffness"], size)
+    fem.modeBasis = {
+        "matrix": np.asarray(form["basis"], dtype=float),
+        "type": "ancf_modal " + doc["method"],
+    }
+    cms = ObjectFFRFreducedOrderInterface(
+        fem, rigidBodyNodeType=exu.NodeType.RotationRxyz
+    )
+    added = cms.AddObjectFFRFreducedOrder(mbs, positionRef=list(position))
+    obj = added["oFFRFreducedOrder"]
+    rigid = added["nRigidBody"]
+    modal = added["nGenericODE2"]
+    ground_node = mbs.AddNode(eii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0]))
+    ground_coordinate = mbs.AddMarker(
+        eii.MarkerNodeCoordinate(nodeNumber=ground_node, coordinate=0)
+    )
+    # Rxyz node: [x, y, z, φx, φy, φz]; hold z, φx, φy.
+    for c in (2, 3, 4):
+        m = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=rigid, coordinate=c))
+        mbs.AddObject(eii.CoordinateConstraint(markerNumbers=[ground_coordinate, m]))
+    markers = []
+    interface_nodes = []
+    for p in doc["interface"]:
+        node, virtual = p["nodes"]
+        interface_nodes.append((node, virtual))
+        markers.append(
+            mbs.AddMarker(
+                eii.MarkerSuperElementPosition(
+                    bodyNumber=obj, meshNodeNumbers=[node], weightingFactors=[1.0]
+                )
+            )
+        )
+    if clamp:
+        ground = mbs.AddObject(eii.ObjectGround())
+    for index in clamp:
+        for node in interface_nodes[index]:
+            at = np.asarray(position, dtype=float) + positions[node]
+            mg = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=ground, localPosition=list(at)))
+            mn = mbs.AddMarker(
+                eii.MarkerSuperElementPosition(
+                    bodyNumber=obj, meshNodeNumbers=[node], weightingFactors=[1.0]
+                )
+            )
+            mbs.AddObject(
+                eii.ObjectJointSpherical(markerNumbers=[mg, mn], constrainedAxes=[1, 1, 0])
+            )
+    return {
+        "object": obj,
+        "nodes": {"rigid": rigid, "modal": modal},
+        "markers": markers,
+        "interface_nodes": interface_nodes,
+        "interface": fem,
+        "cms": cms,
+    }

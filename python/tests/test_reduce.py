@@ -1,0 +1,168 @@
+"""Reduced flexible bodies (`Model.reduce`) and their import into Exudyn.
+
+Every number compared comes from an independent source: the full model's
+own `modal` under the same boundary condition (a model file with the
+support as a joint), Exudyn's eigenvalues of the imported body, or the
+model's mass and inertia from its bodies' closed forms.
+"""
+
+import json
+
+import numpy as np
+import pytest
+import scipy.linalg
+
+import ancf_modal
+from ancf_modal.exudyn import add_flexible_body
+
+L = 0.1
+
+
+def beam(elements=20, joints=()):
+    return ancf_modal.Model.from_json(
+        json.dumps(
+            {
+                "name": "steel_beam",
+                "gravity": [0, 0],
+                "beams": [
+                    {
+                        "id": "blade",
+                        "start": [0, 0],
+                        "angle_deg": 0,
+                        "length": L,
+                        "elements": elements,
+                        "section": {"height": 1e-3, "width": 1e-2},
+                        "material": {"young": 2.1e11, "density": 7850},
+                    }
+                ],
+                "joints": list(joints),
+            }
+        )
+    )
+
+
+WELD = {"type": "weld", "a": {"ground": [0, 0]}, "b": {"beam": "blade", "s": 0}}
+PIN = {"type": "pin", "a": {"ground": [0, 0]}, "b": {"beam": "blade", "s": 0}}
+
+
+def reduced_hz(body, held=()):
+    """The package's reduced model [R Ψ] with the coordinates `held` held."""
+    whole = np.hstack([body.rigid, body.basis])
+    d = body.to_dict()
+    q = np.asarray(d["q"])
+    del q
+    m = np.eye(whole.shape[1])
+    k = np.zeros_like(m)
+    r = body.rigid.shape[1]
+    k[r:, r:] = body.stiffness
+    if held:
+        n = scipy.linalg.null_space(whole[list(held), :])
+        m, k = n.T @ m @ n, n.T @ k @ n
+    w2 = scipy.linalg.eigh(k, m, eigvals_only=True)
+    return np.sign(w2) * np.sqrt(np.abs(w2)) / (2 * np.pi)
+
+
+def full_elastic_hz(model, count):
+    result = model.modal(modes=count + 3)
+    kinds = result.kinds
+    return np.array([f for f, kd in zip(result.frequencies_hz, kinds) if kd not in ("rigid", "mechanism")])[:count]
+
+
+def exudyn_hz(body, clamp, count):
+    exu = pytest.importorskip("exudyn")
+    sc = exu.SystemContainer()
+    mbs = sc.AddSystem()
+    added = add_flexible_body(mbs, body, clamp=clamp)
+    mbs.Assemble()
+    values, _ = exu.solver.ComputeODE2Eigenvalues(mbs, computeComplexEigenvalues=False, useAbsoluteValues=False)
+    values = np.sort(np.asarray(values))
+    return added, np.sqrt(np.abs(values[:count])) / (2 * np.pi)
+
+
+def test_exudyn_agrees_with_the_reduced_body_and_the_full_cantilever():
+    body = beam().reduce(interface=[("blade", 0.0), ("blade", L)], modes=8)
+    _, hz = exudyn_hz(body, clamp=[0], count=6)
+    own = reduced_hz(body, held=range(4))[:6]
+    np.testing.assert_allclose(hz, own, rtol=1e-6, err_msg="Exudyn against the package's reduced body")
+    full = full_elastic_hz(beam(joints=[WELD]), 6)
+    np.testing.assert_allclose(hz, full, rtol=1e-3, err_msg="Exudyn against the full clamped beam")
+
+
+def test_free_interface_keeps_eight_free_free_modes():
+    body = beam().reduce(interface=[("blade", 0.0), ("blade", L)], modes=8, method="free-interface")
+    own = reduced_hz(body)[3:11]
+    full = full_elastic_hz(beam(), 8)
+    np.testing.assert_allclose(own, full, rtol=1e-8)
+    # Its own check: the first interface point held.
+    assert body.check["condition"] == {"held": {"point": 0}}
+
+
+def test_pinned_free_error_falls_as_the_basis_grows():
+    full = full_elastic_hz(beam(joints=[PIN]), 6)
+    worst = []
+    for k in (8, 16, 30):
+        body = beam().reduce(interface=[("blade", 0.0), ("blade", L)], modes=k)
+        own = reduced_hz(body, held=(0, 1))
+        # The pinned beam's rigid rotation about the pin stays a zero mode.
+        errors = (own[1:7] - full) / full
+        assert np.all(errors > -1e-9), f"k = {k}: below the full model {errors}"
+        worst.append(errors.max())
+    assert worst[0] > worst[1] > worst[2], worst
+
+
+def test_the_papers_assembly_imports_with_its_mass_and_inertia():
+    model = ancf_modal.Model.builtin()
+    body = model.reduce(interface=[("blade", 0.0), ("blade", 25e-3)], modes=8)
+    added, hz = exudyn_hz(body, clamp=[0], count=4)
+    spec = json.loads(model.to_json())
+    blade = spec["beams"][0]
+    rho_a = blade["material"]["density"] * blade["section"]["height"] * blade["section"]["width"]
+    m_beam = rho_a * blade["length"]
+    t = np.array([np.cos(np.radians(blade["angle_deg"])), np.sin(np.radians(blade["angle_deg"]))])
+    mid = np.asarray(blade["start"]) + 0.5 * blade["length"] * t
+    parts = [(m_beam, mid, m_beam * blade["length"] ** 2 / 12)]
+    parts += [(b["mass"], np.asarray(b["position"]), b["inertia"]) for b in spec["rigid_bodies"]]
+    parts += [(p["mass"], np.asarray(p["position"]), 0.0) for p in spec["point_masses"]]
+    total = sum(p[0] for p in parts)
+    # About the frame's origin (the model's origin): J_c + m |c|² per part.
+    inertia_origin = sum(j + m * float(c @ c) for m, c, j in parts)
+    cms = added["cms"]
+    assert abs(cms.totalMass - total) <= 1e-12 * total
+    assert abs(cms.inertiaLocal[2, 2] - inertia_origin) <= 1e-12 * inertia_origin
+    centre = sum(m * c for m, c, _ in parts) / total
+    np.testing.assert_allclose(cms.chiU[:2], centre, rtol=0, atol=1e-12 * 0.03)
+    welded = dict(spec)
+    welded["joints"] = spec["joints"] + [
+        {"type": "weld", "a": {"ground": blade["start"]}, "b": {"beam": "blade", "s": 0.0}}
+    ]
+    full = full_elastic_hz(ancf_modal.Model.from_json(json.dumps(welded)), 4)
+    # A weld holds the slope's direction; Exudyn's clamp (node and virtual
+    # node held) holds its length too, which forbids axial strain at the
+    # root: mode 4 of this assembly moves axially there (the full model
+    # with the four coordinates held: 28704.7 Hz, welded: 28468.5 Hz).
+    np.testing.assert_allclose(hz[:3], full[:3], rtol=1e-3)
+    held = model.reduce(interface=[("blade", 0.0), ("blade", 25e-3)], modes=8, method="free-interface")
+    np.testing.assert_allclose(hz, held.check["full_hz"][:4], rtol=1e-3)
+
+
+def test_prestressed_reduction_checks_against_the_full_model_at_the_equilibrium():
+    from conftest import MODELS
+
+    model = ancf_modal.Model.from_json(MODELS / "rcbo_prestressed.json")
+    body = model.reduce(interface=[("blade", 0.0), ("blade", 25e-3)], modes=8, prestress=True)
+    check = body.check
+    assert check["condition"] == "free"
+    errors = np.asarray(check["relative_error"])[:4]
+    assert np.all(np.abs(errors) <= 1e-3), errors
+    assert body.to_dict()["prestress"] is True
+
+
+def test_save_writes_json_and_npz(tmp_path):
+    body = beam(elements=6).reduce(interface=[("blade", 0.0)], modes=4)
+    body.save(tmp_path / "b.json")
+    body.save(tmp_path / "b.npz")
+    data = np.load(tmp_path / "b.npz")
+    np.testing.assert_array_equal(data["basis"], body.basis)
+    assert json.loads((tmp_path / "b.json").read_text())["method"] == "craig-bampton"
+    with pytest.raises(ancf_modal.ModelError, match="path"):
+        body.save(tmp_path / "b.txt")

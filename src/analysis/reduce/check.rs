@@ -1,0 +1,128 @@
+//! The reduced body's own check: its modes against the full model's under
+//! a boundary condition other than the one its basis was built with, so
+//! that the check can fail.
+//!
+//! - Craig–Bampton (built with the interface held): every interface point
+//!   free. The zero modes (as many as the full model counts from its
+//!   kinematics) are left out of both; the elastic ones are compared.
+//! - Free-interface (built free): the first interface point held (its four
+//!   coordinates, position and slope: a weld to the ground that also fixes
+//!   the slope's length, as two ground joints on the node and its virtual
+//!   node do in Exudyn).
+//!
+//! The reduced model is the body's motions q = [R Ψ] η with its mass and
+//! stiffness [R Ψ]ᵀ M [R Ψ], [R Ψ]ᵀ K [R Ψ]; a held point adds the rows of
+//! its coordinates as constraints on η. Frequencies f = √ω²/2π [Hz]
+//! (negative for ω² < 0), error (f_reduced − f_full)/f_full [–]: Ritz's
+//! bound makes it ≥ 0 up to round-off.
+
+use super::{held, project, ReduceError, Reduction};
+use crate::analysis::modal::{modal, EigenMethod, ModalSettings};
+use crate::linalg::dense::solve_generalized;
+use crate::linalg::null_space::NullSpace;
+use crate::system::Linearization;
+use crate::System;
+use faer::Mat;
+
+/// The boundary condition of a check.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, schemars::JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CheckCondition {
+    /// Every interface point free.
+    Free,
+    /// The interface point of this index held (position and slope).
+    Held { point: usize },
+}
+
+/// The modes of the reduced body and of the full model under one
+/// condition.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
+pub struct ReductionCheck {
+    pub condition: CheckCondition,
+    /// Zero-frequency modes of the full model left out of the comparison.
+    pub zero_modes: usize,
+    /// The full model's frequencies [SI: Hz].
+    pub full_hz: Vec<f64>,
+    /// The reduced body's frequencies [SI: Hz].
+    pub reduced_hz: Vec<f64>,
+    /// (reduced − full)/full per mode [–].
+    pub relative_error: Vec<f64>,
+}
+
+fn hz(omega2: f64) -> f64 {
+    omega2.signum() * omega2.abs().sqrt() / (2.0 * std::f64::consts::PI)
+}
+
+/// Compares up to `count` modes of `reduction` with the full `system` at
+/// `at` under `condition`.
+pub fn check(
+    system: &System,
+    at: &Linearization,
+    reduction: &Reduction,
+    condition: CheckCondition,
+    count: usize,
+) -> Result<ReductionCheck, ReduceError> {
+    let n = system.ndof();
+    let (r, m) = (reduction.rigid.ncols(), reduction.basis.ncols());
+    let whole = Mat::from_fn(n, r + m, |i, j| {
+        if j < r {
+            reduction.rigid[(i, j)]
+        } else {
+            reduction.basis[(i, j - r)]
+        }
+    });
+    let k_full = held::full_stiffness(system, at);
+    let mb = project(&whole, &|x, y| system.mass().mul_vec(x, y));
+    let kb = project(&whole, &|x, y| held::apply(&k_full, x, y));
+    let eigen = |k: &Mat<f64>, m: &Mat<f64>| {
+        solve_generalized(k, m, k.nrows())
+            .map(|e| e.values)
+            .map_err(|_| ReduceError::Eigen { size: k.nrows() })
+    };
+    let (zero_modes, full, reduced) = match condition {
+        CheckCondition::Free => {
+            let settings = |modes| ModalSettings {
+                modes: Some(modes),
+                method: EigenMethod::Auto,
+            };
+            let first = modal(system, at, &settings(count + 3))?;
+            let z = first.rigid_modes;
+            let result = if z > 3 {
+                modal(system, at, &settings(count + z))?
+            } else {
+                first
+            };
+            let full: Vec<f64> = result
+                .modes
+                .iter()
+                .filter(|m| !m.kind.is_zero())
+                .map(|m| m.eigenvalue)
+                .collect();
+            let reduced = eigen(&kb, &mb)?;
+            (z, full, reduced[z.min(reduced.len())..].to_vec())
+        }
+        CheckCondition::Held { point } => {
+            let coords = &reduction.interface[4 * point..4 * point + 4];
+            let (full, _) = held::held_modes(system, at, coords, count)?;
+            let rows = Mat::from_fn(4, r + m, |a, j| whole[(coords[a], j)]);
+            let ns = NullSpace::from_dense(&rows);
+            let (kh, mh) = (ns.project_dense(&kb), ns.project_dense(&mb));
+            (0, full, eigen(&kh, &mh)?)
+        }
+    };
+    let count = count.min(full.len()).min(reduced.len());
+    let full_hz: Vec<f64> = full[..count].iter().map(|&w| hz(w)).collect();
+    let reduced_hz: Vec<f64> = reduced[..count].iter().map(|&w| hz(w)).collect();
+    let relative_error = full_hz
+        .iter()
+        .zip(&reduced_hz)
+        .map(|(f, g)| (g - f) / f)
+        .collect();
+    Ok(ReductionCheck {
+        condition,
+        zero_modes,
+        full_hz,
+        reduced_hz,
+        relative_error,
+    })
+}

@@ -1,0 +1,293 @@
+//! `reduce`: the assembly as a reduced flexible body for a multibody code
+//! (Craig–Bampton or free-interface, [`crate::analysis::reduce`]), with
+//! its own check against the full model and the 3D node form Exudyn
+//! imports. Interface points are material points on beams (beam id, arc
+//! length [SI: m]); one that is not a mesh node is made one. Ground
+//! supports are removed unless `keep_supports`; with `prestress` the body
+//! is linearized at the static equilibrium of the supported model under
+//! its loads × `load_scale`: it keeps the stiffening of that state, not its
+//! preload forces.
+
+use super::{CommandError, ModelInput, Run};
+use crate::analysis::reduce::{
+    check, reduce, CheckCondition, NodeForm, ReduceError, Reduction, ReductionMethod,
+};
+use crate::analysis::statics::{solve_equilibrium, StaticSettings};
+use crate::model::resolved::ResolvedPoint;
+use crate::model::PointSpec;
+use crate::output::reduce_report::reduce_table;
+use crate::results::reduce::{rows, InterfacePoint, NodeFormDoc, ReducedBody};
+use crate::system::Linearization;
+use crate::System;
+use std::path::Path;
+
+/// What `reduce` computes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReduceRequest {
+    /// Interface points: (beam id, arc length [SI: m]).
+    pub interface: Vec<(String, f64)>,
+    /// Component modes: fixed-interface (Craig–Bampton) or free
+    /// (free-interface) [–] (≥ 1).
+    pub modes: usize,
+    pub method: ReductionMethod,
+    /// Reduce at the static equilibrium under the loads.
+    pub prestress: bool,
+    /// Factor on the applied loads for `prestress` [–].
+    pub load_scale: f64,
+    /// Keep the ground supports in the body.
+    pub keep_supports: bool,
+}
+
+impl Default for ReduceRequest {
+    fn default() -> Self {
+        ReduceRequest {
+            interface: Vec::new(),
+            modes: 8,
+            method: ReductionMethod::CraigBampton,
+            prestress: false,
+            load_scale: 1.0,
+            keep_supports: false,
+        }
+    }
+}
+
+/// `reduce`'s output.
+#[derive(Debug)]
+pub struct ReduceRun {
+    /// The body's system (supports removed unless kept).
+    pub system: System,
+    pub reduction: Reduction,
+    /// The reduced body with its check.
+    pub document: Run<ReducedBody>,
+}
+
+/// Runs `reduce` on `input`.
+pub fn run(input: &ModelInput, request: &ReduceRequest) -> Result<ReduceRun, CommandError> {
+    super::checks::modes_and_load_scale(request.modes, request.load_scale)?;
+    if request.interface.is_empty() {
+        return Err(CommandError::argument(
+            "interface",
+            "[]",
+            "give at least one interface point (beam id, arc length)",
+        ));
+    }
+    let model = &input.model;
+    let mut points = Vec::new();
+    for (i, (beam, s)) in request.interface.iter().enumerate() {
+        let spec = PointSpec {
+            beam: Some(beam.clone()),
+            s: Some(*s),
+            ..PointSpec::default()
+        };
+        let value = format!("{beam}:{s}");
+        match model.resolve_point(&spec, &format!("interface[{i}]")) {
+            Ok(ResolvedPoint::Beam { index, s }) => points.push((index, s)),
+            Ok(_) => {
+                return Err(CommandError::argument(
+                    "interface",
+                    value,
+                    format!("beam `{beam}` is rigid: interface points are on flexible beams"),
+                ))
+            }
+            Err(e) => {
+                return Err(CommandError::argument(
+                    "interface",
+                    value,
+                    e.problem.to_string(),
+                ))
+            }
+        }
+    }
+    let fail = |e| CommandError::analysis(input.label(), e);
+    let supported = System::with_nodes(model, &points);
+    let (q, lambda) = if request.prestress {
+        let settings = StaticSettings {
+            load_scale: request.load_scale,
+            ..StaticSettings::default()
+        };
+        let eq = solve_equilibrium(&supported, &settings).map_err(fail)?;
+        (eq.q, Some(eq.lambda))
+    } else {
+        (supported.q0.clone(), None)
+    };
+    let mut system = System::with_nodes(model, &points);
+    let free = if request.keep_supports {
+        None
+    } else {
+        Some(system.remove_supports())
+    };
+    let lambda = match (&lambda, &free) {
+        (Some(l), Some(f)) => Some(f.kept_rows.iter().map(|&r| l[r]).collect::<Vec<_>>()),
+        (Some(l), None) => Some(l.clone()),
+        _ => None,
+    };
+    let at = Linearization {
+        q: &q,
+        lambda: lambda.as_deref(),
+        time: 0.0,
+        load_scale: if request.prestress {
+            request.load_scale
+        } else {
+            0.0
+        },
+    };
+    let mut interface = Vec::new();
+    let mut coordinates = Vec::new();
+    for (&(index, s), (beam, _)) in points.iter().zip(&request.interface) {
+        let mesh = &system.beams[index];
+        let node = (0..mesh.node_count())
+            .min_by(|&a, &b| {
+                (mesh.node_s[a] - s)
+                    .abs()
+                    .total_cmp(&(mesh.node_s[b] - s).abs())
+            })
+            .unwrap_or(0);
+        let g = mesh.dof0 + 4 * node;
+        coordinates.extend(g..g + 4);
+        interface.push((beam.clone(), mesh.node_s[node], g));
+    }
+    let label = |a: usize| system.dof_label(coordinates[a]);
+    let reduce_fail = |e: ReduceError| CommandError::Reduce {
+        model: input.label(),
+        source: e,
+    };
+    let reduction = reduce(
+        &system,
+        &at,
+        &coordinates,
+        request.method,
+        request.modes,
+        &label,
+    )
+    .map_err(reduce_fail)?;
+    let condition = match request.method {
+        ReductionMethod::CraigBampton => CheckCondition::Free,
+        ReductionMethod::FreeInterface => CheckCondition::Held { point: 0 },
+    };
+    let checked = check(&system, &at, &reduction, condition, request.modes).map_err(reduce_fail)?;
+    let nodes = NodeForm::new(&system, &at, &reduction.basis);
+    let hz = |w: f64| w.signum() * w.abs().sqrt() / (2.0 * std::f64::consts::PI);
+    let document = ReducedBody {
+        model: model.name.clone(),
+        method: request.method,
+        modes: request.modes,
+        prestress: request.prestress,
+        keep_supports: request.keep_supports,
+        removed_supports: free.map(|f| f.removed).unwrap_or_default(),
+        interface: interface
+            .iter()
+            .map(|(beam, s, g)| InterfacePoint {
+                beam: beam.clone(),
+                s: *s,
+                coordinates: [*g, g + 1, g + 2, g + 3],
+                nodes: nodes.beam_node(*g).unwrap_or([0, 0]),
+            })
+            .collect(),
+        coordinates: system.ndof(),
+        q: q.clone(),
+        origin: [system.origin.x, system.origin.y],
+        total_mass_kg: system.total_mass(),
+        inertia_kg_m2: rotation_inertia(&system, &q),
+        component_hz: reduction
+            .component_eigenvalues
+            .iter()
+            .map(|&w| hz(w))
+            .collect(),
+        basis_hz: reduction.eigenvalues.iter().map(|&w| hz(w)).collect(),
+        mass: rows(&reduction.mass(&system)),
+        stiffness: rows(&reduction.stiffness(&system, &at)),
+        basis: rows(&reduction.basis),
+        rigid: rows(&reduction.rigid),
+        nodes: NodeFormDoc {
+            positions: nodes.positions.clone(),
+            kinds: nodes.kinds.clone(),
+            mass: nodes.mass.clone(),
+            stiffness: nodes.stiffness.clone(),
+            basis: rows(&nodes.basis),
+        },
+        check: checked,
+    };
+    Ok(ReduceRun {
+        document: Run::of(input, document),
+        system,
+        reduction,
+    })
+}
+
+/// The moment of inertia about the z axis through the centre of mass
+/// [SI: kg m²]: the kinetic form of the unit rotation field ẑ × (r − c),
+/// slopes turning with it, rigid bodies' angles at rate 1.
+fn rotation_inertia(system: &System, q: &[f64]) -> f64 {
+    let n = system.ndof();
+    let m = system.total_mass();
+    let mass = system.mass();
+    // The centre of mass from the translation field's momentum.
+    let mut c = [0.0; 2];
+    let mut mv = vec![0.0; n];
+    for axis in 0..2 {
+        let mut t = vec![0.0; n];
+        for i in system.point_coordinates() {
+            t[i + axis] = 1.0;
+        }
+        mass.mul_vec(&t, &mut mv);
+        let moment: f64 = (0..n)
+            .map(|i| mv[i] * position_component(system, q, i, axis))
+            .sum();
+        c[axis] = moment / m;
+    }
+    let mut v = vec![0.0; n];
+    for i in system.point_coordinates() {
+        v[i] = -(q[i + 1] - c[1]);
+        v[i + 1] = q[i] - c[0];
+    }
+    for b in &system.beams {
+        for k in 0..b.node_count() {
+            let i = b.dof0 + 4 * k + 2;
+            v[i] = -q[i + 1];
+            v[i + 1] = q[i];
+        }
+    }
+    for r in &system.rigid_bodies {
+        v[r.dof0 + 2] = 1.0;
+    }
+    mass.quadratic_form(&v)
+}
+
+/// q_i when coordinate i is an `axis` component of a position or a beam
+/// slope, else 0: with the translation field t, tᵀM of these is the
+/// first moment of mass m c along `axis` (the beam's r(x) = S e).
+fn position_component(system: &System, q: &[f64], i: usize, axis: usize) -> f64 {
+    let is_position = system.point_coordinates().any(|p| p + axis == i);
+    let is_slope = system
+        .beams
+        .iter()
+        .any(|b| (0..b.node_count()).any(|k| b.dof0 + 4 * k + 2 + axis == i));
+    if is_position || is_slope {
+        q[i]
+    } else {
+        0.0
+    }
+}
+
+impl ReduceRun {
+    /// The command line's report: the reduction and its check.
+    pub fn text(&self) -> String {
+        reduce_table(&self.document.output)
+    }
+
+    /// Writes the reduced body to `path` (JSON), atomically.
+    pub fn write(&self, path: &Path) -> Result<(), CommandError> {
+        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+        if ext != "json" {
+            return Err(CommandError::argument(
+                "out",
+                path.display(),
+                "must end in .json",
+            ));
+        }
+        let text = serde_json::to_string(&self.document.document())
+            .map_err(|e| CommandError::argument("out", path.display(), e.to_string()))?;
+        crate::output::files::write_atomic(path, text.as_bytes())?;
+        Ok(())
+    }
+}

@@ -1,0 +1,289 @@
+//! Reduced flexible bodies (`reduce`): the basis against the full model
+//! and its invariants. Every number comes from the full model (its own
+//! modal analysis), a closed form (a straight beam's mass and inertia) or
+//! an invariant (C_q Ψ = 0, RᵀMΨ = 0, Ritz's upper bound, Tᵀ M₃ T = M).
+
+use ancf_modal::analysis::reduce::{check, CheckCondition, ReductionMethod};
+use ancf_modal::commands::reduce::{run, ReduceRequest, ReduceRun};
+use ancf_modal::commands::ModelInput;
+use ancf_modal::error::Source;
+use faer::Mat;
+use proptest::prelude::*;
+
+fn beam_model(elements: usize, joints: &str) -> ModelInput {
+    let text = format!(
+        r#"{{"name":"steel_beam","gravity":[0,0],
+        "beams":[{{"id":"blade","start":[0.01,-0.02],"angle_deg":30,"length":0.1,"elements":{elements},
+          "section":{{"height":2e-3,"width":1e-2}},"material":{{"young":2.1e11,"density":7850}}}}],
+        "joints":[{joints}]}}"#
+    );
+    ModelInput::parse(&text, Source::BuiltIn).expect("valid beam model")
+}
+
+fn reduce(
+    input: &ModelInput,
+    interface: &[(&str, f64)],
+    modes: usize,
+    method: ReductionMethod,
+) -> ReduceRun {
+    let request = ReduceRequest {
+        interface: interface.iter().map(|(b, s)| (b.to_string(), *s)).collect(),
+        modes,
+        method,
+        ..ReduceRequest::default()
+    };
+    run(input, &request).expect("reduction")
+}
+
+fn max_abs(m: &Mat<f64>) -> f64 {
+    (0..m.ncols())
+        .flat_map(|j| {
+            m.col_as_slice(j)
+                .iter()
+                .map(|v| v.abs())
+                .collect::<Vec<_>>()
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn the_basis_keeps_the_joints_and_leaves_the_rigid_motions_to_the_frame() {
+    // The paper's assembly: blade, slot welded at 18.94 mm, pad pinned at 0.
+    let input = ModelInput::load(None).expect("built-in model");
+    for method in [
+        ReductionMethod::CraigBampton,
+        ReductionMethod::FreeInterface,
+    ] {
+        let r = reduce(&input, &[("blade", 0.0), ("blade", 25e-3)], 8, method);
+        let (system, red) = (&r.system, &r.reduction);
+        let q = &r.document.output.q;
+        let mut cq = Mat::zeros(system.constraint_count(), system.ndof());
+        system.constraint_jacobian(q, &mut cq);
+        let scale = max_abs(&red.basis) * max_abs(&cq);
+        let cpsi = &cq * &red.basis;
+        assert!(
+            max_abs(&cpsi) <= 1e-12 * scale,
+            "{method:?}: C_q Ψ = {:e}, of scale {scale:e}",
+            max_abs(&cpsi)
+        );
+        let m = system.mass_matrix();
+        let rmpsi = red.rigid.transpose() * &m * &red.basis;
+        assert!(
+            max_abs(&rmpsi) <= 1e-10,
+            "{method:?}: RᵀMΨ = {:e}",
+            max_abs(&rmpsi)
+        );
+        let mr = red.rigid.transpose() * &m * &red.rigid;
+        let psi_m_psi = red.basis.transpose() * &m * &red.basis;
+        for (name, g) in [("RᵀMR", mr), ("ΨᵀMΨ", psi_m_psi)] {
+            for i in 0..g.nrows() {
+                for j in 0..g.ncols() {
+                    let want = if i == j { 1.0 } else { 0.0 };
+                    assert!(
+                        (g[(i, j)] - want).abs() < 1e-10,
+                        "{method:?}: {name}[{i},{j}] = {}",
+                        g[(i, j)]
+                    );
+                }
+            }
+        }
+        // The frame carries exactly the assembly's three planar motions.
+        assert_eq!(red.rigid.ncols(), 3, "{method:?}: rigid motions");
+    }
+}
+
+#[test]
+fn free_interface_keeps_eight_free_modes_of_a_free_beam_exactly() {
+    let input = beam_model(20, "");
+    let r = reduce(
+        &input,
+        &[("blade", 0.0), ("blade", 0.1)],
+        8,
+        ReductionMethod::FreeInterface,
+    );
+    let q = r.document.output.q.clone();
+    let at = ancf_modal::system::Linearization {
+        q: &q,
+        lambda: None,
+        time: 0.0,
+        load_scale: 0.0,
+    };
+    let c = check(&r.system, &at, &r.reduction, CheckCondition::Free, 8).expect("check");
+    assert_eq!(c.zero_modes, 3, "a free beam's rigid modes");
+    assert_eq!(c.full_hz.len(), 8);
+    for (i, e) in c.relative_error.iter().enumerate() {
+        assert!(e.abs() <= 1e-8, "free mode {}: relative error {e:e}", i + 1);
+    }
+}
+
+#[test]
+fn craig_bampton_of_a_cantilever_converges_as_the_issue_measured() {
+    // 20-element steel cantilever, CB with root and tip, k = 8: the check
+    // (all interface free) compares with the free-free beam; the held
+    // first point is the cantilever: both must be upper bounds.
+    let input = beam_model(
+        20,
+        r#"{"type":"weld","a":{"ground":[0.01,-0.02]},"b":{"beam":"blade","s":0}}"#,
+    );
+    let r = reduce(
+        &input,
+        &[("blade", 0.0), ("blade", 0.1)],
+        8,
+        ReductionMethod::CraigBampton,
+    );
+    assert_eq!(
+        r.document.output.removed_supports,
+        vec!["joints[0]".to_string()]
+    );
+    let c = &r.document.output.check;
+    for (i, e) in c.relative_error.iter().enumerate() {
+        assert!(
+            *e >= -1e-9,
+            "mode {}: the reduced body is softer than the full one ({e:e})",
+            i + 1
+        );
+    }
+    assert!(
+        c.relative_error[0] < 1e-4,
+        "first free-free mode within 1e-4: {:e}",
+        c.relative_error[0]
+    );
+}
+
+#[test]
+fn the_node_form_reproduces_mass_centre_inertia_and_the_reduced_matrices() {
+    let input = ModelInput::load(None).expect("built-in model");
+    let r = reduce(
+        &input,
+        &[("blade", 0.0), ("blade", 25e-3)],
+        6,
+        ReductionMethod::CraigBampton,
+    );
+    let doc = &r.document.output;
+    let nodes = &doc.nodes;
+    let n3 = 3 * nodes.positions.len();
+    let dense = |entries: &[(usize, usize, f64)]| {
+        let mut m = Mat::<f64>::zeros(n3, n3);
+        for &(i, j, v) in entries {
+            m[(i, j)] += v;
+        }
+        m
+    };
+    let (m3, k3) = (dense(&nodes.mass), dense(&nodes.stiffness));
+    let psi3 = Mat::from_fn(n3, doc.basis_hz.len(), |i, j| nodes.basis[i][j]);
+    let reduced_m = psi3.transpose() * &m3 * &psi3;
+    let reduced_k = psi3.transpose() * &k3 * &psi3;
+    for i in 0..reduced_m.nrows() {
+        for j in 0..reduced_m.ncols() {
+            assert!(
+                (reduced_m[(i, j)] - doc.mass[i][j]).abs() < 1e-10,
+                "Ψ₃ᵀM₃Ψ₃[{i},{j}]"
+            );
+            let scale = doc.stiffness[i][i].abs().max(doc.stiffness[j][j].abs());
+            assert!(
+                (reduced_k[(i, j)] - doc.stiffness[i][j]).abs() <= 1e-9 * scale,
+                "Ψ₃ᵀK₃Ψ₃[{i},{j}]"
+            );
+        }
+    }
+    // M₃ = M_s ⊗ I₃: mass, first moment and inertia from the nodes.
+    let model = &input.model;
+    let blade = &model.beams[0];
+    let rho_a = blade.material.density * blade.section.height * blade.section.width;
+    let beam_mass = rho_a * blade.length;
+    let total: f64 = beam_mass
+        + model.rigid_bodies.iter().map(|b| b.mass).sum::<f64>()
+        + model.point_masses.iter().map(|p| p.mass).sum::<f64>();
+    let mut centre = [0.0; 3];
+    let mut axis_mass = [0.0; 3];
+    for &(i, j, v) in &nodes.mass {
+        axis_mass[i % 3] += v;
+        centre[i % 3] += v * nodes.positions[j / 3][j % 3];
+        let _ = j;
+    }
+    for axis in 0..3 {
+        assert!(
+            (axis_mass[axis] - total).abs() <= 1e-12 * total,
+            "mass along axis {axis}: {} vs {total}",
+            axis_mass[axis]
+        );
+    }
+    // The model's centre of mass and inertia about it, from its bodies:
+    // the blade a uniform segment (mL²/12 about its middle).
+    let t = [
+        blade.angle_deg.to_radians().cos(),
+        blade.angle_deg.to_radians().sin(),
+    ];
+    let mid = [
+        blade.start[0] + 0.5 * blade.length * t[0],
+        blade.start[1] + 0.5 * blade.length * t[1],
+    ];
+    let mut parts: Vec<(f64, [f64; 2], f64)> =
+        vec![(beam_mass, mid, beam_mass * blade.length.powi(2) / 12.0)];
+    parts.extend(
+        model
+            .rigid_bodies
+            .iter()
+            .map(|b| (b.mass, b.position, b.inertia)),
+    );
+    parts.extend(model.point_masses.iter().map(|p| (p.mass, p.position, 0.0)));
+    let c: Vec<f64> = (0..2)
+        .map(|a| parts.iter().map(|p| p.0 * p.1[a]).sum::<f64>() / total)
+        .collect();
+    let inertia: f64 = parts
+        .iter()
+        .map(|p| p.2 + p.0 * ((p.1[0] - c[0]).powi(2) + (p.1[1] - c[1]).powi(2)))
+        .sum();
+    for a in 0..2 {
+        let got = centre[a] / total;
+        assert!(
+            (got - c[a]).abs() <= 1e-12 * 0.03,
+            "centre of mass {a}: {got} vs {}",
+            c[a]
+        );
+    }
+    let mut j_nodes = 0.0;
+    for &(i, j, v) in &nodes.mass {
+        if i % 3 == j % 3 && i % 3 < 2 {
+            let (pi, pj) = (nodes.positions[i / 3], nodes.positions[j / 3]);
+            j_nodes += v * (pi[i % 3] - c[i % 3]) * (pj[j % 3] - c[j % 3]);
+        }
+    }
+    assert!(
+        (j_nodes - inertia).abs() <= 1e-12 * inertia,
+        "inertia from the nodes {j_nodes:e} vs the bodies' {inertia:e}"
+    );
+    assert!(
+        (doc.inertia_kg_m2 - inertia).abs() <= 1e-12 * inertia,
+        "reported inertia {:e} vs {inertia:e}",
+        doc.inertia_kg_m2
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+    #[test]
+    fn craig_bampton_is_an_upper_bound_and_keeps_a_pin(
+        s1 in 0.0f64..0.1, s2 in 0.0f64..0.1, k in 1usize..10, pinned in 0.0f64..0.1,
+    ) {
+        prop_assume!((s1 - s2).abs() > 1e-3);
+        // A point mass pinned to the beam at `pinned`: a joint inside the body.
+        let text = format!(
+            r#"{{"name":"beam_with_mass","gravity":[0,0],
+            "beams":[{{"id":"b","start":[0,0],"angle_deg":0,"length":0.1,"elements":10,
+              "section":{{"height":2e-3,"width":1e-2}},"material":{{"young":2.1e11,"density":7850}}}}],
+            "point_masses":[{{"id":"m","mass":1e-3,"position":[{pinned},0]}}],
+            "joints":[{{"type":"pin","a":{{"body":"m"}},"b":{{"beam":"b","s":{pinned}}}}}]}}"#
+        );
+        let input = ModelInput::parse(&text, Source::BuiltIn).expect("valid");
+        let r = reduce(&input, &[("b", s1), ("b", s2)], k, ReductionMethod::CraigBampton);
+        for (i, e) in r.document.output.check.relative_error.iter().enumerate() {
+            prop_assert!(*e >= -1e-9, "mode {}: {:e} below the full model", i + 1, e);
+        }
+        let q = &r.document.output.q;
+        let mut cq = Mat::zeros(r.system.constraint_count(), r.system.ndof());
+        r.system.constraint_jacobian(q, &mut cq);
+        let cpsi = &cq * &r.reduction.basis;
+        prop_assert!(max_abs(&cpsi) <= 1e-12 * max_abs(&r.reduction.basis), "C_q Ψ = {:e}", max_abs(&cpsi));
+    }
+}
