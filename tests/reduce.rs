@@ -199,13 +199,11 @@ fn the_node_form_reproduces_mass_centre_inertia_and_the_reduced_matrices() {
     for &(i, j, v) in &nodes.mass {
         axis_mass[i % 3] += v;
         centre[i % 3] += v * nodes.positions[j / 3][j % 3];
-        let _ = j;
     }
-    for axis in 0..3 {
+    for (axis, m) in axis_mass.iter().enumerate() {
         assert!(
-            (axis_mass[axis] - total).abs() <= 1e-12 * total,
-            "mass along axis {axis}: {} vs {total}",
-            axis_mass[axis]
+            (m - total).abs() <= 1e-12 * total,
+            "mass along axis {axis}: {m} vs {total}"
         );
     }
     // The model's centre of mass and inertia about it, from its bodies:

@@ -72,6 +72,26 @@ pub fn sample_rate_for_step(rate: f64, step: f64) -> Result<(), CommandError> {
     Ok(())
 }
 
+/// `modes` [–] ≥ 1 and `load_scale` [–] finite: the checks of the
+/// commands that linearize (`modal`, `reduce`).
+pub fn modes_and_load_scale(modes: usize, load_scale: f64) -> Result<(), CommandError> {
+    if modes < 1 {
+        return Err(CommandError::argument(
+            "modes",
+            modes,
+            "must be a whole number ≥ 1",
+        ));
+    }
+    if !load_scale.is_finite() {
+        return Err(CommandError::argument(
+            "load_scale",
+            load_scale,
+            "must be a finite number",
+        ));
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -102,24 +122,4 @@ mod tests {
             );
         }
     }
-}
-
-/// `modes` [–] ≥ 1 and `load_scale` [–] finite: the checks of the
-/// commands that linearize (`modal`, `reduce`).
-pub fn modes_and_load_scale(modes: usize, load_scale: f64) -> Result<(), CommandError> {
-    if modes < 1 {
-        return Err(CommandError::argument(
-            "modes",
-            modes,
-            "must be a whole number ≥ 1",
-        ));
-    }
-    if !load_scale.is_finite() {
-        return Err(CommandError::argument(
-            "load_scale",
-            load_scale,
-            "must be a finite number",
-        ));
-    }
-    Ok(())
 }

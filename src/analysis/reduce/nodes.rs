@@ -144,9 +144,9 @@ impl NodeForm {
                 &mut positions,
             );
             for (node, sign) in [(p1, 1.0), (p2, -1.0)] {
-                for axis in 0..2 {
+                for (axis, n_axis) in nrm.iter().enumerate() {
                     maps.forward
-                        .push(vec![(g + axis, 1.0), (g + 2, sign * d * nrm[axis])]);
+                        .push(vec![(g + axis, 1.0), (g + 2, sign * d * n_axis)]);
                 }
                 lumped.push((node, 0.5 * body.mass));
             }
