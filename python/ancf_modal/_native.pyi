@@ -20,6 +20,7 @@ __all__ = [
     "Model",
     "ModelError",
     "ModelWarning",
+    "ReducedBody",
     "StaticResult",
     "SweepResult",
     "SwitchOffResult",
@@ -660,6 +661,7 @@ def _panic(message: str) -> None:
     """Panics inside the library's call wrapper (for the test suite: raises
     AnalysisError)."""
 
+@final
 class ReducedBody:
     """A reduced flexible body: `Model.reduce`'s result."""
 
