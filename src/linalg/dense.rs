@@ -131,6 +131,38 @@ pub fn solve_generalized(
     })
 }
 
+/// The eigenvalues of the pencil (K, M), ascending, without vectors: the
+/// same Jacobi scaling and Cholesky reduction as [`solve_generalized`],
+/// then the symmetric eigenvalues alone (a few times less work on a dense
+/// pencil of tens of coordinates).
+pub fn generalized_eigenvalues(k: &Mat<f64>, m: &Mat<f64>) -> Result<Vec<f64>, EigenFailure> {
+    let n = k.nrows();
+    let d = jacobi_scaling(m)?;
+    let p = par(n);
+    let scaled_m = Mat::from_fn(n, n, |i, j| d[i] * m[(i, j)] * d[j]);
+    let singular = || EigenFailure::SingularMass {
+        direction: lowest_direction(&scaled_m, &d),
+    };
+    let factor = cholesky_lower(&scaled_m, p).ok_or_else(singular)?;
+    let l = factor.as_ref();
+    if (0..n).any(|i| l[(i, i)] * l[(i, i)] <= SINGULAR_PIVOT) {
+        return Err(singular());
+    }
+    let mut w = Mat::from_fn(n, n, |i, j| d[i] * k[(i, j)] * d[j]);
+    solve_lower_triangular_in_place(l, w.as_mut(), p);
+    let mut c = w.transpose().to_owned();
+    solve_lower_triangular_in_place(l, c.as_mut(), p);
+    // nalgebra's eigenvalues-only path (faer's spends as much on the QR
+    // sweeps at this size as with vectors).
+    let c = nalgebra::DMatrix::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
+    let mut values: Vec<f64> = c.symmetric_eigenvalues().iter().copied().collect();
+    if values.iter().any(|v| !v.is_finite()) {
+        return Err(EigenFailure::NoConvergence);
+    }
+    values.sort_by(f64::total_cmp);
+    Ok(values)
+}
+
 /// Eigenvalues (ascending) and M-normalized vectors of a tiny pencil
 /// (a few rigid-motion candidates), by nalgebra's Cholesky and symmetric
 /// eigensolver: faer's blocked kernels cost more in dispatch than the work
@@ -261,6 +293,20 @@ mod tests {
                 );
                 let norm: f64 = (0..n).map(|i| e.vectors[(i, j)].powi(2) * mass).sum();
                 assert!((norm - 1.0).abs() < 1e-13, "xᵀMx = {norm}");
+            }
+            // The values alone, shifted below zero (an indefinite pencil,
+            // as a statics tangent past buckling): the chain formula again.
+            let shift = 2.5 * stiffness / mass * (1.0 - (std::f64::consts::PI / 13.0).cos());
+            let ks = Mat::from_fn(n, n, |i, j| k[(i, j)] - shift * m[(i, j)]);
+            let values = generalized_eigenvalues(&ks, &m).expect("definite mass");
+            for (j, &v) in values.iter().enumerate() {
+                let exact = 2.0 * stiffness / mass
+                    * (1.0 - (std::f64::consts::PI * (j + 1) as f64 / (n + 1) as f64).cos())
+                    - shift;
+                assert!(
+                    (v - exact).abs() <= 1e-12 * (exact.abs() + shift),
+                    "mass {mass:e}: shifted ω²_{j} = {v:e}, chain formula {exact:e}"
+                );
             }
         }
     }

@@ -753,6 +753,8 @@ impl<'a> Solver<'a> {
             symmetrize(&mut kr);
             if let Some(llt) = definite_factor(&kr) {
                 Factor::Cholesky(llt)
+            } else if let Some(lu) = self.nonsingular_lu(&kr, &snap.ns) {
+                Factor::Lu(lu)
             } else {
                 Factor::Modes(
                     self.reduced_modes(&kr, &snap.ns)

@@ -18,7 +18,7 @@ use super::{
     State,
 };
 use crate::error::AnalysisError;
-use crate::linalg::dense::solve_generalized;
+use crate::linalg::dense::{generalized_eigenvalues, solve_generalized};
 use crate::linalg::krylov::{lowest_modes, KrylovSettings};
 use crate::linalg::null_space::{symmetrize, NullSpace, Projected};
 use crate::linalg::sparse::mul_vec;
@@ -61,6 +61,26 @@ impl Solver<'_> {
             vectors: eig.vectors,
             zero,
         })
+    }
+
+    /// The LU factor of an indefinite reduced tangent K_r when no mode of
+    /// (K_r, M_r) is a zero-stiffness one, else `None` (the caller then
+    /// decomposes it into modes). The modes' correction Σ φφᵀb/ω² is K_r⁻¹b
+    /// when no ω² is dropped as zero, so LU gives it without the vectors:
+    /// only the eigenvalues are computed, and the threshold is the modes'
+    /// own (64 ε max|ω²|) with a margin of 16 for the two computations'
+    /// round-off.
+    pub(crate) fn nonsingular_lu(
+        &self,
+        kr: &Mat<f64>,
+        ns: &NullSpace,
+    ) -> Option<faer::linalg::solvers::PartialPivLu<f64>> {
+        let mr = self.reduced_mass(ns);
+        let values = generalized_eigenvalues(kr, &mr).ok()?;
+        let lmax = values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let zero = 64.0 * f64::EPSILON * lmax;
+        let clear = values.iter().all(|v| v.abs() > 16.0 * zero);
+        clear.then(|| kr.partial_piv_lu())
     }
 
     /// NᵀMN, dense (small problems).
@@ -301,6 +321,9 @@ impl Solver<'_> {
 pub(crate) enum Factor {
     Empty,
     Cholesky(faer::linalg::solvers::Llt<f64>),
+    /// A small indefinite tangent with no zero-stiffness mode (see
+    /// [`Solver::nonsingular_lu`]): the same correction as its modes give.
+    Lu(faer::linalg::solvers::PartialPivLu<f64>),
     /// The reduced tangent of a large model, sparse and definite.
     Sparse(faer::sparse::linalg::solvers::Llt<usize, f64>),
     /// The reduced tangent of a large model, sparse and indefinite.
@@ -346,6 +369,10 @@ impl TangentSolver {
             Factor::Empty => Vec::new(),
             Factor::Cholesky(llt) => {
                 let x = llt.solve(Mat::from_fn(d, 1, |i, _| br[i]));
+                (0..d).map(|i| x[(i, 0)]).collect()
+            }
+            Factor::Lu(lu) => {
+                let x = lu.solve(Mat::from_fn(d, 1, |i, _| br[i]));
                 (0..d).map(|i| x[(i, 0)]).collect()
             }
             Factor::Sparse(llt) => {
