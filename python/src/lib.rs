@@ -17,6 +17,7 @@ mod model;
 mod report;
 mod statics;
 mod sweep;
+mod sweep_dask;
 mod switch_off;
 mod transient;
 
