@@ -83,6 +83,10 @@ def run_shards(
     try:
         if progress:
             distributed.progress(futures)
+        # Waited for here, then gathered: an interrupt while gather waits
+        # leaves Dask's own waiting tasks failing noisily.
+        for _ in distributed.as_completed(futures):
+            pass
         return list(client.gather(futures))
     except BaseException:
         client.cancel(futures)

@@ -6,7 +6,11 @@ SweepResult survive a pickle round trip unchanged."""
 import hashlib
 import json
 import math
+import os
 import pickle
+import signal
+import threading
+import time
 import warnings
 
 import numpy as np
@@ -228,3 +232,28 @@ def test_client_arguments(client):
         with pytest.raises(ancf_modal.ModelError) as there:
             ancf_modal.sweep(model, params, client=client, **kw)
         assert str(there.value) == str(here.value)
+
+
+def test_keyboard_interrupt_cancels_the_tasks(client):
+    # Ctrl-C (SIGINT) half a second into 40 switch-off points (~3 s of work
+    # on two workers): the call stops within a second, and the cluster
+    # holds none of its tasks or data afterwards.
+    model = ancf_modal.Model.builtin("rcbo_switch_off")
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        ancf_modal.sweep(
+            model, {"load_scale:F_x2,helical_spring": (1.0, 2.0, 40)}, "time_to_distance_s",
+            client=client,
+        )
+    stopped = time.perf_counter() - start
+    timer.cancel()
+    assert stopped < 0.5 + 1.0, stopped
+    # The client wants nothing of it any more; the scheduler lets go of the
+    # scattered model and the shards soon after.
+    assert not client.futures
+    deadline = time.perf_counter() + 2.0
+    while client.who_has() and time.perf_counter() < deadline:
+        time.sleep(0.05)
+    assert not client.who_has() and all(not t for t in client.processing().values())
