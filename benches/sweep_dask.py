@@ -27,6 +27,10 @@ so that the workers have imported the package), and reports
   beside it the workers' CPU time beyond serial_cpu ÷ 144, the work Dask
   and the tasks' set-up add, which other processes do not inflate.
 
+- the cost of the dispatch alone: the same 144 points of a cheap quantity
+  (`first_bending_hz` of the bare blade over its height × E, a fraction of a
+  millisecond each), (Dask wall − serial wall ÷ 2) ÷ 144.
+
 The result must equal the serial one (`to_dict()`), else the bench stops.
 The load average before each round is printed.
 """
@@ -44,6 +48,7 @@ PARAMS: Dict[str, Any] = {
     "joints[hybrid].torsion_stiffness": (1.0, 20.0, 12, "log"),
 }
 QUANTITY = "time_to_distance_s"
+CHEAP: Dict[str, Any] = {"height": (0.8e-3, 1.4e-3, 12), "blade.young": (100e9, 150e9, 12)}
 
 
 def worker_cpu(client: Any) -> float:
@@ -83,7 +88,18 @@ def main() -> None:
             if remote.to_dict() != local.to_dict():
                 raise SystemExit("the Dask study differs from the serial one")
             n = len(remote.result)
+
+            blade = ancf_modal.Model.builtin("beam_free_free")
+            start = time.perf_counter()
+            here = ancf_modal.sweep(blade, CHEAP, "first_bending_hz", threads=1)
+            cheap_serial = time.perf_counter() - start
+            start = time.perf_counter()
+            there = ancf_modal.sweep(blade, CHEAP, "first_bending_hz", client=client)
+            cheap_wall = time.perf_counter() - start
+            if there.to_dict() != here.to_dict():
+                raise SystemExit("the Dask study differs from the serial one")
             row = {
+                "dispatch_ms": 1e3 * (cheap_wall - cheap_serial / 2) / n,
                 "cores": cpu / wall,
                 "rayon_cores": rayon_cores,
                 "overhead_ms": 1e3 * (2 * wall - serial_cpu) / n,
@@ -96,7 +112,9 @@ def main() -> None:
                 f"2 threads here {rayon_cores:.2f} cores; "
                 f"Dask {wall:.2f} s wall, workers' CPU {cpu:.2f} s: {row['cores']:.2f} cores, "
                 f"overhead {row['overhead_ms']:.2f} ms a point "
-                f"(CPU beyond the serial run's {row['cpu_overhead_ms']:.2f} ms a point)",
+                f"(CPU beyond the serial run's {row['cpu_overhead_ms']:.2f} ms a point); "
+                f"cheap points {1e3 * cheap_serial:.0f} ms serial, {1e3 * cheap_wall:.0f} ms "
+                f"on Dask: dispatch {row['dispatch_ms']:.2f} ms a point",
                 flush=True,
             )
     def median(key: str) -> float:
@@ -107,7 +125,8 @@ def main() -> None:
         f"{len(rows)} rounds: {median('cores'):.2f} cores used (≥ 1.6 asked; 2 threads "
         f"here: {median('rayon_cores'):.2f}), overhead {median('overhead_ms'):.2f} ms a "
         f"point (≤ 5 ms asked; CPU beyond the serial run's: "
-        f"{median('cpu_overhead_ms'):.2f} ms a point)"
+        f"{median('cpu_overhead_ms'):.2f} ms a point; the dispatch alone: "
+        f"{median('dispatch_ms'):.2f} ms a point)"
     )
 
 
