@@ -6,7 +6,9 @@
 //! The points run in chunks, each with the GIL released and in parallel;
 //! between chunks a pending `KeyboardInterrupt` (or other signal) stops the
 //! sweep. A chunk grows while its points are quick, so it takes about a
-//! quarter of a second at most.
+//! quarter of a second at most. Given a Dask client, the points run on its
+//! cluster instead ([`crate::sweep_dask`]); a `SweepResult` pickles as its
+//! document, so that the workers' shards come back exact.
 
 use crate::errors::{compute, one_line, Failure};
 use crate::model::{choice, PyModel};
