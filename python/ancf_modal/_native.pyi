@@ -53,7 +53,8 @@ class ModelWarning(UserWarning):
 class Model:
     """A model: an assembly of ANCF beams, rigid bodies and point masses with
     joints, springs, loads and sensors (the JSON model file, SI units);
-    ``repr`` names it and lists its unit warnings as ``warning:`` lines."""
+    ``repr`` names it and lists its unit warnings as ``warning:`` lines.
+    Pickles as its JSON, source and hash."""
 
     @staticmethod
     def from_json(path_or_text: Union[str, "os.PathLike[str]"]) -> "Model":
@@ -501,7 +502,8 @@ class IdentifyResult:
 @final
 class SweepResult:
     """The result of ``sweep``; ``repr`` is the command line's table
-    and its ``warning:`` lines."""
+    and its ``warning:`` lines. Pickles as its document, every number
+    exact."""
 
     @property
     def names(self) -> List[str]:
