@@ -54,7 +54,8 @@ class ModelWarning(UserWarning):
 class Model:
     """A model: an assembly of ANCF beams, rigid bodies and point masses with
     joints, springs, loads and sensors (the JSON model file, SI units);
-    ``repr`` names it and lists its unit warnings as ``warning:`` lines."""
+    ``repr`` names it and lists its unit warnings as ``warning:`` lines.
+    Pickles as its JSON, source and hash."""
 
     @staticmethod
     def from_json(path_or_text: Union[str, "os.PathLike[str]"]) -> "Model":
@@ -512,7 +513,8 @@ class IdentifyResult:
 @final
 class SweepResult:
     """The result of ``sweep``; ``repr`` is the command line's table
-    and its ``warning:`` lines."""
+    and its ``warning:`` lines. Pickles as its document, every number
+    exact."""
 
     @property
     def names(self) -> List[str]:
@@ -608,13 +610,18 @@ def sweep(
     end_time: Optional[float] = None,
     threads: Optional[int] = None,
     shard: Optional[Tuple[int, int]] = None,
+    client: Optional[Any] = None,
+    progress: bool = False,
 ) -> SweepResult:
     """A parameter study (``ancf-modal sweep``): ``quantity``
     (first_bending_hz [Hz], frequency:K [Hz], time_to_distance_s [s],
     peak:SENSOR) over the grid of ``params`` {name: "LO:HI:N[:log]",
     (LO, HI, N), "V1,V2,..." or a list of the values} [SI]; ``step``, ``end_time`` [s] of transient quantities;
     ``threads`` workers; ``shard=(k, n)`` only the points whose index is
-    k − 1 modulo n (``--shard K/N``). KeyboardInterrupt stops it."""
+    k − 1 modulo n (``--shard K/N``). KeyboardInterrupt stops it.
+    ``client``, a ``dask.distributed.Client``: the points on its cluster,
+    one thread per task, the same result (``progress``: Dask's progress
+    bar); ``pip install "./python[dask]"``."""
 
 def sweep_merge(
     shards: Sequence[Union[SweepResult, Mapping[str, Any], str, "os.PathLike[str]"]],

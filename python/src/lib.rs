@@ -18,6 +18,7 @@ mod reduce;
 mod report;
 mod statics;
 mod sweep;
+mod sweep_dask;
 mod switch_off;
 mod transient;
 

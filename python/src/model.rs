@@ -65,6 +65,10 @@ impl PyModel {
     }
 }
 
+/// A pickled model: its JSON, its file (`None`: the built-in model) and
+/// the SHA-256 of the text it was read from.
+type State = (String, Option<PathBuf>, String);
+
 /// An argument's text choice among `allowed`.
 pub fn choice<'a>(name: &str, value: &'a str, allowed: &[&str]) -> Result<&'a str, Failure> {
     if allowed.contains(&value) {
@@ -609,6 +613,32 @@ impl PyModel {
             rigid_beams,
         };
         crate::transient::run(self, py, r)
+    }
+
+    /// Pickles as its JSON (`to_json()`, every number exact), its source
+    /// and its SHA-256; unpickling raises no warnings (given when read).
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, State)> {
+        let m = slf.get();
+        let source = match &m.source {
+            Source::File(path) => Some(path.clone()),
+            Source::BuiltIn => None,
+        };
+        let state = (m.model.to_json(), source, m.sha256.clone());
+        Ok((slf.get_type().getattr("_from_state")?, state))
+    }
+
+    /// The model pickled by `__reduce__`.
+    #[classmethod]
+    fn _from_state(
+        _cls: &Bound<'_, pyo3::types::PyType>,
+        py: Python<'_>,
+        text: String,
+        source: Option<PathBuf>,
+        sha256: String,
+    ) -> PyResult<PyModel> {
+        let source = source.map_or(Source::BuiltIn, Source::File);
+        let model = compute(py, move || PyModel::parse(&text, source))?;
+        Ok(PyModel { sha256, ..model })
     }
 
     /// `<ancf_modal.Model "name" from SOURCE>`, then one `warning: …` line

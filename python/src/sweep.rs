@@ -6,7 +6,9 @@
 //! The points run in chunks, each with the GIL released and in parallel;
 //! between chunks a pending `KeyboardInterrupt` (or other signal) stops the
 //! sweep. A chunk grows while its points are quick, so it takes about a
-//! quarter of a second at most.
+//! quarter of a second at most. Given a Dask client, the points run on its
+//! cluster instead ([`crate::sweep_dask`]); a `SweepResult` pickles as its
+//! document, so that the workers' shards come back exact.
 
 use crate::errors::{compute, one_line, Failure};
 use crate::model::{choice, PyModel};
@@ -59,6 +61,8 @@ pub struct Request<'a> {
     pub end_time: Option<f64>,
     pub threads: Option<i64>,
     pub shard: Option<(i64, i64)>,
+    /// Dask's progress bar (with a client).
+    pub progress: bool,
 }
 
 /// A count argument: negative values are out of range as 0 is.
@@ -66,13 +70,8 @@ fn count(v: i64) -> usize {
     usize::try_from(v).unwrap_or(0)
 }
 
-/// A parameter study of `model`.
-pub fn run(
-    py: Python<'_>,
-    model: &PyModel,
-    params: &Bound<'_, PyDict>,
-    r: Request<'_>,
-) -> PyResult<PySweepResult> {
+/// The command's request from the keyword arguments.
+fn request(params: &Bound<'_, PyDict>, r: &Request<'_>) -> PyResult<SweepRequest> {
     let quantity = Quantity::parse(r.quantity)
         .map_err(|e| Failure::argument("quantity", r.quantity, &one_line(&e)))?;
     let solver = match choice("solver", r.solver, &["auto", "dense", "sparse"])? {
@@ -84,7 +83,7 @@ pub fn run(
     for (k, v) in params.iter() {
         specs.push(spec(&k.extract::<String>()?, &v)?);
     }
-    let request = SweepRequest {
+    Ok(SweepRequest {
         params: specs,
         quantity: Some(quantity),
         step: r.step,
@@ -97,8 +96,22 @@ pub fn run(
             count: count(n),
         }),
         threads: r.threads.map(count),
-    };
-    let input = model.input();
+    })
+}
+
+/// A parameter study of `model`, here or, given a client, on its cluster.
+pub fn run(
+    py: Python<'_>,
+    model: &Bound<'_, PyModel>,
+    params: &Bound<'_, PyDict>,
+    r: Request<'_>,
+    client: Option<&Bound<'_, PyAny>>,
+) -> PyResult<PySweepResult> {
+    let request = request(params, &r)?;
+    if let Some(client) = client {
+        return crate::sweep_dask::run(py, model, params, &r, request, client);
+    }
+    let input = model.get().input();
     let job = compute(py, move || prepare(&input, &request).map_err(Failure::from))?;
     let indices = job.indices();
     let mut chunk = job.workers();
@@ -117,10 +130,7 @@ pub fn run(
     }
     let j = &job;
     let run = compute(py, move || Ok(j.finish(done)))?;
-    // The points' own warnings as Python warnings (`ModelWarning`); the
-    // model's were given when it was read.
-    crate::warn(py, run.document.own_warnings())?;
-    Ok(PySweepResult { run })
+    PySweepResult::warned(py, run)
 }
 
 /// A shard for `sweep_merge`, as given.
@@ -183,10 +193,18 @@ pub fn merge(py: Python<'_>, shards: &Bound<'_, PyAny>) -> PyResult<PySweepResul
 /// and, for a tracked quantity, the tracked frequencies.
 #[pyclass(name = "SweepResult", module = "ancf_modal", frozen)]
 pub struct PySweepResult {
-    run: SweepRun,
+    pub run: SweepRun,
 }
 
 impl PySweepResult {
+    /// The result of `run`, after raising the points' own warnings as
+    /// Python warnings (`ModelWarning`); the model's were given when it
+    /// was read.
+    pub fn warned(py: Python<'_>, run: SweepRun) -> PyResult<PySweepResult> {
+        crate::warn(py, run.document.own_warnings())?;
+        Ok(PySweepResult { run })
+    }
+
     /// The sweep without its provenance (the points, the parameters).
     fn document(&self) -> &ancf::analysis::sweep::SweepDocument {
         &self.run.document.output
@@ -275,6 +293,29 @@ impl PySweepResult {
     fn __repr__(&self) -> String {
         crate::with_warnings(self.run.text(), &self.run.document.warnings)
     }
+
+    /// Pickles as its document (`to_dict()`'s JSON, every number exact)
+    /// and how many of its warnings are the model's.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String, usize))> {
+        let run = &slf.get().run;
+        let text =
+            serde_json::to_string(&run.stamped()).map_err(|e| Failure::Analysis(e.to_string()))?;
+        let restore = slf.get_type().getattr("_from_state")?;
+        Ok((restore, (text, run.document.model_warnings)))
+    }
+
+    /// The result pickled by `__reduce__`.
+    #[classmethod]
+    fn _from_state(
+        _cls: &Bound<'_, pyo3::types::PyType>,
+        text: &str,
+        model_warnings: usize,
+    ) -> PyResult<PySweepResult> {
+        let stamped = sweep_merge::parse("a pickled SweepResult", text).map_err(Failure::from)?;
+        Ok(PySweepResult {
+            run: SweepRun::unstamped(stamped, model_warnings),
+        })
+    }
 }
 
 /// A parameter study (the command line's `sweep`): `quantity`
@@ -289,13 +330,15 @@ impl PySweepResult {
 /// `shard=(k, n)` computes only the points whose index is k − 1 modulo n
 /// (as `--shard K/N`; join the shards with `sweep_merge`). A point that
 /// fails is recorded (`errors`, NaN in `result`) and the sweep goes on;
-/// KeyboardInterrupt stops it.
+/// KeyboardInterrupt stops it. `client`, a `dask.distributed.Client`,
+/// runs the points on its cluster (one thread per task; `progress` shows
+/// Dask's progress bar) and gives the same result.
 #[pyfunction(name = "sweep")]
-#[pyo3(signature = (model, params, quantity, modes = 6, prestress = false, solver = "auto", step = None, end_time = None, threads = None, shard = None))]
+#[pyo3(signature = (model, params, quantity, modes = 6, prestress = false, solver = "auto", step = None, end_time = None, threads = None, shard = None, client = None, progress = false))]
 #[allow(clippy::too_many_arguments)]
 pub fn sweep_function(
     py: Python<'_>,
-    model: PyRef<'_, PyModel>,
+    model: &Bound<'_, PyModel>,
     params: &Bound<'_, PyDict>,
     quantity: &str,
     modes: i64,
@@ -305,6 +348,8 @@ pub fn sweep_function(
     end_time: Option<f64>,
     threads: Option<i64>,
     shard: Option<Vec<i64>>,
+    client: Option<&Bound<'_, PyAny>>,
+    progress: bool,
 ) -> PyResult<PySweepResult> {
     // A pair as a tuple or a list, as `params` takes either.
     let shard = match shard.as_deref() {
@@ -319,6 +364,10 @@ pub fn sweep_function(
             .into())
         }
     };
+    if progress && client.is_none() {
+        let why = "shows the progress of the Dask tasks, so it needs a client";
+        return Err(Failure::argument("progress", "True", why).into());
+    }
     let r = Request {
         quantity,
         modes,
@@ -328,8 +377,9 @@ pub fn sweep_function(
         end_time,
         threads,
         shard,
+        progress,
     };
-    run(py, &model, params, r)
+    run(py, model, params, r, client)
 }
 
 /// Joins the shards of a sweep (the command line's `sweep-merge`) into the

@@ -16,13 +16,14 @@
 //! Front ends that must stay responsive (Python's KeyboardInterrupt) run
 //! the points in parts: [`prepare`], then [`SweepJob::points`] on parts of
 //! [`SweepJob::indices`], then [`SweepJob::finish`]; [`run`] does all
-//! three.
+//! three. Front ends that run the points elsewhere (Python on a Dask
+//! cluster) compute shards there and [`SweepJob::join`] them here.
 
 use super::{CommandError, ModelInput, Run};
 use crate::analysis::sweep::param::load_labels;
 use crate::analysis::sweep::{
-    quantity::AVAILABLE, Quantity, RawPoint, Shard, Sweep, SweepDocument, SweepSettings,
-    DEFAULT_TRACKED_MODES,
+    merge, quantity::AVAILABLE, Quantity, RawPoint, Shard, Sweep, SweepDocument, SweepError,
+    SweepSettings, DEFAULT_TRACKED_MODES,
 };
 use crate::analysis::EigenMethod;
 use crate::error::ModelError;
@@ -243,13 +244,38 @@ impl SweepJob {
     /// (tracked when complete, with the modes when a shard) and the
     /// warnings, the model's and then each point's.
     pub fn finish(&self, points: Vec<RawPoint>) -> SweepRun {
+        self.finish_as(points, self.shard)
+    }
+
+    /// The run of the whole grid from `shards`, documents of this sweep's
+    /// shards computed elsewhere (each with its name for messages): joined
+    /// and checked as `sweep-merge` joins them, then finished as a run of
+    /// every point here ([`SweepJob::finish`]: tracked in index order, the
+    /// model's warnings and then each point's), so that it is the run
+    /// [`run`] gives. Refuses shards of another sweep (`sweep_id`).
+    pub fn join(&self, shards: &[(String, SweepDocument)]) -> Result<SweepRun, CommandError> {
+        let merged = merge(shards)?;
+        let expected = &self.sweep.header.sweep_id;
+        if &merged.header.sweep_id != expected {
+            let (file, _) = &shards[0];
+            return Err(CommandError::SweepMerge(SweepError::DifferentSweep {
+                file: file.clone(),
+                found: merged.header.sweep_id,
+                expected: expected.clone(),
+                first: String::from("the sweep asked for"),
+            }));
+        }
+        Ok(self.finish_as(merged.points, None))
+    }
+
+    fn finish_as(&self, points: Vec<RawPoint>, shard: Option<Shard>) -> SweepRun {
         let own: Vec<String> = points
             .iter()
             .flat_map(|p| p.warnings.iter().map(|w| format!("point {}: {w}", p.index)))
             .collect();
         let run = crate::analysis::sweep::SweepRun {
             header: self.sweep.header.clone(),
-            shard: self.shard,
+            shard,
             points,
         };
         SweepRun {
@@ -289,6 +315,27 @@ impl SweepRun {
             model_sha256: self.document.model_sha256.clone(),
             warnings: self.document.warnings.clone(),
             ..self.document.output.clone()
+        }
+    }
+
+    /// The run whose [`SweepRun::stamped`] document is `stamped`, the
+    /// first `model_warnings` of its warnings the model's: a saved result
+    /// read back (Python's pickle).
+    pub fn unstamped(stamped: SweepDocument, model_warnings: usize) -> SweepRun {
+        let warnings = stamped.warnings.clone();
+        let model_sha256 = stamped.model_sha256.clone();
+        SweepRun {
+            document: Run {
+                output: SweepDocument {
+                    tool_version: None,
+                    model_sha256: None,
+                    warnings: Vec::new(),
+                    ..stamped
+                },
+                warnings,
+                model_sha256,
+                model_warnings,
+            },
         }
     }
 
