@@ -62,7 +62,17 @@ def run_shards(
         raise ModelError(
             f"client `{client!r}`: must be a dask.distributed.Client (or None: on this machine)"
         )
+    if client.status != "running":
+        raise ModelError(
+            f"client `{client!r}`: its status is `{client.status}`, not running "
+            "(a closed client, or one whose cluster was closed: open a new one)"
+        )
     threads = sum(client.nthreads().values())
+    if threads == 0:
+        raise ModelError(
+            f"client `{client!r}`: its cluster has no workers yet "
+            "(start some, and wait for them: client.wait_for_workers(n))"
+        )
     n = shard_count(total, threads)
     tag = uuid.uuid4().hex[:12]
     scattered = client.scatter(model, hash=False)

@@ -234,6 +234,20 @@ def test_client_arguments(client):
         assert str(there.value) == str(here.value)
 
 
+def test_a_closed_client_or_one_without_workers_is_named():
+    # The trial's case: Dask's own AttributeError came out of a closed client.
+    model = ancf_modal.Model.builtin("beam_free_free")
+    params = {"height": (0.8e-3, 1.4e-3, 2)}
+    with distributed.LocalCluster(
+        n_workers=0, processes=False, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as empty:
+        with pytest.raises(ancf_modal.ModelError, match=r"no workers yet"):
+            ancf_modal.sweep(model, params, "first_bending_hz", client=empty)
+        empty.close()
+        with pytest.raises(ancf_modal.ModelError, match=r"not running"):
+            ancf_modal.sweep(model, params, "first_bending_hz", client=empty)
+
+
 def test_keyboard_interrupt_cancels_the_tasks(client):
     # Ctrl-C (SIGINT) half a second into 40 switch-off points (~3 s of work
     # on two workers): the call stops within a second, and the cluster
