@@ -25,8 +25,9 @@
 //!   the zero modes). The kept modes stay exact: the residual modes are
 //!   M- and K-orthogonal to them.
 //!
-//! The columns, with R projected out (v − R RᵀM v, R M-orthonormal), are
-//! then turned into their Ritz vectors ([`crate::linalg::subspace`]):
+//! The columns, scaled to unit M-norm and then with R projected out
+//! (v − R RᵀM v, R M-orthonormal), are then turned into their Ritz vectors
+//! (a column that was a rigid motion is left as round-off and dropped) ([`crate::linalg::subspace`]):
 //! Ψ is M-orthonormal and K-orthogonal, so the reduced mass ΨᵀMΨ is the
 //! identity [SI: kg m² … per unit² of modal coordinate, here 1] and the
 //! reduced stiffness ΨᵀKΨ = diag(ω²) [SI: rad²/s²].
@@ -202,7 +203,21 @@ pub fn reduce(
     if columns.is_empty() {
         return Err(ReduceError::NoFreedom);
     }
+    // Unit M-norm *before* the rigid motions are projected out: a column
+    // that is (nearly) a rigid motion, such as a constraint mode of a
+    // single interface point, shrinks to round-off and the Ritz step drops
+    // it as dependent instead of scaling its round-off back up.
     let mut v = Mat::from_fn(n, columns.len(), |i, j| columns[j][i]);
+    let mut mv = vec![0.0; n];
+    for j in 0..v.ncols() {
+        system.mass().mul_vec(v.col_as_slice(j), &mut mv);
+        let norm = crate::linalg::vector::dot(v.col_as_slice(j), &mv)
+            .max(0.0)
+            .sqrt();
+        if norm > 0.0 {
+            crate::linalg::vector::scale(1.0 / norm, v.col_as_slice_mut(j));
+        }
+    }
     exclude_rigid(system, &rigid, &mut v);
     let (eigenvalues, basis) = ritz_basis(&v, &|x, y| system.mass().mul_vec(x, y), &|x, y| {
         held::apply(&k_full, x, y)
