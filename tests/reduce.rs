@@ -377,3 +377,33 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn more_component_modes_than_the_problem_has_are_refused_and_the_maximum_has_no_spurious_column() {
+    // A 10-element free beam with a pinned point mass, one interface point:
+    // 44 + 2 coordinates, 2 pin rows, 4 held: 40 fixed-interface modes.
+    let input = beam_with_parts(Some(0.1), None);
+    let request = |modes| ReduceRequest {
+        interface: vec![("b".to_string(), 0.0)],
+        modes,
+        ..ReduceRequest::default()
+    };
+    let e = run(&input, &request(41)).expect_err("41 > 40 modes");
+    let text = e.to_string();
+    assert!(
+        text.contains("modes") && text.contains("41") && text.contains("at most 40"),
+        "{text}"
+    );
+    let r = run(&input, &request(40)).expect("40 modes");
+    let hz = &r.document.output.basis_hz;
+    assert_eq!(hz.len(), 40 + 4 - 3, "K + 4 − 3 columns");
+    // No column near zero frequency: the lowest is the free body's first
+    // elastic mode or above (Ritz), here compared with the check's full
+    // model.
+    let first_full = r.document.output.check.full_hz[0];
+    assert!(
+        hz[0] >= first_full * (1.0 - 1e-9),
+        "lowest basis column {} Hz below the first elastic mode {first_full} Hz",
+        hz[0]
+    );
+}

@@ -159,7 +159,18 @@ pub fn run(input: &ModelInput, request: &ReduceRequest) -> Result<ReduceRun, Com
         request.modes,
         &label,
     )
-    .map_err(reduce_fail)?;
+    .map_err(|e| match e {
+        ReduceError::TooManyModes {
+            requested,
+            available,
+            problem,
+        } => CommandError::argument(
+            "modes",
+            requested,
+            format!("at most {available} (the {problem} problem's mode count)"),
+        ),
+        e => reduce_fail(e),
+    })?;
     let condition = match request.method {
         ReductionMethod::CraigBampton => CheckCondition::Free,
         ReductionMethod::FreeInterface => CheckCondition::Held { point: 0 },

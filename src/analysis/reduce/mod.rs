@@ -76,6 +76,14 @@ pub enum ReduceError {
     /// the interface does not stop), or it is unstable there.
     #[error("with every interface coordinate held the body still has a motion without positive stiffness (a mechanism the interface does not hold, or an unstable pre-stress): add an interface point on that part")]
     NotHeld,
+    /// More component modes asked for than the component problem has.
+    #[error("{requested} component modes asked for: the {problem} problem has {available}")]
+    TooManyModes {
+        requested: usize,
+        available: usize,
+        /// "fixed-interface" or "free body's elastic".
+        problem: &'static str,
+    },
     /// The body has no elastic motion left.
     #[error("the body has no elastic motion to reduce")]
     NoFreedom,
@@ -189,8 +197,19 @@ pub fn reduce(
     label: &dyn Fn(usize) -> String,
 ) -> Result<Reduction, ReduceError> {
     let n = system.ndof();
-    let k_full = held::full_stiffness(system, at);
     let rigid = rigid_motions(system, at.q);
+    let available = available_modes(system, at, interface, method, rigid.ncols());
+    if modes > available {
+        return Err(ReduceError::TooManyModes {
+            requested: modes,
+            available,
+            problem: match method {
+                ReductionMethod::CraigBampton => "fixed-interface",
+                ReductionMethod::FreeInterface => "free body's elastic",
+            },
+        });
+    }
+    let k_full = held::full_stiffness(system, at);
     let (columns, component) = match method {
         ReductionMethod::CraigBampton => {
             let mut cols = held::constraint_modes(system, at, &k_full, interface, label)?;
@@ -234,6 +253,24 @@ pub fn reduce(
         eigenvalues,
         component_eigenvalues: component,
     })
+}
+
+/// How many component modes `method` can have: the fixed-interface
+/// problem's coordinates (Craig–Bampton) or the free body's less its
+/// `rigid` motions (free-interface).
+fn available_modes(
+    system: &System,
+    at: &Linearization,
+    interface: &[usize],
+    method: ReductionMethod,
+    rigid: usize,
+) -> usize {
+    match method {
+        ReductionMethod::CraigBampton => held::held_space(system, at.q, interface).dim(),
+        ReductionMethod::FreeInterface => held::held_space(system, at.q, &[])
+            .dim()
+            .saturating_sub(rigid),
+    }
 }
 
 /// The free-interface columns: the lowest `modes` elastic modes of the
