@@ -94,7 +94,7 @@ def test_free_interface_keeps_eight_free_free_modes():
     full = full_elastic_hz(beam(), 8)
     np.testing.assert_allclose(own, full, rtol=1e-8)
     # Its own check: the first interface point held.
-    assert body.check["condition"] == {"held": {"point": 0}}
+    assert body.check["condition"] == {"kind": "held", "point": 1}
 
 
 def test_pinned_free_error_falls_as_the_basis_grows():

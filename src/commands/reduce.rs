@@ -173,7 +173,7 @@ pub fn run(input: &ModelInput, request: &ReduceRequest) -> Result<ReduceRun, Com
     })?;
     let condition = match request.method {
         ReductionMethod::CraigBampton => CheckCondition::Free,
-        ReductionMethod::FreeInterface => CheckCondition::Held { point: 0 },
+        ReductionMethod::FreeInterface => CheckCondition::Held { point: 1 },
     };
     let checked = check(&system, &at, &reduction, condition, request.modes).map_err(reduce_fail)?;
     let nodes = NodeForm::new(&system, &at, &reduction.basis);

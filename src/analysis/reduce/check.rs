@@ -26,11 +26,12 @@ use faer::Mat;
 
 /// The boundary condition of a check.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, schemars::JsonSchema)]
-#[serde(rename_all = "snake_case")]
+#[serde(tag = "kind", rename_all = "snake_case")]
 pub enum CheckCondition {
-    /// Every interface point free.
+    /// Every interface point free: `{"kind": "free"}`.
     Free,
-    /// The interface point of this index held (position and slope).
+    /// The interface point numbered `point` (1-based, as the report prints
+    /// it) held (position and slope): `{"kind": "held", "point": 1}`.
     Held { point: usize },
 }
 
@@ -102,7 +103,8 @@ pub fn check(
             (z, full, reduced[z.min(reduced.len())..].to_vec())
         }
         CheckCondition::Held { point } => {
-            let coords = &reduction.interface[4 * point..4 * point + 4];
+            let index = point.saturating_sub(1);
+            let coords = &reduction.interface[4 * index..4 * index + 4];
             let (full, _) = held::held_modes(system, at, coords, count)?;
             let rows = Mat::from_fn(4, r + m, |a, j| whole[(coords[a], j)]);
             let ns = NullSpace::from_dense(&rows);
