@@ -36,7 +36,7 @@ mod check;
 mod held;
 mod nodes;
 
-pub use check::{check, CheckCondition, ReductionCheck};
+pub use check::{check, rigid_stiffening, CheckCondition, ReductionCheck};
 pub use nodes::{NodeForm, NodeKind};
 
 use crate::analysis::modal::{modal, EigenMethod, ModalSettings};
