@@ -285,3 +285,125 @@ proptest! {
         prop_assert!(max_abs(&cpsi) <= 1e-12 * max_abs(&r.reduction.basis), "C_q Ψ = {:e}", max_abs(&cpsi));
     }
 }
+
+/// A 10-element beam, with a point mass pinned at `pinned` and/or a rigid
+/// body welded at `welded` (arc lengths on the beam, [SI: m]).
+fn beam_with_parts(pinned: Option<f64>, welded: Option<f64>) -> ModelInput {
+    let mut masses = String::new();
+    let mut bodies = String::new();
+    let mut joints = Vec::new();
+    if let Some(s) = pinned {
+        masses = format!(r#"{{"id":"m","mass":2e-3,"position":[{s},0]}}"#);
+        joints.push(format!(
+            r#"{{"type":"pin","a":{{"body":"m"}},"b":{{"beam":"b","s":{s}}}}}"#
+        ));
+    }
+    if let Some(s) = welded {
+        bodies = format!(
+            r#"{{"id":"r","mass":3e-3,"inertia":2e-8,"position":[{s},0.004],"angle_deg":20}}"#
+        );
+        joints.push(format!(
+            r#"{{"type":"weld","a":{{"body":"r"}},"b":{{"beam":"b","s":{s}}}}}"#
+        ));
+    }
+    let text = format!(
+        r#"{{"name":"beam_with_parts","gravity":[0,0],
+        "beams":[{{"id":"b","start":[0,0],"angle_deg":0,"length":0.1,"elements":10,
+          "section":{{"height":2e-3,"width":1e-2}},"material":{{"young":2.1e11,"density":7850}}}}],
+        "rigid_bodies":[{bodies}],"point_masses":[{masses}],"joints":[{}]}}"#,
+        joints.join(",")
+    );
+    ModelInput::parse(&text, Source::BuiltIn).expect("valid beam model with parts")
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+    /// For any 1–3 interface points, a pinned point mass and/or a welded
+    /// rigid body: the basis keeps the joints (C_q Ψ = 0), leaves the
+    /// rigid motions to the frame (RᵀMΨ = 0), is M-orthonormal, the check
+    /// is an upper bound on the full model (Ritz), and Craig–Bampton has
+    /// K + 4·points − 3 columns: its constraint modes span the three rigid
+    /// motions (a rigid motion is the least-energy motion with its own
+    /// interface values), which the frame carries instead.
+    #[test]
+    fn the_basis_invariants_hold_for_one_to_three_interface_points(
+        points in proptest::collection::vec(0.0f64..0.1, 1..=3),
+        k in 1usize..10,
+        pinned in proptest::option::of(0.0f64..0.1),
+        welded in proptest::option::of(0.0f64..0.1),
+        free_interface in any::<bool>(),
+    ) {
+        for (a, x) in points.iter().enumerate() {
+            for y in &points[..a] {
+                prop_assume!((x - y).abs() > 2e-3);
+            }
+        }
+        let method = if free_interface {
+            ReductionMethod::FreeInterface
+        } else {
+            ReductionMethod::CraigBampton
+        };
+        let input = beam_with_parts(pinned, welded);
+        let interface: Vec<(&str, f64)> = points.iter().map(|&s| ("b", s)).collect();
+        let r = reduce(&input, &interface, k, method);
+        let (system, red) = (&r.system, &r.reduction);
+        let q = &r.document.output.q;
+        let mut cq = Mat::zeros(system.constraint_count(), system.ndof());
+        system.constraint_jacobian(q, &mut cq);
+        let cpsi = &cq * &red.basis;
+        let scale = max_abs(&red.basis) * max_abs(&cq).max(1.0);
+        prop_assert!(max_abs(&cpsi) <= 1e-11 * scale, "C_q Ψ = {:e} (scale {:e})", max_abs(&cpsi), scale);
+        let m = system.mass_matrix();
+        let rmpsi = red.rigid.transpose() * &m * &red.basis;
+        prop_assert!(max_abs(&rmpsi) <= 1e-10, "RᵀMΨ = {:e}", max_abs(&rmpsi));
+        let g = red.basis.transpose() * &m * &red.basis;
+        for i in 0..g.nrows() {
+            for j in 0..g.ncols() {
+                let want = if i == j { 1.0 } else { 0.0 };
+                prop_assert!((g[(i, j)] - want).abs() < 1e-10, "ΨᵀMΨ[{},{}] = {}", i, j, g[(i, j)]);
+            }
+        }
+        prop_assert_eq!(red.rigid.ncols(), 3, "the assembly's planar rigid motions");
+        let check = &r.document.output.check;
+        prop_assert!(!check.relative_error.is_empty(), "the check compares some modes");
+        // Round-off: a dense eigen-solve's low eigenvalues are good to
+        // ε·ω²_max absolutely, ~1e-8 relative here (a 2 mm thick beam with
+        // a light rigid body); the broken single-point basis was −7e-4.
+        for (i, e) in check.relative_error.iter().enumerate() {
+            prop_assert!(*e >= -1e-6, "{:?} mode {}: {:e} below the full model", method, i + 1, e);
+        }
+        if method == ReductionMethod::CraigBampton {
+            prop_assert_eq!(red.basis.ncols(), k + 4 * points.len() - 3, "columns");
+        }
+    }
+}
+
+#[test]
+fn more_component_modes_than_the_problem_has_are_refused_and_the_maximum_has_no_spurious_column() {
+    // A 10-element free beam with a pinned point mass, one interface point:
+    // 44 + 2 coordinates, 2 pin rows, 4 held: 40 fixed-interface modes.
+    let input = beam_with_parts(Some(0.1), None);
+    let request = |modes| ReduceRequest {
+        interface: vec![("b".to_string(), 0.0)],
+        modes,
+        ..ReduceRequest::default()
+    };
+    let e = run(&input, &request(41)).expect_err("41 > 40 modes");
+    let text = e.to_string();
+    assert!(
+        text.contains("modes") && text.contains("41") && text.contains("at most 40"),
+        "{text}"
+    );
+    let r = run(&input, &request(40)).expect("40 modes");
+    let hz = &r.document.output.basis_hz;
+    assert_eq!(hz.len(), 40 + 4 - 3, "K + 4 − 3 columns");
+    // No column near zero frequency: the lowest is the free body's first
+    // elastic mode or above (Ritz), here compared with the check's full
+    // model.
+    let first_full = r.document.output.check.full_hz[0];
+    assert!(
+        hz[0] >= first_full * (1.0 - 1e-9),
+        "lowest basis column {} Hz below the first elastic mode {first_full} Hz",
+        hz[0]
+    );
+}

@@ -12,6 +12,16 @@ The basis is M-orthogonal to the rigid motions the frame carries (as
 Exudyn's ``excludeRigidBodyMotion``), so the frame and the modal
 coordinates never count a motion twice. Damping, if wanted, is Exudyn's
 Rayleigh damping on the modal coordinates.
+
+Exudyn gets the basis with each column scaled to a largest node
+displacement of 1 m (the body's file keeps the mass-normalised one, where
+ΨᵀMΨ = I): Exudyn's modal coordinates are then metres of the column's
+largest displacement. A mass-normalised column of a small body has
+entries of order 1/√(mass) (about 1e12 m per unit for a 200 µm silicon
+bridge), and Exudyn's import gives wrong frequencies for it (×14.7 there);
+the scaled columns span the same motions, so nothing else changes. The
+returned ``basis_scale`` maps back: η = ξ / scale, ξ Exudyn's modal
+coordinates and η the file's.
 """
 
 from __future__ import annotations
@@ -45,7 +55,10 @@ def add_flexible_body(
     each held in x and y (position and slope of the beam there).
 
     Returns a dict: ``object`` (the ObjectFFRFreducedOrder), ``nodes``
-    (``rigid``: the frame's node, ``modal``: the modal coordinates' node),
+    (``rigid``: the frame's node, ``modal``: the modal coordinates' node,
+    each coordinate the displacement [m] of its basis column's largest
+    entry), ``basis_scale`` (per column, the largest displacement of the
+    file's mass-normalised column [m per unit]: η = ξ / scale),
     ``markers`` (one MarkerSuperElementPosition per interface point, at the
     interface node, for the user's joints), ``interface_nodes`` (per
     interface point its node and virtual node), ``interface``
@@ -63,8 +76,13 @@ def add_flexible_body(
     fem.nodes = {"Position": positions}
     fem.massMatrix = _csr(form["mass"], size)
     fem.stiffnessMatrix = _csr(form["stiffness"], size)
+    basis = np.asarray(form["basis"], dtype=float)
+    # Unit largest displacement per column (module doc): Exudyn is wrong
+    # with the mass-normalised columns of a small body.
+    scale = np.abs(basis).max(axis=0) if basis.size else np.zeros(0)
+    scale = np.where(scale > 0.0, scale, 1.0)
     fem.modeBasis = {
-        "matrix": np.asarray(form["basis"], dtype=float),
+        "matrix": basis / scale,
         "type": "ancf_modal " + doc["method"],
     }
     cms = ObjectFFRFreducedOrderInterface(
@@ -111,6 +129,7 @@ def add_flexible_body(
     return {
         "object": obj,
         "nodes": {"rigid": rigid, "modal": modal},
+        "basis_scale": scale,
         "markers": markers,
         "interface_nodes": interface_nodes,
         "interface": fem,

@@ -79,6 +79,9 @@ pub enum Command {
     Frf(frf::FrfArgs),
     /// The assembly as a reduced flexible body (Craig–Bampton or
     /// free-interface) for a multibody code such as Exudyn, with its check.
+    #[command(
+        override_usage = "ancf-modal reduce [OPTIONS] --interface <BEAM:S[,BEAM:S...]> [MODEL]"
+    )]
     Reduce(reduce::ReduceArgs),
 }
 

@@ -33,7 +33,7 @@ pub struct ReduceArgs {
     #[arg(long)]
     pub prestress: bool,
     /// Factor on the applied loads for --prestress.
-    #[arg(long, default_value_t = 1.0, value_name = "S", allow_negative_numbers = true, value_parser = finite)]
+    #[arg(long, default_value_t = 1.0, value_name = "S", allow_negative_numbers = true, value_parser = finite, requires = "prestress")]
     pub load_scale: f64,
     /// Keep the ground supports in the body.
     #[arg(long)]

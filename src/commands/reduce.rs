@@ -10,7 +10,8 @@
 
 use super::{CommandError, ModelInput, Run};
 use crate::analysis::reduce::{
-    check, reduce, CheckCondition, NodeForm, ReduceError, Reduction, ReductionMethod,
+    check, reduce, rigid_stiffening, CheckCondition, NodeForm, ReduceError, Reduction,
+    ReductionMethod,
 };
 use crate::analysis::statics::{solve_equilibrium, StaticSettings};
 use crate::model::resolved::ResolvedPoint;
@@ -159,10 +160,21 @@ pub fn run(input: &ModelInput, request: &ReduceRequest) -> Result<ReduceRun, Com
         request.modes,
         &label,
     )
-    .map_err(reduce_fail)?;
+    .map_err(|e| match e {
+        ReduceError::TooManyModes {
+            requested,
+            available,
+            problem,
+        } => CommandError::argument(
+            "modes",
+            requested,
+            format!("at most {available} (the {problem} problem's mode count)"),
+        ),
+        e => reduce_fail(e),
+    })?;
     let condition = match request.method {
         ReductionMethod::CraigBampton => CheckCondition::Free,
-        ReductionMethod::FreeInterface => CheckCondition::Held { point: 0 },
+        ReductionMethod::FreeInterface => CheckCondition::Held { point: 1 },
     };
     let checked = check(&system, &at, &reduction, condition, request.modes).map_err(reduce_fail)?;
     let nodes = NodeForm::new(&system, &at, &reduction.basis);
@@ -207,8 +219,23 @@ pub fn run(input: &ModelInput, request: &ReduceRequest) -> Result<ReduceRun, Com
         },
         check: checked,
     };
+    let mut notes = Vec::new();
+    if request.prestress {
+        let lost = rigid_stiffening(&system, &at, &reduction);
+        let first = reduction.eigenvalues.first().copied().unwrap_or(f64::NAN);
+        notes.push(format!(
+            "prestress: the body keeps the pre-stress stiffening on its modal coordinates only; \
+             the frame's rigid motions lose it in the multibody code (their ω² under the \
+             pre-stress up to {:.3e} rad²/s², {:.3e} of the first flexible ω² = {:.3e} rad²/s²): \
+             modes that turn or move the body against the preload come out wrong there, \
+             and the check leaves it out as well",
+            lost,
+            lost / first,
+            first
+        ));
+    }
     Ok(ReduceRun {
-        document: Run::of(input, document),
+        document: Run::of(input, document).warn(input, notes),
         system,
         reduction,
     })

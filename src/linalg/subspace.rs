@@ -2,10 +2,14 @@
 //! coordinates: the reduced models of component-mode synthesis.
 //!
 //! The columns V (n × c) may be linearly dependent (constraint modes that
-//! span the rigid motions once those are projected out). Each column is
-//! scaled to unit M-norm, the Gram matrix G = VᵀMV is diagonalized, and
+//! span the rigid motions once those are projected out). The caller gives
+//! them at a common scale (e.g. unit M-norm *before* any projection), and
+//! they are used as given: the Gram matrix G = VᵀMV is diagonalized and
 //! the eigenvectors whose eigenvalue falls below [`DEPENDENT`] · max are
-//! dropped: Q = V W Λ^-½ is an M-orthonormal basis of the span. Then the
+//! dropped, so Q = V W Λ^-½ is an M-orthonormal basis of the span. A
+//! column that a projection reduced to round-off is dropped with them;
+//! scaling it back up to unit norm would make its round-off (which keeps
+//! neither the projection nor the constraints) a direction of the span. Then the
 //! Ritz problem QᵀKQ y = μ y (ordinary: Q is M-orthonormal) gives the Ritz
 //! vectors Q Y, M-orthonormal and K-orthogonal, ascending in μ [SI: ω² in
 //! rad²/s² for a stiffness K and a mass M].
@@ -19,8 +23,9 @@ use faer::{Mat, Par};
 /// round-off of exactly dependent ones, far below any independent one).
 pub const DEPENDENT: f64 = 1e-10;
 
-/// The Ritz vectors of the span of `v` (module doc): columns of unit
-/// M-norm, K-orthogonal, ascending, and their Ritz values.
+/// The Ritz vectors of the span of `v` (columns at a common scale, module
+/// doc): columns of unit M-norm, K-orthogonal, ascending, and their Ritz
+/// values.
 /// `mass`/`stiffness` apply M and K to a column.
 pub fn ritz_basis(
     v: &Mat<f64>,
@@ -28,21 +33,11 @@ pub fn ritz_basis(
     stiffness: &dyn Fn(&[f64], &mut [f64]),
 ) -> Result<(Vec<f64>, Mat<f64>), EigenFailure> {
     let (n, c) = (v.nrows(), v.ncols());
-    let mut scaled = v.clone();
     let mut mv = Mat::<f64>::zeros(n, c);
     for j in 0..c {
-        mass(scaled.col_as_slice(j), mv.col_as_slice_mut(j));
-        let norm = dot(scaled.col_as_slice(j), mv.col_as_slice(j))
-            .max(0.0)
-            .sqrt();
-        if norm > 0.0 {
-            for i in 0..n {
-                scaled[(i, j)] /= norm;
-                mv[(i, j)] /= norm;
-            }
-        }
+        mass(v.col_as_slice(j), mv.col_as_slice_mut(j));
     }
-    let gram = symmetric(&(scaled.transpose() * &mv));
+    let gram = symmetric(&(v.transpose() * &mv));
     let (values, vectors) = symmetric_eigen_qr(&gram, Par::Seq)?;
     let largest = values.iter().fold(0.0f64, |a, &b| a.max(b));
     let kept: Vec<usize> = (0..c)
@@ -51,7 +46,7 @@ pub fn ritz_basis(
     let w = Mat::from_fn(c, kept.len(), |i, j| {
         vectors[(i, kept[j])] / values[kept[j]].sqrt()
     });
-    let q = &scaled * &w;
+    let q = v * &w;
     let mut kq = Mat::<f64>::zeros(n, q.ncols());
     for j in 0..q.ncols() {
         stiffness(q.col_as_slice(j), kq.col_as_slice_mut(j));
@@ -64,10 +59,6 @@ pub fn ritz_basis(
 /// (A + Aᵀ)/2.
 pub fn symmetric(a: &Mat<f64>) -> Mat<f64> {
     Mat::from_fn(a.nrows(), a.ncols(), |i, j| 0.5 * (a[(i, j)] + a[(j, i)]))
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    super::vector::dot(a, b)
 }
 
 #[cfg(test)]
@@ -99,5 +90,21 @@ mod tests {
                 "column {j} M-normalized: {norm}"
             );
         }
+    }
+
+    #[test]
+    fn a_column_reduced_to_round_off_is_dropped_not_rescaled() {
+        // Columns e0, e1 and a round-off remnant (1e-15 along e2): the span
+        // is e0, e1, the remnant is not a direction of it.
+        let (m, k) = ([1.0, 2.0, 3.0], [2.0, 8.0, 27.0]);
+        let v = Mat::from_fn(3, 3, |i, j| match (i, j) {
+            (0, 0) | (1, 1) => 1.0,
+            (2, 2) => 1e-15,
+            _ => 0.0,
+        });
+        let mass = |x: &[f64], y: &mut [f64]| (0..3).for_each(|i| y[i] = m[i] * x[i]);
+        let stiff = |x: &[f64], y: &mut [f64]| (0..3).for_each(|i| y[i] = k[i] * x[i]);
+        let (mu, q) = ritz_basis(&v, &mass, &stiff).expect("Ritz");
+        assert_eq!(q.ncols(), 2, "the remnant is dropped: {mu:?}");
     }
 }

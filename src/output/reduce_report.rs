@@ -47,7 +47,7 @@ pub fn reduce_table(body: &ReducedBody) -> String {
     let condition = match check.condition {
         CheckCondition::Free => "every interface point free".to_string(),
         CheckCondition::Held { point } => {
-            format!("interface point {} held (position and slope)", point + 1)
+            format!("interface point {point} held (position and slope)")
         }
     };
     s.push_str(&format!(

@@ -10,8 +10,10 @@
 //!   the slope's length, as two ground joints on the node and its virtual
 //!   node do in Exudyn).
 //!
-//! The reduced model is the body's motions q = [R Ψ] η with its mass and
-//! stiffness [R Ψ]ᵀ M [R Ψ], [R Ψ]ᵀ K [R Ψ]; a held point adds the rows of
+//! The reduced model is the body's motions q = [R Ψ] η with its mass
+//! [R Ψ]ᵀ M [R Ψ] and, as the multibody code's floating frame has it, the
+//! stiffness ΨᵀKΨ on the modal coordinates alone (a pre-stress's RᵀKR and
+//! RᵀKΨ are lost there, and so here: [`rigid_stiffening`]); a held point adds the rows of
 //! its coordinates as constraints on η. Frequencies f = √ω²/2π [Hz]
 //! (negative for ω² < 0), error (f_reduced − f_full)/f_full [–]: Ritz's
 //! bound makes it ≥ 0 up to round-off.
@@ -26,11 +28,12 @@ use faer::Mat;
 
 /// The boundary condition of a check.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, schemars::JsonSchema)]
-#[serde(rename_all = "snake_case")]
+#[serde(tag = "kind", rename_all = "snake_case")]
 pub enum CheckCondition {
-    /// Every interface point free.
+    /// Every interface point free: `{"kind": "free"}`.
     Free,
-    /// The interface point of this index held (position and slope).
+    /// The interface point numbered `point` (1-based, as the report prints
+    /// it) held (position and slope): `{"kind": "held", "point": 1}`.
     Held { point: usize },
 }
 
@@ -73,7 +76,17 @@ pub fn check(
     });
     let k_full = held::full_stiffness(system, at);
     let mb = project(&whole, &|x, y| system.mass().mul_vec(x, y));
-    let kb = project(&whole, &|x, y| held::apply(&k_full, x, y));
+    // The stiffness acts on the modal coordinates only, as in the
+    // multibody code's floating frame: the rigid motions' rows and columns
+    // (RᵀKR, RᵀKΨ: non-zero only with a pre-stress) are not kept, so the
+    // check shows what the import gives.
+    let mut kb = project(&whole, &|x, y| held::apply(&k_full, x, y));
+    for i in 0..r + m {
+        for j in 0..r {
+            kb[(i, j)] = 0.0;
+            kb[(j, i)] = 0.0;
+        }
+    }
     let eigen = |k: &Mat<f64>, m: &Mat<f64>| {
         solve_generalized(k, m, k.nrows())
             .map(|e| e.values)
@@ -102,7 +115,8 @@ pub fn check(
             (z, full, reduced[z.min(reduced.len())..].to_vec())
         }
         CheckCondition::Held { point } => {
-            let coords = &reduction.interface[4 * point..4 * point + 4];
+            let index = point.saturating_sub(1);
+            let coords = &reduction.interface[4 * index..4 * index + 4];
             let (full, _) = held::held_modes(system, at, coords, count)?;
             let rows = Mat::from_fn(4, r + m, |a, j| whole[(coords[a], j)]);
             let ns = NullSpace::from_dense(&rows);
@@ -125,4 +139,16 @@ pub fn check(
         reduced_hz,
         relative_error,
     })
+}
+
+/// The pre-stress stiffening that the frame's rigid motions lose in the
+/// multibody code: the largest |ω²| of RᵀKR (R M-orthonormal, so these are
+/// the rigid motions' own ω² under the pre-stress) [SI: rad²/s²]. Zero
+/// without a pre-stress (K R = 0).
+pub fn rigid_stiffening(system: &System, at: &Linearization, reduction: &Reduction) -> f64 {
+    let k_full = held::full_stiffness(system, at);
+    let kr = project(&reduction.rigid, &|x, y| held::apply(&k_full, x, y));
+    solve_generalized(&kr, &Mat::identity(kr.nrows(), kr.ncols()), kr.nrows())
+        .map(|e| e.values.iter().fold(0.0f64, |a, v| a.max(v.abs())))
+        .unwrap_or(0.0)
 }

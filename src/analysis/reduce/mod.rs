@@ -25,8 +25,9 @@
 //!   the zero modes). The kept modes stay exact: the residual modes are
 //!   M- and K-orthogonal to them.
 //!
-//! The columns, with R projected out (v − R RᵀM v, R M-orthonormal), are
-//! then turned into their Ritz vectors ([`crate::linalg::subspace`]):
+//! The columns, scaled to unit M-norm and then with R projected out
+//! (v − R RᵀM v, R M-orthonormal), are then turned into their Ritz vectors
+//! (a column that was a rigid motion is left as round-off and dropped) ([`crate::linalg::subspace`]):
 //! Ψ is M-orthonormal and K-orthogonal, so the reduced mass ΨᵀMΨ is the
 //! identity [SI: kg m² … per unit² of modal coordinate, here 1] and the
 //! reduced stiffness ΨᵀKΨ = diag(ω²) [SI: rad²/s²].
@@ -35,7 +36,7 @@ mod check;
 mod held;
 mod nodes;
 
-pub use check::{check, CheckCondition, ReductionCheck};
+pub use check::{check, rigid_stiffening, CheckCondition, ReductionCheck};
 pub use nodes::{NodeForm, NodeKind};
 
 use crate::analysis::modal::{modal, EigenMethod, ModalSettings};
@@ -75,6 +76,14 @@ pub enum ReduceError {
     /// the interface does not stop), or it is unstable there.
     #[error("with every interface coordinate held the body still has a motion without positive stiffness (a mechanism the interface does not hold, or an unstable pre-stress): add an interface point on that part")]
     NotHeld,
+    /// More component modes asked for than the component problem has.
+    #[error("{requested} component modes asked for: the {problem} problem has {available}")]
+    TooManyModes {
+        requested: usize,
+        available: usize,
+        /// "fixed-interface" or "free body's elastic".
+        problem: &'static str,
+    },
     /// The body has no elastic motion left.
     #[error("the body has no elastic motion to reduce")]
     NoFreedom,
@@ -188,8 +197,19 @@ pub fn reduce(
     label: &dyn Fn(usize) -> String,
 ) -> Result<Reduction, ReduceError> {
     let n = system.ndof();
-    let k_full = held::full_stiffness(system, at);
     let rigid = rigid_motions(system, at.q);
+    let available = available_modes(system, at, interface, method, rigid.ncols());
+    if modes > available {
+        return Err(ReduceError::TooManyModes {
+            requested: modes,
+            available,
+            problem: match method {
+                ReductionMethod::CraigBampton => "fixed-interface",
+                ReductionMethod::FreeInterface => "free body's elastic",
+            },
+        });
+    }
+    let k_full = held::full_stiffness(system, at);
     let (columns, component) = match method {
         ReductionMethod::CraigBampton => {
             let mut cols = held::constraint_modes(system, at, &k_full, interface, label)?;
@@ -202,7 +222,21 @@ pub fn reduce(
     if columns.is_empty() {
         return Err(ReduceError::NoFreedom);
     }
+    // Unit M-norm *before* the rigid motions are projected out: a column
+    // that is (nearly) a rigid motion, such as a constraint mode of a
+    // single interface point, shrinks to round-off and the Ritz step drops
+    // it as dependent instead of scaling its round-off back up.
     let mut v = Mat::from_fn(n, columns.len(), |i, j| columns[j][i]);
+    let mut mv = vec![0.0; n];
+    for j in 0..v.ncols() {
+        system.mass().mul_vec(v.col_as_slice(j), &mut mv);
+        let norm = crate::linalg::vector::dot(v.col_as_slice(j), &mv)
+            .max(0.0)
+            .sqrt();
+        if norm > 0.0 {
+            crate::linalg::vector::scale(1.0 / norm, v.col_as_slice_mut(j));
+        }
+    }
     exclude_rigid(system, &rigid, &mut v);
     let (eigenvalues, basis) = ritz_basis(&v, &|x, y| system.mass().mul_vec(x, y), &|x, y| {
         held::apply(&k_full, x, y)
@@ -219,6 +253,24 @@ pub fn reduce(
         eigenvalues,
         component_eigenvalues: component,
     })
+}
+
+/// How many component modes `method` can have: the fixed-interface
+/// problem's coordinates (Craig–Bampton) or the free body's less its
+/// `rigid` motions (free-interface).
+fn available_modes(
+    system: &System,
+    at: &Linearization,
+    interface: &[usize],
+    method: ReductionMethod,
+    rigid: usize,
+) -> usize {
+    match method {
+        ReductionMethod::CraigBampton => held::held_space(system, at.q, interface).dim(),
+        ReductionMethod::FreeInterface => held::held_space(system, at.q, &[])
+            .dim()
+            .saturating_sub(rigid),
+    }
 }
 
 /// The free-interface columns: the lowest `modes` elastic modes of the
