@@ -80,11 +80,11 @@ fn position(model: &ValidModel, p: &PointSpec) -> Result<[f64; 2], BalanceError>
     }
 }
 
+/// A spring's reference points a, b and the unit vector a → b [SI: m, –].
+type Line = ([f64; 2], [f64; 2], [f64; 2]);
+
 /// The reference points of a spring (a, b) and the unit vector a → b.
-fn spring_line(
-    model: &ValidModel,
-    k: usize,
-) -> Result<([f64; 2], [f64; 2], [f64; 2]), BalanceError> {
+fn spring_line(model: &ValidModel, k: usize) -> Result<Line, BalanceError> {
     let s = &model.springs[k];
     let (a, b) = (position(model, &s.a)?, position(model, &s.b)?);
     let l = (b[0] - a[0]).hypot(b[1] - a[1]);

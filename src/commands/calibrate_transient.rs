@@ -240,7 +240,7 @@ pub fn run(
     let result = calibrate_transient(&input.model, &fit).map_err(|source| {
         CommandError::TransientCalibration {
             model: input.label(),
-            source,
+            source: Box::new(source),
         }
     })?;
     let output = TransientCalibrationOutput {

@@ -53,7 +53,7 @@ pub enum CommandError {
     TransientCalibration {
         model: String,
         #[source]
-        source: crate::analysis::calibrate::transient::TransientFitError,
+        source: Box<crate::analysis::calibrate::transient::TransientFitError>,
     },
     /// The model with every beam made rigid is not a valid model.
     #[error("{model}: the model with every beam rigid")]
@@ -233,7 +233,7 @@ impl CommandError {
             CommandError::TransientCalibration { source, .. } => {
                 use crate::analysis::calibrate::transient::TransientFitError as T;
                 !matches!(
-                    source,
+                    **source,
                     T::Point { .. } | T::Unreachable { .. } | T::Exhausted { .. } | T::Jump { .. }
                 )
             }

@@ -215,8 +215,10 @@ fn resolve(model: &Model, specs: &[TransientParameter]) -> Result<Resolved, Tran
                 })
             }
         };
-        if !(lower.is_finite() && upper.is_finite() && lower < upper)
-            || !(lower..=upper).contains(&initial)
+        if !(lower.is_finite()
+            && upper.is_finite()
+            && lower < upper
+            && (lower..=upper).contains(&initial))
         {
             return Err(TransientFitError::Bounds {
                 name: spec.name.clone(),
