@@ -188,10 +188,12 @@ pub fn run(args: CalibrateArgs) -> Result<Warnings> {
         .as_deref()
         .map(Format::from_path)
         .transpose()?;
-    let input = ModelInput::load(args.model.as_deref())?;
     if args.quantity.is_some() || args.trajectory.is_some() {
+        // A transient fit runs the switch-off: its built-in assembly.
+        let input = ModelInput::load_switch_off(args.model.as_deref())?;
         return run_transient(&args, &input);
     }
+    let input = ModelInput::load(args.model.as_deref())?;
     let run = calibrate(&input, &request(&args)?).map_err(|e| match e {
         CommandError::Calibration { source, .. } => flagged(source),
         e => command_error(e),

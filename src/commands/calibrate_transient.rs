@@ -85,7 +85,8 @@ pub struct CalibrateTransientRun {
     pub document: Run<TransientCalibrationOutput>,
 }
 
-/// Reads a trajectory: lines `t,x,y` [s, m, m]; a first line that is not
+/// Reads a trajectory: lines `t,x,y` [s, m, m], further columns ignored
+/// (so `switch-off --csv` output reads as it is); a first line that is not
 /// numbers is a header; blank lines and `#` lines are skipped.
 pub fn read_trajectory(file: &Path) -> Result<Trajectory, CommandError> {
     let text = std::fs::read_to_string(file).map_err(|io| CommandError::ReadFile {
@@ -109,6 +110,7 @@ pub fn read_trajectory(file: &Path) -> Result<Trajectory, CommandError> {
         let cells: Vec<&str> = line.split(',').map(str::trim).collect();
         let numbers: Option<Vec<f64>> = cells
             .iter()
+            .take(3)
             .map(|c| c.parse::<f64>().ok().filter(|v| v.is_finite()))
             .collect();
         match (numbers, tr.time_s.is_empty() && k == 0) {
@@ -121,12 +123,12 @@ pub fn read_trajectory(file: &Path) -> Result<Trajectory, CommandError> {
                 tr.y_m.push(v[2]);
             }
             (None, true) => {}
-            _ => {
-                return Err(bad(
-                    k + 1,
-                    format!("`{line}`: each line must be three finite numbers t [s], x [m], y [m]"),
-                ))
-            }
+            _ => return Err(bad(
+                k + 1,
+                format!(
+                    "`{line}`: each line must start with three finite numbers t [s], x [m], y [m]"
+                ),
+            )),
         }
     }
     if tr.time_s.is_empty() {

@@ -234,7 +234,11 @@ impl CommandError {
                 use crate::analysis::calibrate::transient::TransientFitError as T;
                 !matches!(
                     **source,
-                    T::Point { .. } | T::Unreachable { .. } | T::Exhausted { .. } | T::Jump { .. }
+                    T::Point { .. }
+                        | T::Unreachable { .. }
+                        | T::Exhausted { .. }
+                        | T::TrajectoryExhausted { .. }
+                        | T::Jump { .. }
                 )
             }
             // --- `frf` and `identify` ---

@@ -125,6 +125,8 @@ pub enum TransientFitError {
     Unreachable { low: f64, high: f64, target: f64 },
     #[error("the time to distance jumps over {target:e} s at {at:e} (closest {best:e} s): no parameter value within the bounds gives it")]
     Jump { at: f64, best: f64, target: f64 },
+    #[error("the trajectory fit used its {evaluations} experiments before reaching a least-squares optimum (rms residual {rms:e} m); allow more")]
+    TrajectoryExhausted { evaluations: usize, rms: f64 },
     #[error("no fit within {evaluations} experiments (best {best:e} s against {target:e} s)")]
     Exhausted {
         evaluations: usize,
@@ -609,6 +611,13 @@ fn fit_trajectory(
     let initial_rms = rms(&start);
     let settings = lm_settings(fit.max_evaluations);
     let outcome = lm::solve(&mut problem, u0, start, &lower, &upper, &settings)?;
+    // Standard errors mean something only at an optimum.
+    if outcome.stop == lm::Stop::Exhausted {
+        return Err(TransientFitError::TrajectoryExhausted {
+            evaluations: outcome.evaluations,
+            rms: rms(&outcome.best),
+        });
+    }
     let values = problem.values(&outcome.x);
     // Standard errors from the Jacobian and the residual at the fit.
     let j = lm::Problem::jacobian(&mut problem, &outcome.x, &outcome.best, &outcome.best)?;
