@@ -72,7 +72,9 @@ mod measured_support;
 #[test]
 fn trajectory_fit_recovers_two_parameters_from_noisy_samples() {
     use ancf_modal::analysis::calibrate::ParameterSpec;
-    use ancf_modal::commands::calibrate_transient::{run, CalibrateTransientRequest};
+    use ancf_modal::commands::calibrate_transient::{
+        run, CalibrateTransientRequest, TrajectoryInput,
+    };
     use ancf_modal::commands::ModelInput;
     use std::fmt::Write;
 
@@ -112,7 +114,7 @@ fn trajectory_fit_recovers_two_parameters_from_noisy_samples() {
     std::fs::write(&file, csv).unwrap();
 
     let request = CalibrateTransientRequest {
-        trajectory: Some(file),
+        trajectory: Some(TrajectoryInput::File(file)),
         params: vec![
             ParameterSpec {
                 name: String::from("springs[helical_spring].a.ground[1]"),

@@ -233,7 +233,9 @@ fn flagged(e: CalibrationError) -> anyhow::Error {
 
 /// `calibrate --quantity` / `--trajectory`: the transient request.
 fn run_transient(args: &CalibrateArgs, input: &ModelInput) -> Result<Warnings> {
-    use ancf_modal::commands::calibrate_transient::{run, CalibrateTransientRequest};
+    use ancf_modal::commands::calibrate_transient::{
+        run, CalibrateTransientRequest, TrajectoryInput,
+    };
     args.output.only("calibrate", &[Output::Json])?;
     if args.target.len() > 1 {
         anyhow::bail!(
@@ -244,7 +246,7 @@ fn run_transient(args: &CalibrateArgs, input: &ModelInput) -> Result<Warnings> {
     let request = CalibrateTransientRequest {
         quantity: args.quantity.clone(),
         target_s: args.target.first().copied(),
-        trajectory: args.trajectory.clone(),
+        trajectory: args.trajectory.clone().map(TrajectoryInput::File),
         params: args.params.clone(),
         balance: args.balance.clone(),
         tolerance_s: args.tolerance,

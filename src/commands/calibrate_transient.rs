@@ -14,11 +14,50 @@ use crate::analysis::calibrate::transient::{
 use crate::analysis::calibrate::ParameterSpec;
 use crate::analysis::switch_off::SwitchOffSettings;
 use crate::model::PointSpec;
-use serde::Serialize;
+pub use crate::results::TransientCalibrationOutput;
 use std::path::{Path, PathBuf};
 
 /// The quantity a time target refers to.
 pub const TIME_TO_DISTANCE: &str = "time_to_distance_s";
+
+/// Where a measured trajectory comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum TrajectoryInput {
+    /// A CSV file ([`read_trajectory`]).
+    File(PathBuf),
+    /// Samples given as they are.
+    Samples(Trajectory),
+}
+
+impl TrajectoryInput {
+    /// The samples, read or checked: as many of each, finite, times
+    /// increasing.
+    fn samples(&self) -> Result<Trajectory, CommandError> {
+        let tr = match self {
+            TrajectoryInput::File(file) => return read_trajectory(file),
+            TrajectoryInput::Samples(tr) => tr,
+        };
+        let m = tr.time_s.len();
+        let why = if tr.x_m.len() != m || tr.y_m.len() != m {
+            format!(
+                "t, x and y must have as many samples ({m}, {}, {})",
+                tr.x_m.len(),
+                tr.y_m.len()
+            )
+        } else if m == 0 {
+            String::from("holds no samples")
+        } else if let Some(k) = (0..m).find(|&k| {
+            !(tr.time_s[k].is_finite() && tr.x_m[k].is_finite() && tr.y_m[k].is_finite())
+        }) {
+            format!("sample {k} is not finite")
+        } else if let Some(k) = (1..m).find(|&k| tr.time_s[k] <= tr.time_s[k - 1]) {
+            format!("time {} at sample {k} does not increase", tr.time_s[k])
+        } else {
+            return Ok(tr.clone());
+        };
+        Err(CommandError::argument("trajectory", &tr.label, why))
+    }
+}
 
 /// What a transient calibration fits, and how.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,8 +68,9 @@ pub struct CalibrateTransientRequest {
     pub target_s: Option<f64>,
     /// Where the target comes from (for the labels); default "measured".
     pub target_source: Option<String>,
-    /// A CSV of t [s], x [m], y [m] samples of the tracked point.
-    pub trajectory: Option<PathBuf>,
+    /// Samples t [s], x [m], y [m] of the tracked point: a CSV file, or
+    /// given as they are (Python's arrays).
+    pub trajectory: Option<TrajectoryInput>,
     /// The parameters (JSON paths or short names), optional bounds [SI].
     pub params: Vec<ParameterSpec>,
     /// `SPRING:CONTACT`: the spring's preload follows the ON-state balance
@@ -68,14 +108,6 @@ impl Default for CalibrateTransientRequest {
             point: None,
         }
     }
-}
-
-/// The document of a transient calibration.
-#[derive(Debug, Clone, Serialize)]
-pub struct TransientCalibrationOutput {
-    pub model: String,
-    #[serde(flatten)]
-    pub result: TransientCalibration,
 }
 
 /// The run: the fit and its document.
@@ -123,12 +155,14 @@ pub fn read_trajectory(file: &Path) -> Result<Trajectory, CommandError> {
                 tr.y_m.push(v[2]);
             }
             (None, true) => {}
-            _ => return Err(bad(
-                k + 1,
-                format!(
+            _ => {
+                return Err(bad(
+                    k + 1,
+                    format!(
                     "`{line}`: each line must start with three finite numbers t [s], x [m], y [m]"
                 ),
-            )),
+                ))
+            }
         }
     }
     if tr.time_s.is_empty() {
@@ -173,7 +207,7 @@ pub fn run(
                 "a time fit needs the measured time [s]",
             ))
         }
-        (None, _, Some(file)) => TransientTarget::Trajectory(read_trajectory(file)?),
+        (None, _, Some(tr)) => TransientTarget::Trajectory(tr.samples()?),
         _ => {
             return Err(CommandError::argument(
                 "trajectory",

@@ -148,12 +148,15 @@ pub struct TransientEvaluation {
 /// The tied spring's preload, initial and fitted.
 #[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct BalanceRecord {
+    /// The spring whose preload is tied (its id).
     pub spring: String,
+    /// The contact whose ON-state force the balance keeps (its id).
     pub contact: String,
     /// The contact force the balance keeps [SI: N].
     pub contact_force_n: f64,
-    /// Preload at the start and at the fit [SI: N, tension positive].
+    /// Preload at the start [SI: N, tension positive].
     pub initial_preload_n: f64,
+    /// Preload of the fitted model [SI: N, tension positive].
     pub fitted_preload_n: f64,
 }
 
@@ -165,17 +168,24 @@ pub struct TransientCalibration {
     pub algorithm: Algorithm,
     /// The fixed step of every run [SI: s].
     pub step_s: f64,
+    /// Each parameter: initial, fitted, bounds [SI].
     pub parameters: Vec<FittedParameter>,
     /// What was fitted, to what, and how well.
     pub calibrated: Vec<Calibrated>,
+    /// The spring preload tied to the ON-state balance, if any.
     pub balance: Option<BalanceRecord>,
-    /// Time to distance at the start and at the fit [SI: s] (every fit).
+    /// Time to distance of the starting model [SI: s] at the fixed step
+    /// (`None`: not reached).
     pub initial_time_s: Option<f64>,
+    /// Time to distance of the fitted model [SI: s] at the fixed step.
     pub achieved_time_s: Option<f64>,
-    /// Trajectory fit: samples, rms residual [SI: m] at the start and fit.
+    /// Trajectory fit: the samples (0 for a time fit).
     pub samples: usize,
+    /// Trajectory fit: rms residual of the starting model [SI: m].
     pub initial_rms_m: Option<f64>,
+    /// Trajectory fit: rms residual at the fit [SI: m].
     pub rms_m: Option<f64>,
+    /// Every experiment run, in order.
     pub history: Vec<TransientEvaluation>,
     #[serde(skip)]
     pub fitted_model: ValidModel,
