@@ -123,6 +123,19 @@ fn fit_documents_conform() {
         &json(&["calibrate", "--target", "4600", "--json"]),
     );
     conforms(
+        "calibrate",
+        &json(&[
+            "calibrate",
+            "--quantity",
+            "time_to_distance_s",
+            "--target",
+            "0.82e-3",
+            "--param",
+            "springs[helical_spring].a.ground[1]=0.0019847:0.0039847",
+            "--json",
+        ]),
+    );
+    conforms(
         "convergence",
         &json(&[
             "convergence",

@@ -24,6 +24,7 @@ __all__ = [
     "StaticResult",
     "SweepResult",
     "SwitchOffResult",
+    "TransientCalibrationResult",
     "TransientResult",
     "frf",
     "frf_files",
@@ -152,7 +153,11 @@ class Model:
         window: str = "hann",
         from_reference: bool = False,
         target_from: Optional[Union[str, "os.PathLike[str]"]] = None,
-    ) -> "CalibrationResult":
+        quantity: Optional[Literal["time_to_distance_s"]] = None,
+        target: Optional[float] = None,
+        trajectory: Union[str, "os.PathLike[str]", Tuple[Sequence[float], Sequence[float], Sequence[float]], None] = None,
+        balance: Optional[str] = None,
+    ) -> Union["CalibrationResult", "TransientCalibrationResult"]:
         """Fits ``params`` (default "height"; names as ``calibrate --param``,
         bounds [SI]) so that the modes ``mode`` of ``mode_kind`` reach
         ``target_hz`` [Hz] (default: the model's reference frequency);
@@ -160,7 +165,14 @@ class Model:
         method). Each candidate is evaluated by ``method``: "eigen" (the
         eigenproblem) or "impulse" (``calibrate --method impulse``: the
         experiment of ``impulse`` with ``amplitude`` [N] to ``window``, its
-        first bending peak; one parameter, one target)."""
+        first bending peak; one parameter, one target).
+
+        With ``quantity`` "time_to_distance_s" and ``target`` [s], or with
+        ``trajectory`` (a CSV path, or (t, x, y) sequences [s, m, m]), a
+        calibration to the switch-off (``calibrate --quantity`` /
+        ``--trajectory``): ``params`` named with SI bounds, ``balance``
+        "SPRING:CONTACT", ``tolerance`` [s]; every run at a fixed 1 µs step;
+        returns a ``TransientCalibrationResult``."""
     def switch_off(
         self,
         end_time: float = 3e-3,
@@ -405,6 +417,39 @@ class CalibrationResult:
         """The library's JSON document (``calibrate --json``)."""
     def plot(self, path: Union[str, "os.PathLike[str]"]) -> None:
         """Draws the fit to ``path`` (.svg, .png) (``calibrate --plot``)."""
+
+@final
+class TransientCalibrationResult:
+    """The result of a transient ``Model.calibrate`` (``quantity`` or
+    ``trajectory``); ``repr`` is the command line's report and its
+    ``warning:`` lines."""
+
+    @property
+    def quantity(self) -> str:
+        """"time_to_distance_s" or "trajectory"."""
+    @property
+    def parameters(self) -> Dict[str, float]:
+        """Fitted values by name [SI]."""
+    @property
+    def standard_errors(self) -> Dict[str, Optional[float]]:
+        """Each parameter's standard error [SI] (a trajectory fit), else None."""
+    @property
+    def initial_time_s(self) -> Optional[float]:
+        """Time to distance of the starting model [s] at the fixed step."""
+    @property
+    def achieved_time_s(self) -> Optional[float]:
+        """Time to distance of the fitted model [s] at the fixed step."""
+    @property
+    def rms_m(self) -> Optional[float]:
+        """The trajectory fit's rms residual [m] (None: a time fit)."""
+    @property
+    def evaluations(self) -> int:
+        """Switch-off experiments run."""
+    @property
+    def fitted_model(self) -> Model:
+        """The calibrated model."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's JSON document (``calibrate --quantity … --json``)."""
 
 @final
 class ConvergenceResult:

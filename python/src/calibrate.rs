@@ -13,16 +13,14 @@ use ancf::commands::calibrate::{
     run as calibrate, CalibrateRequest, CalibrateRun, Method, TargetKind,
 };
 use ancf::commands::CommandError;
-use ancf::results::provenance::sha256_hex;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 use std::path::PathBuf;
-use std::sync::Arc;
 
 /// `params`: a name, a list of names, or {name: (lower, upper) or None};
 /// none: the command's default.
-fn parameter_specs(params: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<ParameterSpec>> {
+pub(crate) fn parameter_specs(params: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<ParameterSpec>> {
     let Some(params) = params else {
         return Ok(Vec::new());
     };
@@ -54,6 +52,29 @@ fn targets(target_hz: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<f64>> {
             Err(_) => t.extract::<Vec<f64>>(),
         },
     }
+}
+
+/// `max_evaluations` as a count (the command checks its range).
+pub(crate) fn max_evaluations(n: i64) -> Result<usize, Failure> {
+    usize::try_from(n).map_err(|_| {
+        Failure::argument(
+            "max_evaluations",
+            n,
+            "must be a whole number from 2 to 10000",
+        )
+    })
+}
+
+/// {name: value} of a fit's parameters, in their order.
+pub(crate) fn by_name<'py, 'a, V: IntoPyObject<'py>>(
+    py: Python<'py>,
+    items: impl Iterator<Item = (&'a str, V)>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for (name, value) in items {
+        d.set_item(name, value)?;
+    }
+    Ok(d)
 }
 
 /// The calibration's keyword arguments.
@@ -89,13 +110,7 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_, '_>) -> PyResult<PyCa
             _ => return Err(Failure::argument("mode", n, "must be a whole number ≥ 1").into()),
         }
     }
-    let max_evaluations = usize::try_from(r.max_evaluations).map_err(|_| {
-        Failure::argument(
-            "max_evaluations",
-            r.max_evaluations,
-            "must be a whole number from 2 to 10000",
-        )
-    })?;
+    let max_evaluations = max_evaluations(r.max_evaluations)?;
     let request = CalibrateRequest {
         targets_hz: targets(r.target_hz)?,
         target_from: r.target_from,
@@ -157,11 +172,8 @@ impl PyCalibrationResult {
     /// The fitted values by parameter name [SI units of each parameter].
     #[getter]
     fn parameters<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let d = PyDict::new(py);
-        for p in &self.run.result.parameters {
-            d.set_item(&p.name, p.fitted)?;
-        }
-        Ok(d)
+        let p = &self.run.result.parameters;
+        by_name(py, p.iter().map(|p| (p.name.as_str(), p.fitted)))
     }
 
     /// The targets [Hz].
@@ -191,12 +203,7 @@ impl PyCalibrationResult {
     /// The calibrated model (what `calibrate --out` writes).
     #[getter]
     fn fitted_model(&self) -> PyModel {
-        let model = self.run.result.fitted_model.clone();
-        PyModel {
-            sha256: sha256_hex(model.to_json().as_bytes()),
-            model: Arc::new(model),
-            source: self.source.clone(),
-        }
+        PyModel::made(self.run.result.fitted_model.clone(), &self.source)
     }
 
     /// The result as the library's JSON document (`calibrate --json`).

@@ -11,12 +11,10 @@ use crate::model::PyModel;
 use ancf::commands::identify::{run as identify, IdentifyRequest, IdentifyRun};
 use ancf::commands::report::{of_identified, ReportRequest};
 use ancf::commands::ModelInput;
-use ancf::results::provenance::sha256_hex;
 use ancf::signal::Window;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use std::path::PathBuf;
-use std::sync::Arc;
 
 /// `identify`'s keyword arguments (SI units).
 pub struct Request<'a> {
@@ -111,12 +109,10 @@ impl PyIdentifyResult {
     #[getter]
     fn calibrated_model(&self) -> Option<PyModel> {
         let c = self.run.document.output.calibration.as_ref()?;
-        let model = c.result.fitted_model.clone();
-        Some(PyModel {
-            sha256: sha256_hex(model.to_json().as_bytes()),
-            model: Arc::new(model),
-            source: self.input.source.clone(),
-        })
+        Some(PyModel::made(
+            c.result.fitted_model.clone(),
+            &self.input.source,
+        ))
     }
 
     /// The result as the library's JSON document (`identify --json`, the

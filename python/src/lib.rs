@@ -6,6 +6,7 @@
 
 mod builtin;
 mod calibrate;
+mod calibrate_transient;
 mod convergence;
 mod errors;
 mod frf;
@@ -87,6 +88,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<impulse::PyImpulseResult>()?;
     m.add_class::<statics::PyStaticResult>()?;
     m.add_class::<calibrate::PyCalibrationResult>()?;
+    m.add_class::<calibrate_transient::PyTransientCalibrationResult>()?;
     m.add_class::<convergence::PyConvergenceResult>()?;
     m.add_class::<sweep::PySweepResult>()?;
     m.add_class::<switch_off::PySwitchOffResult>()?;

@@ -37,6 +37,16 @@ impl PyModel {
         })
     }
 
+    /// A model a command made (a fitted one), read from `source`; its
+    /// hash is that of its JSON text.
+    pub fn made(model: ValidModel, source: &Source) -> PyModel {
+        PyModel {
+            sha256: sha256_hex(model.to_json().as_bytes()),
+            model: Arc::new(model),
+            source: source.clone(),
+        }
+    }
+
     /// The model as the commands take it.
     pub fn input(&self) -> ancf::commands::ModelInput {
         ancf::commands::ModelInput {
@@ -498,7 +508,18 @@ impl PyModel {
     /// parameter, one target). `target_from`: the path of an `frf --json`
     /// document whose `peaks` are the targets (in order of frequency, as
     /// many as `mode` lists, or all), instead of `target_hz`.
-    #[pyo3(signature = (target_hz = None, params = None, mode_kind = "bending", mode = None, keep_mass = false, prestress = false, tolerance = None, max_evaluations = 60, method = "eigen", amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann", from_reference = false, target_from = None))]
+    ///
+    /// Calibration to a transient (`calibrate --quantity` / `--trajectory`;
+    /// returns a `TransientCalibrationResult`): `quantity`
+    /// "time_to_distance_s" with `target` [s] fits one parameter so that
+    /// the switch-off's tracked point travels its distance in that time
+    /// (Brent); `trajectory`, a CSV file's path or (t, x, y) sequences [s,
+    /// m, m] of the tracked point, fits one or several (least squares,
+    /// each with its standard error). `params` must name them (SI
+    /// bounds); `balance` "SPRING:CONTACT" ties that spring's preload to
+    /// the ON-state balance; `tolerance` is then in s. Every run is at a
+    /// fixed 1 µs step; the impulse keywords do not apply.
+    #[pyo3(signature = (target_hz = None, params = None, mode_kind = "bending", mode = None, keep_mass = false, prestress = false, tolerance = None, max_evaluations = 60, method = "eigen", amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann", from_reference = false, target_from = None, quantity = None, target = None, trajectory = None, balance = None))]
     #[allow(clippy::too_many_arguments)]
     fn calibrate(
         &self,
@@ -522,7 +543,42 @@ impl PyModel {
         window: &str,
         from_reference: bool,
         target_from: Option<PathBuf>,
-    ) -> PyResult<crate::calibrate::PyCalibrationResult> {
+        quantity: Option<String>,
+        target: Option<f64>,
+        trajectory: Option<&Bound<'_, PyAny>>,
+        balance: Option<String>,
+    ) -> PyResult<Py<PyAny>> {
+        if quantity.is_some() || trajectory.is_some() {
+            if let Some(t) = target_hz {
+                return Err(Failure::argument(
+                    "target_hz",
+                    t,
+                    "a transient fit takes `target` [s] (with `quantity`) or a `trajectory`",
+                )
+                .into());
+            }
+            let r = crate::calibrate_transient::Request {
+                quantity,
+                target,
+                trajectory,
+                params,
+                balance,
+                tolerance,
+                max_evaluations,
+            };
+            let result = crate::calibrate_transient::run(self, py, r)?;
+            return Ok(Py::new(py, result)?.into_any());
+        }
+        for (name, given) in [("target", target.is_some()), ("balance", balance.is_some())] {
+            if given {
+                return Err(Failure::argument(
+                    name,
+                    "given",
+                    "belongs to a transient fit: give `quantity` or `trajectory` too",
+                )
+                .into());
+            }
+        }
         let experiment = crate::impulse::Experiment {
             amplitude,
             duration,
@@ -547,7 +603,8 @@ impl PyModel {
             experiment,
             target_from,
         };
-        crate::calibrate::run(self, py, r)
+        let result = crate::calibrate::run(self, py, r)?;
+        Ok(Py::new(py, result)?.into_any())
     }
 
     /// The paper's switch-off (the command line's `switch-off`): the

@@ -7,6 +7,7 @@ pub mod damped_modes;
 pub mod impulse;
 pub mod modal;
 pub mod model_frf;
+pub mod moment_balance;
 pub mod reduce;
 pub mod shear;
 pub mod simulate;

@@ -125,6 +125,19 @@ pub struct CalibrateArgs {
     /// Write the calibrated model (a valid model file) here.
     #[arg(long, value_name = "FITTED.json")]
     pub out: Option<PathBuf>,
+    /// Calibrate to a transient: the switch-off quantity the --target is
+    /// (time_to_distance_s, in s), one --param (Brent; fixed step).
+    #[arg(long, value_name = "Q", conflicts_with_all = ["trajectory", "target_from"])]
+    pub quantity: Option<String>,
+    /// Calibrate to a measured trajectory of the tracked point: a CSV of
+    /// t [s], x [m], y [m] (least squares, Levenberg–Marquardt; standard
+    /// errors from the Jacobian and residual; fixed step).
+    #[arg(long, value_name = "FILE.csv", conflicts_with = "target_from")]
+    pub trajectory: Option<PathBuf>,
+    /// With --quantity or --trajectory: the spring's preload follows the
+    /// ON-state balance of moments that keeps the contact's force.
+    #[arg(long, value_name = "SPRING:CONTACT")]
+    pub balance: Option<String>,
     /// Settings of the experiment for --method impulse.
     #[command(flatten, next_help_heading = "Impulse method (--method impulse)")]
     pub experiment: ExperimentArgs,
@@ -175,6 +188,11 @@ pub fn run(args: CalibrateArgs) -> Result<Warnings> {
         .as_deref()
         .map(Format::from_path)
         .transpose()?;
+    if args.quantity.is_some() || args.trajectory.is_some() {
+        // A transient fit runs the switch-off: its built-in assembly.
+        let input = ModelInput::load_switch_off(args.model.as_deref())?;
+        return run_transient(&args, &input);
+    }
     let input = ModelInput::load(args.model.as_deref())?;
     let run = calibrate(&input, &request(&args)?).map_err(|e| match e {
         CommandError::Calibration { source, .. } => flagged(source),
@@ -191,15 +209,7 @@ pub fn run(args: CalibrateArgs) -> Result<Warnings> {
     if let (Some(path), Some(bytes)) = (&args.output.plot, plot_bytes) {
         write_atomic(path, &bytes)?;
     }
-    if args.output.json {
-        print_document(&run.document)?;
-    } else {
-        out!("{}", run.text());
-        if let Some(path) = &args.out {
-            outln!("calibrated model written to {}", path.display());
-        }
-    }
-    Ok(run.document.warnings)
+    print_fit(&args, &run.document, &run.text())
 }
 
 /// A calibration error with the flag it concerns in front (`--param: …`);
@@ -219,4 +229,62 @@ fn flagged(e: CalibrationError) -> anyhow::Error {
         _ => return e.into(),
     };
     anyhow::Error::new(e).context(flag)
+}
+
+/// `calibrate --quantity` / `--trajectory`: the transient request.
+fn run_transient(args: &CalibrateArgs, input: &ModelInput) -> Result<Warnings> {
+    use ancf_modal::commands::calibrate_transient::{
+        run, CalibrateTransientRequest, TrajectoryInput,
+    };
+    args.output.only("calibrate", &[Output::Json])?;
+    if args.target.len() > 1 {
+        anyhow::bail!(
+            "--target: a transient fit takes one time [s], got {} values",
+            args.target.len()
+        );
+    }
+    let request = CalibrateTransientRequest {
+        quantity: args.quantity.clone(),
+        target_s: args.target.first().copied(),
+        trajectory: args.trajectory.clone().map(TrajectoryInput::File),
+        params: args.params.clone(),
+        balance: args.balance.clone(),
+        tolerance_s: args.tolerance,
+        max_evaluations: args.max_evaluations as usize,
+        ..CalibrateTransientRequest::default()
+    };
+    let run = run(input, &request).map_err(|e| match e {
+        CommandError::Argument {
+            name,
+            value,
+            allowed,
+        } => {
+            anyhow::anyhow!(
+                "--{}: `{value}`: {allowed}",
+                name.replace('_', "-").replace("params", "param")
+            )
+        }
+        e => command_error(e),
+    })?;
+    if let Some(path) = &args.out {
+        write_output(path, &run.fitted_json())?;
+    }
+    print_fit(args, &run.document, &run.text())
+}
+
+/// The document (`--json`) or the report and where the model went.
+fn print_fit<T: serde::Serialize>(
+    args: &CalibrateArgs,
+    document: &ancf_modal::commands::Run<T>,
+    text: &str,
+) -> Result<Warnings> {
+    if args.output.json {
+        print_document(document)?;
+    } else {
+        out!("{}", text);
+        if let Some(path) = &args.out {
+            outln!("calibrated model written to {}", path.display());
+        }
+    }
+    Ok(document.warnings.clone())
 }

@@ -55,6 +55,13 @@ pub enum CommandError {
     /// Another mode set does not fit this model's (`other` is its file).
     #[error("{}: {why}", other.display())]
     OtherModes { other: PathBuf, why: String },
+    /// A calibration to a transient failed.
+    #[error("{model}")]
+    TransientCalibration {
+        model: String,
+        #[source]
+        source: Box<crate::analysis::calibrate::transient::TransientFitError>,
+    },
     /// The model with every beam made rigid is not a valid model.
     #[error("{model}: the model with every beam rigid")]
     RigidBeams {
@@ -235,6 +242,17 @@ impl CommandError {
                     | CalibrationError::Impulse { .. }
                     | CalibrationError::NotConverged { .. }
             ),
+            CommandError::TransientCalibration { source, .. } => {
+                use crate::analysis::calibrate::transient::TransientFitError as T;
+                !matches!(
+                    **source,
+                    T::Point { .. }
+                        | T::Unreachable { .. }
+                        | T::Exhausted { .. }
+                        | T::TrajectoryExhausted { .. }
+                        | T::Jump { .. }
+                )
+            }
             // --- `frf` and `identify` ---
             CommandError::Overlay { source, .. } => matches!(source, OverlayError::Frf(_)),
             CommandError::NoExperiment

@@ -36,6 +36,7 @@ pub mod report;
 pub mod statics;
 // impulse, transient, switch-off, calibrate
 pub mod calibrate;
+pub mod calibrate_transient;
 pub mod checks;
 pub mod impulse;
 pub mod switch_off;

@@ -4,6 +4,7 @@
 //! hammer records: H1, H2, coherence, the LSCF fit, and optionally the
 //! model's FRF at a sensor beside them).
 
+use crate::analysis::calibrate::transient::TransientCalibration;
 use crate::analysis::calibrate::CalibrationResult;
 use crate::analysis::convergence::{ConvergenceData, ReferenceKind};
 use crate::measured::analysis::FrfAnalysis;
@@ -38,6 +39,26 @@ impl CalibrationOutput {
             result: r.clone(),
         }
     }
+}
+
+/// `calibrate --quantity … --json` / `calibrate --trajectory … --json`:
+/// the calibration to a transient beside the model's name.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct TransientCalibrationOutput {
+    /// Model name.
+    pub model: String,
+    /// The calibration (its keys sit beside `model`).
+    #[serde(flatten)]
+    pub result: TransientCalibration,
+}
+
+/// Any document `calibrate --json` prints: to frequencies, or to a
+/// transient (`--quantity`, `--trajectory`).
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[serde(untagged)]
+pub enum CalibrateJson {
+    Frequencies(CalibrationOutput),
+    Transient(TransientCalibrationOutput),
 }
 
 /// `convergence --json`.

@@ -15,6 +15,7 @@
 //! | `transient` | [`crate::analysis::simulate::simulate`] → [`TransientOutput::new`] | [`TransientOutput`] |
 //! | `switch-off` | [`crate::analysis::switch_off::run_switch_off`] → [`SwitchOffOutput::new`] | [`SwitchOffOutput`] |
 //! | `calibrate` | [`crate::analysis::calibrate::calibrate`] → [`CalibrationOutput::new`] | [`CalibrationOutput`] |
+//! | `calibrate --quantity`, `--trajectory` | [`crate::analysis::calibrate::transient::calibrate_transient`] | [`TransientCalibrationOutput`] |
 //! | `convergence` | [`crate::analysis::convergence::mesh_convergence`] → [`ConvergenceOutput::new`] | [`ConvergenceOutput`] |
 //! | `sweep`, `sweep-merge` | [`crate::analysis::sweep::Sweep::run`], [`crate::analysis::sweep::merge`] | [`SweepDocument`] |
 //! | `frf` | [`crate::measured::analysis::analyse`] → [`FrfOutput::new`] ([`ModelOverlay::new`] for `--model`) | [`FrfOutput`] |
@@ -34,7 +35,10 @@ pub mod statics;
 pub mod time;
 
 pub use crate::analysis::sweep::SweepDocument;
-pub use fit::{CalibrationOutput, ConvergenceOutput, FrfOutput, ModelOverlay};
+pub use fit::{
+    CalibrateJson, CalibrationOutput, ConvergenceOutput, FrfOutput, ModelOverlay,
+    TransientCalibrationOutput,
+};
 pub use identify::IdentifyOutput;
 pub use modal::{ModalJson, ModalOutput, ModeEntry, PrestressedOutput};
 pub use statics::{static_report, StaticReport};
@@ -82,7 +86,7 @@ pub fn output_schema(command: &str) -> Option<Value> {
         "impulse" => schema::<ImpulseOutput>(),
         "transient" => schema::<TransientOutput>(),
         "switch-off" => schema::<SwitchOffOutput>(),
-        "calibrate" => schema::<CalibrationOutput>(),
+        "calibrate" => schema::<CalibrateJson>(),
         "convergence" => schema::<ConvergenceOutput>(),
         "sweep" | "sweep-merge" => schema::<SweepDocument>(),
         "frf" => schema::<FrfOutput>(),

@@ -26,6 +26,7 @@ mod error;
 pub mod evaluate;
 pub mod params;
 pub mod sensitivity;
+pub mod transient;
 
 pub use error::CalibrationError;
 pub use evaluate::{

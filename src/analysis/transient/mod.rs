@@ -569,7 +569,10 @@ impl<'s> Integrator<'s> {
     pub fn advance(&mut self, state: &mut State, t_end: f64) -> Result<(), TransientError> {
         let nominal = self.settings.step;
         let remaining = t_end - state.t;
-        let cap = nominal.min(self.contacts.step_limit);
+        let cap = match self.settings.fixed_step {
+            true => nominal,
+            false => nominal.min(self.contacts.step_limit),
+        };
         // Grow back towards the nominal step by at most 2× per step.
         let mut h = (2.0 * self.h).min(cap).min(remaining);
         // What would be left after this step is joined to it: a sliver
@@ -602,6 +605,7 @@ impl<'s> Integrator<'s> {
             let retry = match &result {
                 Err(TransientError::NewtonFailure { .. }) => Some(0.5 * h),
                 Err(_) => None,
+                Ok(()) if self.settings.fixed_step => None,
                 Ok(()) => self.contacts.onset_check(self.sys, &state.q, h),
             };
             match retry {

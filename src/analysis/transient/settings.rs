@@ -51,6 +51,11 @@ pub struct TransientSettings {
     pub solver: LinearSolver,
     /// The model's Rayleigh damping C = αM + βK (`None`: none).
     pub damping: Option<RayleighDamping>,
+    /// Every step is the settings' step: no shorter step at contact onset
+    /// (a step whose Newton iteration fails is still halved). The results
+    /// are then smooth functions of the model's parameters, as a
+    /// calibration needs; the onset control's accuracy is given up.
+    pub fixed_step: bool,
 }
 
 impl Default for TransientSettings {
@@ -63,6 +68,7 @@ impl Default for TransientSettings {
             max_iterations: 8,
             solver: LinearSolver::Auto,
             damping: None,
+            fixed_step: false,
         }
     }
 }
