@@ -138,6 +138,29 @@ fn switch_off_json_has_the_designed_keys() {
     assert_eq!(n, (3e-3f64 * 67.2e3).floor() as usize + 1);
     assert!(doc["rigid"]["time_to_distance_s"].is_number());
     assert!(doc["rigid"]["departure_s"].is_number());
+    // In y alone the paths can part no earlier than in the plane (|Δy| ≤
+    // |Δ|), and the departure in y is the first camera sample where the
+    // two runs' y displacements are 0.1 mm apart (recomputed here from the
+    // samples).
+    let (plane, in_y) = (
+        doc["rigid"]["departure_s"].as_f64().unwrap(),
+        doc["rigid"]["departure_y_s"].as_f64().unwrap(),
+    );
+    assert!(in_y >= plane, "y {in_y:e} before the plane {plane:e}");
+    let ys = |v: &Value| -> Vec<f64> {
+        let y: Vec<f64> = v["y_m"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        y.iter().map(|&v| v - y[0]).collect()
+    };
+    let (fy, ry) = (ys(&doc["node0"]), ys(&doc["rigid"]["node0"]));
+    let k = (0..n)
+        .find(|&k| (fy[k] - ry[k]).abs() > 0.05 * 2e-3)
+        .unwrap();
+    assert_eq!(doc["node0"]["time_s"][k].as_f64().unwrap(), in_y);
     assert_eq!(
         doc["calibrated"],
         json!([]),

@@ -18,9 +18,10 @@
 //!
 //! Departure of the rigid model: the first time the displacements (from
 //! each run's own ON state) of the flexible and the rigid tracked point
-//! differ by more than
-//! [`DEPARTURE_FRACTION`] × `distance` (the paper reads ~1.26 ms off
-//! Fig. 8).
+//! differ by more than [`DEPARTURE_FRACTION`] × `distance`, in the plane
+//! and in y alone. The paper reads ~1.26 ms off Fig. 8 for its rigid
+//! model against the measurement in y; its flexible model follows the
+//! measurement, so the comparable quantity here is the y departure.
 
 use super::simulate::{simulate_from, time_to_distance, EnergyBalance, SimulationSettings};
 use super::statics::design_path::on_state_equilibrium;
@@ -173,6 +174,10 @@ pub struct SwitchOffResult {
     /// First time rigid and flexible tracked points are
     /// [`DEPARTURE_FRACTION`] × distance apart.
     pub departure_s: Option<f64>,
+    /// First time their y displacements alone are that far apart: the
+    /// quantity of the paper's Fig. 8 (~1.26 ms there, its rigid model
+    /// against the measurement, which its flexible model follows).
+    pub departure_y_s: Option<f64>,
     /// What the outputs call the tracked point ("node 0 of blade", "leaf
     /// at s = 0.018 m", "body pad").
     pub point_label: String,
@@ -413,16 +418,22 @@ pub fn run_switch_off_from(
         None
     };
     let half_step_time_s = half.as_ref().and_then(|h| h.time_to_distance_s);
-    let departure_s = rigid.as_ref().and_then(|r| {
-        let limit = DEPARTURE_FRACTION * settings.distance;
-        (0..flexible.time_s.len().min(r.time_s.len()))
-            .find(|&k| {
-                let dx = (flexible.x_m[k] - flexible.x_m[0]) - (r.x_m[k] - r.x_m[0]);
-                let dy = (flexible.y_m[k] - flexible.y_m[0]) - (r.y_m[k] - r.y_m[0]);
-                dx.hypot(dy) > limit
-            })
-            .map(|k| flexible.time_s[k])
-    });
+    // The first sample where the displacements differ by more than the
+    // limit: in the plane, and in y alone (the paper's Fig. 8 quantity).
+    let depart = |apart: &dyn Fn(f64, f64) -> f64| {
+        rigid.as_ref().and_then(|r| {
+            let limit = DEPARTURE_FRACTION * settings.distance;
+            (0..flexible.time_s.len().min(r.time_s.len()))
+                .find(|&k| {
+                    let dx = (flexible.x_m[k] - flexible.x_m[0]) - (r.x_m[k] - r.x_m[0]);
+                    let dy = (flexible.y_m[k] - flexible.y_m[0]) - (r.y_m[k] - r.y_m[0]);
+                    apart(dx, dy) > limit
+                })
+                .map(|k| flexible.time_s[k])
+        })
+    };
+    let departure_s = depart(&|dx, dy| dx.hypot(dy));
+    let departure_y_s = depart(&|_, dy| dy.abs());
     let mut warnings = Vec::new();
     for (name, run) in [("flexible", Some(&flexible)), ("rigid", rigid.as_ref())] {
         if let Some(r) = run.filter(|r| r.on_state.kind == BranchKind::ReferenceAfterContinuation) {
@@ -453,6 +464,7 @@ pub fn run_switch_off_from(
         rigid,
         half_step_time_s,
         departure_s,
+        departure_y_s,
         point_label: point_label(&point, settings.point.is_none()),
         builtin,
         calibrated,

@@ -312,6 +312,9 @@ pub struct RigidRun {
     /// When the point departs (moves a small fraction of the distance) [s];
     /// null if it does not.
     pub departure_s: Option<f64>,
+    /// When their y displacements alone are that far apart [s] (the
+    /// paper's Fig. 8 quantity); null if they are not.
+    pub departure_y_s: Option<f64>,
 }
 
 /// The paper's switch-off values (Figs. 7–8).
@@ -319,7 +322,8 @@ pub struct RigidRun {
 pub struct PaperSwitchOff {
     /// Time to 2 mm of travel, Fig. 7 [s].
     pub time_to_distance_s: f64,
-    /// The rigid model's departure, Fig. 8 [s].
+    /// The paper's rigid model departs from the measurement in y, Fig. 8
+    /// [s] (compare `rigid.departure_y_s`).
     pub rigid_departure_s: f64,
 }
 
@@ -376,6 +380,7 @@ impl SwitchOffOutput {
             rigid: r.rigid.as_ref().map(|run| RigidRun {
                 run: RunOutput::new(run),
                 departure_s: r.departure_s,
+                departure_y_s: r.departure_y_s,
             }),
             paper: r.builtin.then_some(PaperSwitchOff {
                 time_to_distance_s: PAPER_TIME_TO_2MM_S,

@@ -117,8 +117,12 @@ pub fn switch_off_section(r: &SwitchOffResult) -> Section {
         format!("Calibrated: {}.", list.join("; "))
     }];
     if let Some(d) = r.departure_s {
+        let y = r.departure_y_s.map_or_else(
+            || String::from("not within the run"),
+            |t| format!("{:.4} ms", t * 1e3),
+        );
         notes.push(format!(
-            "The rigid run departs from the flexible one (paths more than 5 % of the distance apart) at {:.4} ms.",
+            "The rigid run departs from the flexible one (paths more than 5 % of the distance apart) at {:.4} ms; in y alone at {y}.",
             d * 1e3
         ));
     }
