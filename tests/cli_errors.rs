@@ -1074,3 +1074,21 @@ fn a_closed_output_pipe_is_not_a_panic() {
     assert!(!err.contains("panicked"), "{err}");
     assert!(out.status.success(), "exit {:?}: {err}", out.status.code());
 }
+
+#[test]
+fn reduce_refuses_more_modes_than_the_fixed_interface_problem_has() {
+    // The built-in assembly held at one interface point has far fewer than
+    // 500 fixed-interface modes.
+    let dir = TempDir::new().expect("a temp dir");
+    let (code, stdout, stderr) = run(
+        &["reduce", "--interface", "blade:0", "--modes", "500"],
+        dir.path(),
+    );
+    assert_eq!(code, Some(1), "stderr: {stderr}");
+    assert!(stdout.is_empty(), "{stdout}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("--modes `500`") && stderr.contains("at most"),
+        "{stderr}"
+    );
+}
