@@ -1,0 +1,254 @@
+//! Block Davidson refinement of Lanczos' modes with precise stiffness
+//! products (see [`super::lowest_modes_refined`]): Rayleigh–Ritz on the
+//! Ritz block X and its preconditioned residuals W = P⁻¹(KX − MXΘ), with the
+//! shifted factor P = K − σM only as preconditioner, so the accuracy is the
+//! products' (element-wise strain variations), not the factor's. Each
+//! mode's bound is |θ − λ| ≤ 2η²(|θ − σ| + δ)/δ with η² = rᵀP⁻¹r and δ the
+//! gap to the nearest other Ritz value [SI: λ = ω² in rad²/s²]; then the
+//! certificate: Sylvester's count below a point in the gap above the wanted
+//! modes, when the factor's perturbation is far below that gap.
+
+use super::{EigenFailure, KrylovModes, Operator, StiffnessProducts, GUARD, REFINE_STEPS};
+use crate::linalg::dense::symmetric_eigen_qr;
+use crate::linalg::sparse::mul_vec;
+use crate::linalg::vector::dot;
+use faer::sparse::SparseColMat;
+use faer::{Mat, Par};
+
+/// What [`refine`] needs to know of the run before it.
+pub(super) struct Refinement {
+    pub(super) wanted: usize,
+    pub(super) deflated: usize,
+    pub(super) sigma: f64,
+    pub(super) steps: usize,
+    pub(super) factorizations: usize,
+}
+
+/// A B, sequential (a parallel product of these thin blocks waits on its
+/// barriers more than it computes on two busy cores).
+fn mm(a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> Mat<f64> {
+    let mut out = Mat::zeros(a.nrows(), b.ncols());
+    faer::linalg::matmul::matmul(out.as_mut(), faer::Accum::Replace, a, b, 1.0, Par::Seq);
+    out
+}
+
+/// M W for every column.
+fn m_block(m: &SparseColMat<usize, f64>, w: &Mat<f64>) -> Mat<f64> {
+    let mut out = Mat::zeros(w.nrows(), w.ncols());
+    for c in 0..w.ncols() {
+        mul_vec(m, w.col_as_slice(c), out.col_as_slice_mut(c));
+    }
+    out
+}
+
+/// K W for every column, by the precise products.
+fn k_block(products: &StiffnessProducts, w: &Mat<f64>) -> Mat<f64> {
+    let refs: Vec<&[f64]> = (0..w.ncols()).map(|c| w.col_as_slice(c)).collect();
+    let mut out = vec![Vec::new(); refs.len()];
+    products(&refs, &mut out);
+    Mat::from_fn(w.nrows(), w.ncols(), |r, c| out[c][r])
+}
+
+/// Makes the columns of `w` deflated, M-orthogonal to X (M X given) and
+/// M-orthonormal among themselves (twice: deflation and block
+/// Gram–Schmidt, then the Gram matrix's eigenvectors, dropping directions
+/// that vanish). A direction is dropped when less than 1e-7 of its length
+/// survives: normalizing what is left of it would blow its round-off up,
+/// zero modes included, into a spurious Ritz value.
+fn orthonormalize_against(
+    op: &Operator,
+    x: &Mat<f64>,
+    mx: &Mat<f64>,
+    mut w: Mat<f64>,
+) -> Result<Mat<f64>, EigenFailure> {
+    let m = op.m;
+    for _ in 0..2 {
+        for c in 0..w.ncols() {
+            op.deflate(w.col_as_slice_mut(c));
+        }
+        if x.ncols() > 0 {
+            let c = mm(mx.transpose(), w.as_ref());
+            w -= mm(x.as_ref(), c.as_ref());
+        }
+        let mw = m_block(m, &w);
+        let g = mm(w.transpose(), mw.as_ref());
+        let g = Mat::from_fn(g.nrows(), g.ncols(), |i, j| 0.5 * (g[(i, j)] + g[(j, i)]));
+        let (vals, vecs) = symmetric_eigen_qr(&g, Par::Seq)?;
+        let top = vals.iter().fold(0.0f64, |a, &v| a.max(v));
+        let keep: Vec<usize> = (0..vals.len())
+            .filter(|&i| vals[i] > 1e-14 * top && vals[i] > 0.0)
+            .collect();
+        let t = Mat::from_fn(vecs.nrows(), keep.len(), |r, c| {
+            vecs[(r, keep[c])] / vals[keep[c]].sqrt()
+        });
+        w = mm(w.as_ref(), t.as_ref());
+    }
+    Ok(w)
+}
+
+/// Block Davidson refinement of Lanczos' modes with precise products
+/// (see [`lowest_modes_refined`]), then the certificate.
+pub(super) fn refine(
+    op: &mut Operator,
+    products: &StiffnessProducts,
+    run: Refinement,
+    lanczos_values: Vec<f64>,
+    lanczos_vectors: Mat<f64>,
+) -> Result<KrylovModes, EigenFailure> {
+    let n = lanczos_vectors.nrows();
+    let mut p = lanczos_values.len();
+    let mut factorizations = run.factorizations;
+    let deflate_block = |op: &Operator, w: &mut Mat<f64>| {
+        for c in 0..w.ncols() {
+            op.deflate(w.col_as_slice_mut(c));
+        }
+    };
+    let empty = Mat::<f64>::zeros(n, 0);
+    let mut start = lanczos_vectors;
+    deflate_block(op, &mut start);
+    // The state: Ritz vectors X, K X, M X and values θ. Starting from an
+    // empty block, the first extension is the Lanczos block itself.
+    let (mut x, mut kx, mut mx) = (empty.clone(), empty.clone(), empty.clone());
+    let mut theta: Vec<f64> = Vec::new();
+    let mut pending = Some(start);
+    let mut bounds: Vec<f64> = Vec::new();
+    let mut certified = false;
+    let mut perturbation = 0.0f64;
+    for round in 0..3 {
+        let mut previous_worst = f64::INFINITY;
+        for step in 0..=REFINE_STEPS {
+            if let Some(w) = pending.take() {
+                // Rayleigh–Ritz on [X, W] with the precise products.
+                let w = orthonormalize_against(op, &x, &mx, w)?;
+                let kw = k_block(products, &w);
+                let (q, s) = (x.ncols(), x.ncols() + w.ncols());
+                let xkw = mm(x.transpose(), kw.as_ref());
+                let wkw = mm(w.transpose(), kw.as_ref());
+                let a = Mat::from_fn(s, s, |i, j| match (i < q, j < q) {
+                    (true, true) => {
+                        if i == j {
+                            theta[i]
+                        } else {
+                            0.0
+                        }
+                    }
+                    (true, false) => xkw[(i, j - q)],
+                    (false, true) => xkw[(j, i - q)],
+                    (false, false) => 0.5 * (wkw[(i - q, j - q)] + wkw[(j - q, i - q)]),
+                });
+                let (vals, vecs) = symmetric_eigen_qr(&a, Par::Seq)?;
+                let mut order: Vec<usize> = (0..s).collect();
+                order.sort_by(|&i, &j| vals[i].total_cmp(&vals[j]));
+                let keep = p.min(s);
+                theta = order.iter().take(keep).map(|&i| vals[i]).collect();
+                let y_top = Mat::from_fn(q, keep, |r, c| vecs[(r, order[c])]);
+                let y_bot = Mat::from_fn(s - q, keep, |r, c| vecs[(q + r, order[c])]);
+                let new_x = mm(x.as_ref(), y_top.as_ref()) + mm(w.as_ref(), y_bot.as_ref());
+                let new_kx = mm(kx.as_ref(), y_top.as_ref()) + mm(kw.as_ref(), y_bot.as_ref());
+                x = new_x;
+                kx = new_kx;
+                mx = m_block(op.m, &x);
+            }
+            if step == REFINE_STEPS {
+                break;
+            }
+            // Residuals r = Kx − θMx, the preconditioned w = P⁻¹r made
+            // M-orthogonal to the block (r is Euclidean-orthogonal to it
+            // by Galerkin, so (K − σM)⁻¹r is M-orthogonal to the block's
+            // modes; P is accurate away from the lowest modes).
+            let keep = x.ncols();
+            let r = Mat::from_fn(n, keep, |i, j| kx[(i, j)] - theta[j] * mx[(i, j)]);
+            let mut w = r.clone();
+            op.shifted.solve_block(w.as_mut());
+            deflate_block(op, &mut w);
+            let c = mm(mx.transpose(), w.as_ref());
+            w -= mm(x.as_ref(), c.as_ref());
+            bounds = (0..keep)
+                .map(|j| {
+                    // |θ − λ| ≤ η² (|θ − σ| + δ)/δ with η² = rᵀ(K − σM)⁻¹r
+                    // and δ the gap to the nearest other eigenvalue (a
+                    // component cₖ of x along mode k adds cₖ²|λₖ − λ| to the
+                    // Rayleigh quotient's error and cₖ²(λₖ − θ)²/(λₖ − σ)
+                    // to η²); twice that for P standing in for K − σM.
+                    let eta2 = dot(r.col_as_slice(j), w.col_as_slice(j)).abs();
+                    let t = theta[j];
+                    let gap = theta
+                        .iter()
+                        .enumerate()
+                        .filter(|&(i, v)| i != j && (v - t).abs() > 1e-6 * t.abs())
+                        .map(|(_, v)| (v - t).abs())
+                        .fold(f64::INFINITY, f64::min);
+                    if gap.is_finite() {
+                        2.0 * eta2 * ((t - run.sigma).abs() + gap) / gap
+                    } else {
+                        f64::INFINITY
+                    }
+                })
+                .collect();
+            let worst = bounds
+                .iter()
+                .zip(&theta)
+                .take(run.wanted)
+                .fold(0.0f64, |a, (b, t)| a.max(b / t.abs()));
+            let stalled = worst >= 0.5 * previous_worst;
+            if worst <= 1e-12 || stalled || step + 1 == REFINE_STEPS {
+                break;
+            }
+            previous_worst = worst;
+            pending = Some(w);
+        }
+        // The factor's perturbation of the pencil, as seen on these modes.
+        perturbation = lanczos_values
+            .iter()
+            .zip(&theta)
+            .fold(0.0f64, |a, (l, t)| a.max((l - t).abs()));
+        // The certificate: the count below a point in the gap above the
+        // wanted modes, when the factor's perturbation is far below that gap.
+        let w = run.wanted.min(theta.len());
+        if w == 0 {
+            certified = true;
+            break;
+        }
+        let top = theta[w - 1];
+        let (tau, half_gap) = match theta.get(w) {
+            Some(&next) if next > top => (0.5 * (top + next), 0.5 * (next - top)),
+            _ => {
+                let d = 1e-8 * top.abs().max(f64::MIN_POSITIVE);
+                (top + d, d)
+            }
+        };
+        if 10.0 * perturbation >= half_gap {
+            break;
+        }
+        let zeros = if tau > 0.0 { run.deflated } else { 0 };
+        let below = op.shifted.count_below(tau)?;
+        factorizations += 1;
+        let missing = below.saturating_sub(w + zeros);
+        if missing == 0 {
+            certified = true;
+            break;
+        }
+        // Modes were skipped: go on with fresh directions (one per missing
+        // mode and a few more) beside the found ones.
+        p += missing;
+        pending = Some(Mat::from_fn(n, missing + GUARD, |i, c| {
+            (2.3 * i as f64 + 0.7 * (round * 7 + c) as f64 + 0.1).sin()
+        }));
+    }
+    let w = run.wanted.min(theta.len());
+    let guard_values = theta[w..].to_vec();
+    let vectors = x.subcols(0, w).to_owned();
+    bounds.truncate(w);
+    theta.truncate(w);
+    Ok(KrylovModes {
+        values: theta,
+        vectors,
+        shift: run.sigma,
+        steps: run.steps,
+        factorizations,
+        residuals: bounds,
+        guard_values,
+        certified,
+        perturbation,
+    })
+}
