@@ -10,7 +10,6 @@ use ancf::analysis::reduce::ReductionMethod;
 use ancf::commands::reduce::{run as reduce, ReduceRequest, ReduceRun};
 use numpy::{PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 use std::path::PathBuf;
 
 /// A reduced flexible body.
@@ -107,68 +106,18 @@ impl PyReducedBody {
         crate::json_to_python(py, &self.run.document.document())
     }
 
-    /// Writes the body to `path`: `.json` (the command line's `--out`) or
-    /// `.npz` (numpy arrays: `mass`, `stiffness`, `basis`, `rigid`, `q`,
+    /// Writes the body to `path`, as the command line's `--out` does:
+    /// `.json` (the document) or `.npz` (numpy arrays: `mass`,
+    /// `stiffness`, `basis`, `rigid`, `q`, `origin`,
     /// `interface_coordinates`, `interface_nodes`, `node_positions`,
     /// `node_mass`, `node_stiffness` (rows [row, column, value]),
-    /// `node_basis`, `check_full_hz`, `check_reduced_hz`,
-    /// `check_relative_error`).
-    fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+    /// `node_basis`, `total_mass_kg`, `inertia_kg_m2`, `component_hz`,
+    /// `basis_hz`, `load_scale`, `check_full_hz`, `check_reduced_hz`,
+    /// `check_relative_error`, `check_frame_hz`).
+    fn save(&self, path: PathBuf) -> PyResult<()> {
         match path.extension().and_then(|e| e.to_str()) {
-            Some("json") => {
+            Some("json" | "npz") => {
                 self.run.write(&path).map_err(Failure::from)?;
-                Ok(())
-            }
-            Some("npz") => {
-                let np = py.import("numpy")?;
-                let doc = &self.run.document.output;
-                let arrays = PyDict::new(py);
-                arrays.set_item("mass", self.mass(py))?;
-                arrays.set_item("stiffness", self.stiffness(py))?;
-                arrays.set_item("basis", self.basis(py))?;
-                arrays.set_item("rigid", self.rigid(py))?;
-                arrays.set_item("q", np.call_method1("asarray", (doc.q.clone(),))?)?;
-                let coords: Vec<[usize; 4]> = doc.interface.iter().map(|p| p.coordinates).collect();
-                let nodes: Vec<[usize; 2]> = doc.interface.iter().map(|p| p.nodes).collect();
-                arrays.set_item(
-                    "interface_coordinates",
-                    np.call_method1("asarray", (coords,))?,
-                )?;
-                arrays.set_item("interface_nodes", np.call_method1("asarray", (nodes,))?)?;
-                let n = &doc.nodes;
-                arrays.set_item(
-                    "node_positions",
-                    np.call_method1("asarray", (n.positions.clone(),))?,
-                )?;
-                let triplets = |t: &[(usize, usize, f64)]| -> Vec<[f64; 3]> {
-                    t.iter().map(|&(i, j, v)| [i as f64, j as f64, v]).collect()
-                };
-                arrays.set_item(
-                    "node_mass",
-                    np.call_method1("asarray", (triplets(&n.mass),))?,
-                )?;
-                arrays.set_item(
-                    "node_stiffness",
-                    np.call_method1("asarray", (triplets(&n.stiffness),))?,
-                )?;
-                arrays.set_item(
-                    "node_basis",
-                    matrix(py, &n.basis, self.run.reduction.size()),
-                )?;
-                let c = &doc.check;
-                arrays.set_item(
-                    "check_full_hz",
-                    np.call_method1("asarray", (c.full_hz.clone(),))?,
-                )?;
-                arrays.set_item(
-                    "check_reduced_hz",
-                    np.call_method1("asarray", (c.reduced_hz.clone(),))?,
-                )?;
-                arrays.set_item(
-                    "check_relative_error",
-                    np.call_method1("asarray", (c.relative_error.clone(),))?,
-                )?;
-                np.call_method("savez", (path,), Some(&arrays))?;
                 Ok(())
             }
             _ => Err(Failure::argument("path", path.display(), "must end in .json or .npz").into()),

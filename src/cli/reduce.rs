@@ -38,8 +38,8 @@ pub struct ReduceArgs {
     /// Keep the ground supports in the body.
     #[arg(long)]
     pub keep_supports: bool,
-    /// Write the reduced body here (.json).
-    #[arg(long, value_name = "FILE.json")]
+    /// Write the reduced body here: .json (the document) or .npz (its arrays, for numpy).
+    #[arg(long, value_name = "FILE.json|FILE.npz")]
     pub out: Option<PathBuf>,
 }
 
@@ -70,8 +70,14 @@ pub fn run(args: ReduceArgs) -> Result<Warnings> {
         keep_supports: args.keep_supports,
     };
     if let Some(out) = &args.out {
-        if out.extension().and_then(|e| e.to_str()) != Some("json") {
-            return Err(anyhow!("--out `{}`: must end in .json", out.display()));
+        if !matches!(
+            out.extension().and_then(|e| e.to_str()),
+            Some("json" | "npz")
+        ) {
+            return Err(anyhow!(
+                "--out `{}`: must end in .json or .npz",
+                out.display()
+            ));
         }
     }
     let input = ModelInput::load(args.model.as_deref())?;

@@ -16,6 +16,7 @@ use crate::analysis::reduce::{
 use crate::analysis::statics::{solve_equilibrium, StaticSettings};
 use crate::model::resolved::ResolvedPoint;
 use crate::model::PointSpec;
+use crate::output::npz::{npz, NpyArray};
 use crate::output::reduce_report::reduce_table;
 use crate::results::reduce::{rows, InterfacePoint, NodeFormDoc, ReducedBody};
 use crate::system::Linearization;
@@ -57,6 +58,9 @@ impl Default for ReduceRequest {
 pub struct ReduceRun {
     /// The body's system (supports removed unless kept).
     pub system: System,
+    /// The constraint multipliers at the equilibrium (`prestress`), in the
+    /// body's rows [SI: N, N m].
+    pub lambda: Option<Vec<f64>>,
     pub reduction: Reduction,
     /// The reduced body with its check.
     pub document: Run<ReducedBody>,
@@ -184,6 +188,11 @@ pub fn run(input: &ModelInput, request: &ReduceRequest) -> Result<ReduceRun, Com
         method: request.method,
         modes: request.modes,
         prestress: request.prestress,
+        load_scale: if request.prestress {
+            request.load_scale
+        } else {
+            1.0
+        },
         keep_supports: request.keep_supports,
         removed_supports: free.map(|f| f.removed).unwrap_or_default(),
         interface: interface
@@ -227,8 +236,8 @@ pub fn run(input: &ModelInput, request: &ReduceRequest) -> Result<ReduceRun, Com
             "prestress: the body keeps the pre-stress stiffening on its modal coordinates only; \
              the frame's rigid motions lose it in the multibody code (their ω² under the \
              pre-stress up to {:.3e} rad²/s², {:.3e} of the first flexible ω² = {:.3e} rad²/s²): \
-             modes that turn or move the body against the preload come out wrong there, \
-             and the check leaves it out as well",
+             modes that turn or move the body against the preload come out wrong there; \
+             the check lists the full model's stiffened rigid motions apart",
             lost,
             lost / first,
             first
@@ -237,6 +246,7 @@ pub fn run(input: &ModelInput, request: &ReduceRequest) -> Result<ReduceRun, Com
     Ok(ReduceRun {
         document: Run::of(input, document).warn(input, notes),
         system,
+        lambda,
         reduction,
     })
 }
@@ -297,24 +307,101 @@ fn position_component(system: &System, q: &[f64], i: usize, axis: usize) -> f64 
 }
 
 impl ReduceRun {
+    /// Where the body was linearized: the reference, or the equilibrium
+    /// with its multipliers and the loads' factor.
+    pub fn linearization(&self) -> Linearization<'_> {
+        let doc = &self.document.output;
+        Linearization {
+            q: &doc.q,
+            lambda: self.lambda.as_deref(),
+            time: 0.0,
+            load_scale: if doc.prestress { doc.load_scale } else { 0.0 },
+        }
+    }
+
     /// The command line's report: the reduction and its check.
     pub fn text(&self) -> String {
         reduce_table(&self.document.output)
     }
 
-    /// Writes the reduced body to `path` (JSON), atomically.
+    /// Writes the reduced body to `path`, atomically: `.json` (the
+    /// document) or `.npz` (its arrays, for numpy: [`ReduceRun::arrays`]).
     pub fn write(&self, path: &Path) -> Result<(), CommandError> {
-        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
-        if ext != "json" {
-            return Err(CommandError::argument(
-                "out",
-                path.display(),
-                "must end in .json",
-            ));
-        }
-        let text = serde_json::to_string(&self.document.document())
-            .map_err(|e| CommandError::argument("out", path.display(), e.to_string()))?;
-        crate::output::files::write_atomic(path, text.as_bytes())?;
+        let bad = |why: String| CommandError::argument("out", path.display(), why);
+        let bytes = match path.extension().and_then(|e| e.to_str()) {
+            Some("json") => serde_json::to_string(&self.document.document())
+                .map_err(|e| bad(e.to_string()))?
+                .into_bytes(),
+            Some("npz") => npz(&self.arrays()).map_err(|e| bad(e.to_string()))?,
+            _ => return Err(bad("must end in .json or .npz".to_string())),
+        };
+        crate::output::files::write_atomic(path, &bytes)?;
         Ok(())
+    }
+
+    /// The body as named arrays (the `.npz` file), with the document's
+    /// units: `mass`, `stiffness` (m × m), `basis` (n × m), `rigid`
+    /// (n × r), `q` (n), `origin` (2), `interface_coordinates` (p × 4) and
+    /// `interface_nodes` (p × 2) as integers, `node_positions` (N × 3),
+    /// `node_mass` and `node_stiffness` as [row, column, value] rows,
+    /// `node_basis` (3N × m), `load_scale`, `total_mass_kg`, `inertia_kg_m2`,
+    /// `component_hz`, `basis_hz`, and the check's `check_full_hz`,
+    /// `check_reduced_hz`, `check_relative_error` and `check_frame_hz`.
+    pub fn arrays(&self) -> Vec<NpyArray> {
+        let doc = &self.document.output;
+        let (n, m, r) = (
+            doc.coordinates,
+            self.reduction.basis.ncols(),
+            self.reduction.rigid.ncols(),
+        );
+        let vector = |name: &str, v: &[f64]| NpyArray::f64(name, &[v.len()], v.to_vec());
+        let scalar = |name: &str, v: f64| NpyArray::f64(name, &[], vec![v]);
+        let integers = |name: &str, rows: Vec<Vec<usize>>, width: usize| {
+            let values = rows.concat().into_iter().map(|i| i as i64).collect();
+            NpyArray::i64(name, &[rows.len(), width], values)
+        };
+        let triplets = |name: &str, t: &[(usize, usize, f64)]| {
+            let values = t.iter().flat_map(|&(i, j, v)| [i as f64, j as f64, v]);
+            NpyArray::f64(name, &[t.len(), 3], values.collect())
+        };
+        let nodes = &doc.nodes;
+        vec![
+            NpyArray::rows("mass", &doc.mass, m),
+            NpyArray::rows("stiffness", &doc.stiffness, m),
+            NpyArray::rows("basis", &doc.basis, m),
+            NpyArray::rows("rigid", &doc.rigid, r),
+            NpyArray::f64("q", &[n], doc.q.clone()),
+            vector("origin", &doc.origin),
+            integers(
+                "interface_coordinates",
+                doc.interface
+                    .iter()
+                    .map(|p| p.coordinates.to_vec())
+                    .collect(),
+                4,
+            ),
+            integers(
+                "interface_nodes",
+                doc.interface.iter().map(|p| p.nodes.to_vec()).collect(),
+                2,
+            ),
+            NpyArray::f64(
+                "node_positions",
+                &[nodes.positions.len(), 3],
+                nodes.positions.concat(),
+            ),
+            triplets("node_mass", &nodes.mass),
+            triplets("node_stiffness", &nodes.stiffness),
+            NpyArray::rows("node_basis", &nodes.basis, m),
+            scalar("load_scale", doc.load_scale),
+            scalar("total_mass_kg", doc.total_mass_kg),
+            scalar("inertia_kg_m2", doc.inertia_kg_m2),
+            vector("component_hz", &doc.component_hz),
+            vector("basis_hz", &doc.basis_hz),
+            vector("check_full_hz", &doc.check.full_hz),
+            vector("check_reduced_hz", &doc.check.reduced_hz),
+            vector("check_relative_error", &doc.check.relative_error),
+            vector("check_frame_hz", &doc.check.frame_hz),
+        ]
     }
 }

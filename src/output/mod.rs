@@ -7,6 +7,7 @@ pub mod frf_report;
 pub mod impulse_report;
 pub mod modal_report;
 pub mod modal_uff;
+pub mod npz;
 pub mod plot;
 pub mod records_uff;
 pub mod reduce_report;

@@ -58,6 +58,14 @@ pub fn reduce_table(body: &ReducedBody) -> String {
             String::new()
         }
     ));
+    if !check.frame_hz.is_empty() {
+        let list: Vec<String> = check.frame_hz.iter().map(|f| format!("{f:.3}")).collect();
+        s.push_str(&format!(
+            "rigid motions stiffened by the pre-stress, not compared: {} Hz in the full model, \
+             0 Hz on the multibody code's frame\n",
+            list.join(", ")
+        ));
+    }
     s.push_str(" mode    full [Hz]  reduced [Hz]  rel. error\n");
     for (i, ((f, g), e)) in check
         .full_hz

@@ -54,6 +54,9 @@ pub struct ReducedBody {
     /// Reduced at the static equilibrium (the stiffening kept, the preload
     /// forces not).
     pub prestress: bool,
+    /// Factor on the applied loads at that equilibrium [–] (1 without
+    /// `prestress`: no equilibrium was sought).
+    pub load_scale: f64,
     /// Ground supports kept in the body.
     pub keep_supports: bool,
     /// The supports (joints, springs, contacts to the ground) removed.

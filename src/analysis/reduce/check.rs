@@ -5,6 +5,12 @@
 //! - Craig–Bampton (built with the interface held): every interface point
 //!   free. The zero modes (as many as the full model counts from its
 //!   kinematics) are left out of both; the elastic ones are compared.
+//!   Under a pre-stress the full model's rigid motions that the preload
+//!   stiffens (a rotation against a preload that no support balances any
+//!   more) are modes mostly of rigid motion, more than half of φᵀMφ in
+//!   the rigid motions' span. The floating frame carries them at 0 Hz, so
+//!   they are listed apart (`frame_hz`), and the comparison starts at the
+//!   elastic modes on both sides.
 //! - Free-interface (built free): the first interface point held (its four
 //!   coordinates, position and slope: a weld to the ground that also fixes
 //!   the slope's length, as two ground joints on the node and its virtual
@@ -44,6 +50,12 @@ pub struct ReductionCheck {
     pub condition: CheckCondition,
     /// Zero-frequency modes of the full model left out of the comparison.
     pub zero_modes: usize,
+    /// The full model's modes that are mostly a rigid motion of the whole
+    /// body (more than half of their mass-weighted motion), turned elastic
+    /// by a pre-stress [SI: Hz]. The multibody code's floating frame
+    /// carries these motions at 0 Hz (the import's limit), so they are
+    /// listed here and not compared. Empty without a pre-stress.
+    pub frame_hz: Vec<f64>,
     /// The full model's frequencies [SI: Hz].
     pub full_hz: Vec<f64>,
     /// The reduced body's frequencies [SI: Hz].
@@ -92,27 +104,34 @@ pub fn check(
             .map(|e| e.values)
             .map_err(|_| ReduceError::Eigen { size: k.nrows() })
     };
+    let mut frame_hz = Vec::new();
     let (zero_modes, full, reduced) = match condition {
         CheckCondition::Free => {
             let settings = |modes| ModalSettings {
                 modes: Some(modes),
                 method: EigenMethod::Auto,
             };
-            let first = modal(system, at, &settings(count + 3))?;
+            // z zero modes, r − z rigid motions a pre-stress stiffened,
+            // then the elastic ones.
+            let want = |z: usize| count + z.max(r).max(3);
+            let first = modal(system, at, &settings(want(0)))?;
             let z = first.rigid_modes;
-            let result = if z > 3 {
-                modal(system, at, &settings(count + z))?
+            let result = if want(z) > want(0) {
+                modal(system, at, &settings(want(z)))?
             } else {
                 first
             };
-            let full: Vec<f64> = result
-                .modes
-                .iter()
-                .filter(|m| !m.kind.is_zero())
-                .map(|m| m.eigenvalue)
-                .collect();
+            let mut full = Vec::new();
+            for mode in result.modes.iter().filter(|m| !m.kind.is_zero()) {
+                if rigid_fraction(system, &reduction.rigid, &mode.shape) > 0.5 {
+                    frame_hz.push(hz(mode.eigenvalue));
+                } else {
+                    full.push(mode.eigenvalue);
+                }
+            }
             let reduced = eigen(&kb, &mb)?;
-            (z, full, reduced[z.min(reduced.len())..].to_vec())
+            let skip = z.max(r).min(reduced.len());
+            (z, full, reduced[skip..].to_vec())
         }
         CheckCondition::Held { point } => {
             let index = point.saturating_sub(1);
@@ -135,10 +154,25 @@ pub fn check(
     Ok(ReductionCheck {
         condition,
         zero_modes,
+        frame_hz,
         full_hz,
         reduced_hz,
         relative_error,
     })
+}
+
+/// The share of a mass-normalized shape φ (φᵀMφ = 1) that is a rigid
+/// motion of the whole body: Σⱼ (rⱼᵀMφ)² over the M-orthonormal rigid
+/// motions rⱼ [–], between 0 and 1.
+fn rigid_fraction(system: &System, rigid: &Mat<f64>, shape: &[f64]) -> f64 {
+    let mut m_phi = vec![0.0; shape.len()];
+    system.mass().mul_vec(shape, &mut m_phi);
+    (0..rigid.ncols())
+        .map(|j| {
+            let c: f64 = (0..shape.len()).map(|i| rigid[(i, j)] * m_phi[i]).sum();
+            c * c
+        })
+        .sum()
 }
 
 /// The pre-stress stiffening that the frame's rigid motions lose in the
