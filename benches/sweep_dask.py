@@ -27,6 +27,12 @@ so that the workers have imported the package), and reports
   beside it the workers' CPU time beyond serial_cpu ÷ 144, the work Dask
   and the tasks' set-up add, which other processes do not inflate.
 
+- the same two measures for the two local threads (rayon), as the
+  machine's own floor: what two cores give one process here;
+- the idle workers' own CPU (heartbeats, monitors) at the rate measured
+  while no task runs, over the study's wall time, per point; and the same
+  for every process of the cluster (client and scheduler, nannies,
+  workers), which take the same two cores;
 - the cost of the dispatch alone: the same 144 points of a cheap quantity
   (`first_bending_hz` of the bare blade over its height × E, a fraction of a
   millisecond each), (Dask wall − serial wall ÷ 2) ÷ 144.
@@ -56,6 +62,22 @@ def worker_cpu(client: Any) -> float:
     return float(sum(client.run(time.process_time).values()))
 
 
+def dask_cpu() -> float:
+    """The CPU time [s] of every process of the cluster: this one (client
+    and scheduler) and its children (nannies and workers), by psutil (a
+    dependency of distributed)."""
+    import psutil
+
+    me = psutil.Process()
+    total = sum(me.cpu_times()[:2])
+    for child in me.children(recursive=True):
+        try:
+            total += sum(child.cpu_times()[:2])
+        except psutil.NoSuchProcess:
+            pass
+    return float(total)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--rounds", type=int, default=3, help="rounds (default 3)")
@@ -79,7 +101,15 @@ def main() -> None:
 
             start_cpu, start = time.process_time(), time.perf_counter()
             ancf_modal.sweep(model, PARAMS, QUANTITY, threads=2)
-            rayon_cores = (time.process_time() - start_cpu) / (time.perf_counter() - start)
+            rayon_cpu, rayon_wall = time.process_time() - start_cpu, time.perf_counter() - start
+            rayon_cores = rayon_cpu / rayon_wall
+
+            # The workers' own CPU while idle (heartbeats, monitors), per
+            # second, over as long as the study will take.
+            idle0, all0, start = worker_cpu(client), dask_cpu(), time.perf_counter()
+            time.sleep(max(2.0, serial_wall / 4))
+            idle_rate = (worker_cpu(client) - idle0) / (time.perf_counter() - start)
+            all_idle_rate = (dask_cpu() - all0) / (time.perf_counter() - start)
 
             cpu0, start = worker_cpu(client), time.perf_counter()
             remote = ancf_modal.sweep(model, PARAMS, QUANTITY, client=client)
@@ -104,6 +134,11 @@ def main() -> None:
                 "rayon_cores": rayon_cores,
                 "overhead_ms": 1e3 * (2 * wall - serial_cpu) / n,
                 "cpu_overhead_ms": 1e3 * (cpu - serial_cpu) / n,
+                "rayon_overhead_ms": 1e3 * (2 * rayon_wall - serial_cpu) / n,
+                "rayon_cpu_overhead_ms": 1e3 * (rayon_cpu - serial_cpu) / n,
+                "idle_ms": 1e3 * idle_rate * wall / n,
+                "all_idle_ms": 1e3 * all_idle_rate * wall / n,
+                "wall_overhead_ms": 1e3 * (wall - serial_wall / 2) / n,
             }
             rows.append(row)
             print(
@@ -114,7 +149,14 @@ def main() -> None:
                 f"overhead {row['overhead_ms']:.2f} ms a point "
                 f"(CPU beyond the serial run's {row['cpu_overhead_ms']:.2f} ms a point); "
                 f"cheap points {1e3 * cheap_serial:.0f} ms serial, {1e3 * cheap_wall:.0f} ms "
-                f"on Dask: dispatch {row['dispatch_ms']:.2f} ms a point",
+                f"on Dask: dispatch {row['dispatch_ms']:.2f} ms a point; "
+                f"the idle workers' own CPU over the study {row['idle_ms']:.2f} ms a point "
+                f"(every process of the cluster, nannies and scheduler too: "
+                f"{row['all_idle_ms']:.2f} ms); "
+                f"the same measures for 2 threads here: overhead "
+                f"{row['rayon_overhead_ms']:.2f} ms, CPU beyond serial "
+                f"{row['rayon_cpu_overhead_ms']:.2f} ms a point; wall beyond serial/2 on Dask "
+                f"{row['wall_overhead_ms']:.2f} ms a point",
                 flush=True,
             )
     def median(key: str) -> float:
@@ -126,7 +168,11 @@ def main() -> None:
         f"here: {median('rayon_cores'):.2f}), overhead {median('overhead_ms'):.2f} ms a "
         f"point (≤ 5 ms asked; CPU beyond the serial run's: "
         f"{median('cpu_overhead_ms'):.2f} ms a point; the dispatch alone: "
-        f"{median('dispatch_ms'):.2f} ms a point)"
+        f"{median('dispatch_ms'):.2f} ms a point; the idle workers' own CPU: "
+        f"{median('idle_ms'):.2f} ms a point, the whole idle cluster's: "
+        f"{median('all_idle_ms'):.2f} ms); two threads here by the same measure: "
+        f"{median('rayon_overhead_ms'):.2f} ms a point (CPU beyond serial "
+        f"{median('rayon_cpu_overhead_ms'):.2f} ms)"
     )
 
 
