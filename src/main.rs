@@ -6,13 +6,27 @@ use clap::error::{ContextKind, ContextValue};
 use clap::Parser;
 
 fn main() {
+    use clap::error::ErrorKind;
     let args = match cli::Cli::try_parse() {
         Ok(args) => args,
-        Err(e) if e.kind() == clap::error::ErrorKind::ValueValidation => {
+        Err(e) if e.kind() == ErrorKind::ValueValidation => {
             eprintln!("Error: {}", bad_value_line(&e));
             std::process::exit(1);
         }
-        Err(e) => e.exit(),
+        Err(e)
+            if matches!(
+                e.kind(),
+                ErrorKind::DisplayHelp
+                    | ErrorKind::DisplayVersion
+                    | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+            ) =>
+        {
+            e.exit()
+        }
+        Err(e) => {
+            eprintln!("Error: {}", usage_line(&e));
+            std::process::exit(1);
+        }
     };
     match cli::run(args) {
         Ok(warnings) => cli::print_warnings(&warnings),
@@ -44,8 +58,7 @@ fn as_flag(e: &(dyn std::error::Error + 'static)) -> String {
 }
 
 /// A flag's value out of its range, as one line: the flag, the value
-/// given and what is allowed (``--step `-1e-6`: must be a number > 0``). Bad input, like a bad model file: exit code 1. Unknown flags
-/// and commands stay clap's usage errors (exit code 2).
+/// given and what is allowed (``--step `-1e-6`: must be a number > 0``). Bad input, like a bad model file: exit code 1.
 fn bad_value_line(e: &clap::Error) -> String {
     use std::error::Error;
     let context = |kind| match e.get(kind) {
@@ -67,4 +80,20 @@ fn bad_value_line(e: &clap::Error) -> String {
             .trim_start_matches("error: ")
             .to_string(),
     }
+}
+
+/// Any other mistake on the command line (an unknown flag, command or
+/// choice, a missing or conflicting flag) as one line: clap's explanation
+/// with its hints, without the usage and help lines. Bad input: exit
+/// code 1, as for a bad value or a bad model file.
+fn usage_line(e: &clap::Error) -> String {
+    let text = e.render().to_string();
+    let parts: Vec<&str> = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| {
+            !l.is_empty() && !l.starts_with("Usage:") && !l.starts_with("For more information")
+        })
+        .collect();
+    parts.join(" ").trim_start_matches("error: ").to_string()
 }

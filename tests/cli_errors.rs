@@ -5,7 +5,7 @@
 //! `Error: <file>: <json path>: <problem>` (syntax errors:
 //! `Error: <file>:<line>:<col>: malformed JSON: …`) — never a panic, a
 //! backtrace or a multi-line dump. Each case starts from the valid model of
-//! [`minimal`] and changes one thing. Usage errors exit with 2 (clap); a few
+//! [`minimal`] and changes one thing. Usage errors too are one line, exit 1; a few
 //! positive runs pin the table, JSON and CSV outputs.
 
 use assert_cmd::cargo::cargo_bin_cmd;
@@ -857,18 +857,25 @@ fn massless_rotation_welded_to_a_beam_analyses() {
 // -------------------------------------------------------------- usage errors
 
 #[test]
-fn usage_errors_exit_with_2() {
+fn usage_errors_are_one_line_and_exit_with_1() {
     let dir = TempDir::new().expect("a temp dir");
-    for args in [
-        &["modal", "--bogus", "--csv", "out.csv"][..],
-        &["no-such-command"][..],
+    for (args, named) in [
+        (&["modal", "--bogus", "--csv", "out.csv"][..], "--bogus"),
+        (&["no-such-command"][..], "no-such-command"),
+        (&["reduce", "--modes", "4"][..], "--interface"),
+        (
+            &["reduce", "--interface", "blade:0", "--method", "guyan"][..],
+            "guyan",
+        ),
+        (&["modal", "--load-scale", "2"][..], "--prestress"),
     ] {
         let (code, stdout, stderr) = run(args, dir.path());
-        assert_eq!(code, Some(2), "usage error {args:?} exits with 2");
+        assert_eq!(code, Some(1), "usage error {args:?} exits with 1: {stderr}");
         assert!(stdout.is_empty(), "usage error {args:?}: stdout is empty");
+        assert_eq!(stderr.lines().count(), 1, "{args:?}: one line: {stderr}");
         assert!(
-            stderr.starts_with("error: "),
-            "usage error {args:?}: clap explains on stderr, got {stderr:?}"
+            stderr.starts_with("Error: ") && stderr.contains(named),
+            "usage error {args:?}: names {named}: {stderr:?}"
         );
         assert!(
             !dir.path().join("out.csv").exists(),

@@ -331,9 +331,11 @@ mod cli {
                 "{stderr}"
             );
         }
-        // A flag without the one it needs is a usage error (clap, exit 2).
+        // A flag without the one it needs: one line, exit 1, naming it.
         let (code, _, stderr) = run(&["modal", "--load-scale", "2"]);
-        assert_eq!(code, 2, "usage error exit code; stderr {stderr}");
+        assert_eq!(code, 1, "usage error exit code; stderr {stderr}");
+        assert_eq!(stderr.lines().count(), 1, "one line: {stderr}");
+        assert!(stderr.contains("--prestress"), "{stderr}");
     }
 }
 
