@@ -208,8 +208,8 @@ impl Constraint for Slider {
         let d = self.pair.separation(q);
         let mut j = PairJac2::zeros();
         self.pair.separation_jacobian(q, &mut j);
-        let (mut g, mut h) = (PairGrad::zeros(), PairHess::zeros());
-        self.pair.angle_a_derivatives(q, &mut g, &mut h);
+        let mut g = PairGrad::zeros();
+        self.pair.angle_a_gradient(q, &mut g);
         let row = j.transpose() * n + g * perp(n).dot(&d);
         out.row_mut(0).copy_from(&row.transpose());
     }

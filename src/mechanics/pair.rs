@@ -103,7 +103,8 @@ impl Pair {
         }
     }
 
-    /// Gradient of the anchor a's angle alone, in the pair's local layout.
+    /// Gradient and Hessian of the anchor a's angle alone, in the pair's
+    /// local layout.
     pub fn angle_a_derivatives(&self, q: &[f64], grad: &mut PairGrad, hess: &mut PairHess) {
         let na = self.a.ndof();
         let (mut ga, mut ha) = (Grad::zeros(), Hess::zeros());
@@ -112,6 +113,16 @@ impl Pair {
         hess.fill(0.0);
         grad.rows_mut(0, na).copy_from(&ga.rows(0, na));
         add_block(hess, &ha, 0, na);
+    }
+
+    /// Gradient of the anchor a's angle alone, in the pair's local layout
+    /// (the Hessian's 16 × 16 left out: Jacobians need only this).
+    pub fn angle_a_gradient(&self, q: &[f64], grad: &mut PairGrad) {
+        let na = self.a.ndof();
+        let mut ga = Grad::zeros();
+        self.a.angle_derivatives(q, &mut ga, None);
+        grad.fill(0.0);
+        grad.rows_mut(0, na).copy_from(&ga.rows(0, na));
     }
 }
 

@@ -313,8 +313,8 @@ impl ContactElement {
         pair.separation_jacobian(q, &mut jac);
         let mut gt: PairGrad = jac.transpose() * t;
         if pair.a.has_angle() {
-            let (mut ga, mut ha) = (PairGrad::zeros(), PairHess::zeros());
-            pair.angle_a_derivatives(q, &mut ga, &mut ha);
+            let mut ga = PairGrad::zeros();
+            pair.angle_a_gradient(q, &mut ga);
             gt -= ga * t.dot(&perp(d));
         }
         gt
