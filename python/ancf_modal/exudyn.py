@@ -52,7 +52,9 @@ def add_flexible_body(
     the model's, so (0, 0, 0) puts the body where the model has it.
     ``clamp`` lists interface points (indices into the body's interface)
     to weld to the ground: the interface node and its virtual node are
-    each held in x and y (position and slope of the beam there).
+    each held in x and y (position and slope of the beam there). A body
+    reduced with ``keep_supports`` carries its supports in its basis and
+    no rigid motion on its frame: its frame is fixed to the ground.
 
     Returns a dict: ``object`` (the ObjectFFRFreducedOrder), ``nodes``
     (``rigid``: the frame's node, ``modal``: the modal coordinates' node,
@@ -69,6 +71,15 @@ def add_flexible_body(
     from exudyn.FEM import FEMinterface, ObjectFFRFreducedOrderInterface
 
     doc = body.to_dict()
+    if len(position) != 3:
+        raise ValueError(f"position {tuple(position)!r}: give (x, y, z) in m")
+    points = len(doc["interface"])
+    for index in clamp:
+        if not 0 <= int(index) < points:
+            raise ValueError(
+                f"clamp {list(clamp)!r}: {index} is not an interface point of the body "
+                f"(indices 0 to {points - 1} into its interface)"
+            )
     form = doc["nodes"]
     positions = np.asarray(form["positions"], dtype=float)
     size = 3 * len(positions)
@@ -96,8 +107,11 @@ def add_flexible_body(
     ground_coordinate = mbs.AddMarker(
         eii.MarkerNodeCoordinate(nodeNumber=ground_node, coordinate=0)
     )
-    # Rxyz node: [x, y, z, φx, φy, φz]; hold z, φx, φy.
-    for c in (2, 3, 4):
+    # Rxyz node: [x, y, z, φx, φy, φz]; hold z, φx, φy. A body that kept
+    # its supports (no rigid motions left to the frame: `rigid` has no
+    # column) has them in its basis: its frame is held in the plane too.
+    carried = np.asarray(body.rigid).shape[1]
+    for c in (2, 3, 4) if carried else range(6):
         m = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=rigid, coordinate=c))
         mbs.AddObject(eii.CoordinateConstraint(markerNumbers=[ground_coordinate, m]))
     markers = []

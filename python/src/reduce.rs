@@ -115,7 +115,8 @@ impl PyReducedBody {
     /// `basis_hz`, `load_scale`, `check_full_hz`, `check_reduced_hz`,
     /// `check_relative_error`, `check_frame_hz`).
     fn save(&self, path: PathBuf) -> PyResult<()> {
-        match path.extension().and_then(|e| e.to_str()) {
+        let ext = path.extension().and_then(|e| e.to_str());
+        match ext.map(str::to_ascii_lowercase).as_deref() {
             Some("json" | "npz") => {
                 self.run.write(&path).map_err(Failure::from)?;
                 Ok(())

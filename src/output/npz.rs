@@ -6,7 +6,9 @@
 //!   `{'descr': '<f8', 'fortran_order': False, 'shape': (r, c), }` padded
 //!   with spaces and a newline so that the data starts on a multiple of
 //!   64 bytes, then the values in C (row-major) order, little-endian:
-//!   `<f8` (IEEE double) or `<i8` (signed 64-bit integer).
+//!   `<f8` (IEEE double), `<i8` (signed 64-bit integer), `|b1` (a byte
+//!   0 or 1) or `<Uk` (text of at most k characters, each as a UTF-32
+//!   code unit, padded with zeros).
 //! - **ZIP (stored):** one local header, name and data per array, then
 //!   the central directory and its end record (PKWARE APPNOTE 4.3). No
 //!   ZIP64: an archive of 4 GiB or more is refused.
@@ -28,6 +30,8 @@ pub struct NpyArray {
 pub enum NpyData {
     F64(Vec<f64>),
     I64(Vec<i64>),
+    Bool(Vec<bool>),
+    Text(Vec<String>),
 }
 
 impl NpyArray {
@@ -54,18 +58,50 @@ impl NpyArray {
         }
     }
 
+    /// A boolean array of `shape`.
+    pub fn bool(name: &str, shape: &[usize], values: Vec<bool>) -> NpyArray {
+        NpyArray {
+            name: name.to_string(),
+            shape: shape.to_vec(),
+            data: NpyData::Bool(values),
+        }
+    }
+
+    /// A text array of `shape` (row-major values).
+    pub fn text(name: &str, shape: &[usize], values: Vec<String>) -> NpyArray {
+        NpyArray {
+            name: name.to_string(),
+            shape: shape.to_vec(),
+            data: NpyData::Text(values),
+        }
+    }
+
     fn len(&self) -> usize {
         match &self.data {
             NpyData::F64(v) => v.len(),
             NpyData::I64(v) => v.len(),
+            NpyData::Bool(v) => v.len(),
+            NpyData::Text(v) => v.len(),
         }
     }
 
     /// The `.npy` file's bytes.
     fn npy(&self) -> Vec<u8> {
+        // Text: as wide as the longest value (at least 1 character).
+        let width = match &self.data {
+            NpyData::Text(v) => v
+                .iter()
+                .map(|t| t.chars().count())
+                .max()
+                .unwrap_or(0)
+                .max(1),
+            _ => 0,
+        };
         let descr = match self.data {
-            NpyData::F64(_) => "<f8",
-            NpyData::I64(_) => "<i8",
+            NpyData::F64(_) => "<f8".to_string(),
+            NpyData::I64(_) => "<i8".to_string(),
+            NpyData::Bool(_) => "|b1".to_string(),
+            NpyData::Text(_) => format!("<U{width}"),
         };
         let shape = match self.shape.as_slice() {
             [n] => format!("({n},)"),
@@ -91,6 +127,16 @@ impl NpyArray {
             NpyData::I64(v) => v
                 .iter()
                 .for_each(|x| out.extend_from_slice(&x.to_le_bytes())),
+            NpyData::Bool(v) => out.extend(v.iter().map(|&b| u8::from(b))),
+            NpyData::Text(v) => {
+                for t in v {
+                    let mut units: Vec<u32> = t.chars().map(u32::from).collect();
+                    units.resize(width, 0);
+                    units
+                        .iter()
+                        .for_each(|u| out.extend_from_slice(&u.to_le_bytes()));
+                }
+            }
         }
         out
     }

@@ -59,10 +59,21 @@ pub fn reduce_table(body: &ReducedBody) -> String {
         }
     ));
     if !check.frame_hz.is_empty() {
-        let list: Vec<String> = check.frame_hz.iter().map(|f| format!("{f:.3}")).collect();
+        // An imaginary frequency (ω² < 0) as `modal` prints it.
+        let list: Vec<String> = check
+            .frame_hz
+            .iter()
+            .map(|&f| {
+                if f < 0.0 {
+                    format!("{:.3}i", -f)
+                } else {
+                    format!("{f:.3}")
+                }
+            })
+            .collect();
         s.push_str(&format!(
-            "rigid motions stiffened by the pre-stress, not compared: {} Hz in the full model, \
-             0 Hz on the multibody code's frame\n",
+            "rigid motions the pre-stress stiffens (or, with an i, softens: unstable), not \
+             compared: {} Hz in the full model, 0 Hz on the multibody code's frame\n",
             list.join(", ")
         ));
     }

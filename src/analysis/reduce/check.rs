@@ -48,13 +48,15 @@ pub enum CheckCondition {
 #[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct ReductionCheck {
     pub condition: CheckCondition,
-    /// Zero-frequency modes of the full model left out of the comparison.
+    /// Zero-frequency modes of the full model left out of the comparison
+    /// (rigid motions when free, mechanisms the held point leaves free).
     pub zero_modes: usize,
     /// The full model's modes that are mostly a rigid motion of the whole
     /// body (more than half of their mass-weighted motion), turned elastic
     /// by a pre-stress [SI: Hz]. The multibody code's floating frame
     /// carries these motions at 0 Hz (the import's limit), so they are
-    /// listed here and not compared. Empty without a pre-stress.
+    /// listed here and not compared; negative (ω² < 0, −√|ω²|/2π) where a
+    /// compression softens the motion. Empty without a pre-stress.
     pub frame_hz: Vec<f64>,
     /// The full model's frequencies [SI: Hz].
     pub full_hz: Vec<f64>,
@@ -136,11 +138,16 @@ pub fn check(
         CheckCondition::Held { point } => {
             let index = point.saturating_sub(1);
             let coords = &reduction.interface[4 * index..4 * index + 4];
-            let (full, _) = held::held_modes(system, at, coords, count)?;
+            // Mechanisms left free by the held point are zero modes of
+            // both: left out, as the free check leaves out rigid motions.
+            let z = held::held_zero_modes(system, at, coords)?;
+            let (full, _) = held::held_modes(system, at, coords, count + z)?;
             let rows = Mat::from_fn(4, r + m, |a, j| whole[(coords[a], j)]);
             let ns = NullSpace::from_dense(&rows);
             let (kh, mh) = (ns.project_dense(&kb), ns.project_dense(&mb));
-            (0, full, eigen(&kh, &mh)?)
+            let reduced = eigen(&kh, &mh)?;
+            let skip = |v: Vec<f64>| v[z.min(v.len())..].to_vec();
+            (z, skip(full), skip(reduced))
         }
     };
     let count = count.min(full.len()).min(reduced.len());
@@ -176,13 +183,21 @@ fn rigid_fraction(system: &System, rigid: &Mat<f64>, shape: &[f64]) -> f64 {
 }
 
 /// The pre-stress stiffening that the frame's rigid motions lose in the
-/// multibody code: the largest |ω²| of RᵀKR (R M-orthonormal, so these are
-/// the rigid motions' own ω² under the pre-stress) [SI: rad²/s²]. Zero
-/// without a pre-stress (K R = 0).
+/// multibody code: the ω² of RᵀKR largest in magnitude, with its sign (R
+/// M-orthonormal, so these are the rigid motions' own ω² under the
+/// pre-stress; negative where a compression softens them) [SI: rad²/s²].
+/// Zero without a pre-stress (K R = 0) or without rigid motions.
 pub fn rigid_stiffening(system: &System, at: &Linearization, reduction: &Reduction) -> f64 {
+    if reduction.rigid.ncols() == 0 {
+        return 0.0;
+    }
     let k_full = held::full_stiffness(system, at);
     let kr = project(&reduction.rigid, &|x, y| held::apply(&k_full, x, y));
     solve_generalized(&kr, &Mat::identity(kr.nrows(), kr.ncols()), kr.nrows())
-        .map(|e| e.values.iter().fold(0.0f64, |a, v| a.max(v.abs())))
+        .map(|e| {
+            e.values
+                .iter()
+                .fold(0.0f64, |a, &v| if v.abs() > a.abs() { v } else { a })
+        })
         .unwrap_or(0.0)
 }

@@ -28,12 +28,7 @@ const DENSE_MAX: usize = 300;
 /// The null space of C_q and the `held` coordinates' unit rows.
 pub(super) fn held_space(system: &System, q: &[f64], held: &[usize]) -> NullSpace {
     let n = system.ndof();
-    let m = system.constraint_count();
-    let mut cq = Triplets::new(m + held.len(), n);
-    system.add_constraint_jacobian(q, &mut cq);
-    for (r, &g) in held.iter().enumerate() {
-        cq.add(m + r, g, 1.0);
-    }
+    let cq = held_jacobian(system, q, held);
     let mut d = vec![1.0; n];
     let size = system.length_scale();
     for i in system.point_coordinates() {
@@ -41,6 +36,33 @@ pub(super) fn held_space(system: &System, q: &[f64], held: &[usize]) -> NullSpac
         d[i + 1] = size;
     }
     NullSpace::scaled(cq.nrows(), n, cq.entries(), &d)
+}
+
+/// C_q with a row (a unit) for each `held` coordinate below the joints'.
+fn held_jacobian(system: &System, q: &[f64], held: &[usize]) -> Triplets {
+    let m = system.constraint_count();
+    let mut cq = Triplets::new(m + held.len(), system.ndof());
+    system.add_constraint_jacobian(q, &mut cq);
+    for (r, &g) in held.iter().enumerate() {
+        cq.add(m + r, g, 1.0);
+    }
+    cq
+}
+
+/// How many zero-frequency modes (mechanisms the held coordinates leave
+/// free) the system has with `held` fixed, counted from its kinematics
+/// ([`crate::analysis::zero_modes`]), not from small eigenvalues.
+pub(super) fn held_zero_modes(
+    system: &System,
+    at: &Linearization,
+    held: &[usize],
+) -> Result<usize, ReduceError> {
+    let cq = held_jacobian(system, at.q, held);
+    crate::analysis::zero_modes::zero_modes(system, at, &cq)
+        .map(|z| z.shapes.len())
+        .map_err(|_| ReduceError::Eigen {
+            size: system.ndof(),
+        })
 }
 
 /// The full tangent K at `at` (n × n, compressed).

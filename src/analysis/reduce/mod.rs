@@ -186,6 +186,10 @@ fn exclude_rigid(system: &System, rigid: &Mat<f64>, v: &mut Mat<f64>) {
 
 /// Reduces the body `system` linearized at `at` onto the interface
 /// coordinates `interface` (4 per point) with `modes` component modes.
+/// With `frame_carries_rigid` the basis leaves the assembly's rigid
+/// motions to the multibody code's floating frame (M-orthogonal to them);
+/// without (a body that keeps its supports, whose frame is fixed) it
+/// spans every motion the constraints allow.
 /// `label` names an interface coordinate (by its position in
 /// `interface`) in errors.
 pub fn reduce(
@@ -194,10 +198,15 @@ pub fn reduce(
     interface: &[usize],
     method: ReductionMethod,
     modes: usize,
+    frame_carries_rigid: bool,
     label: &dyn Fn(usize) -> String,
 ) -> Result<Reduction, ReduceError> {
     let n = system.ndof();
-    let rigid = rigid_motions(system, at.q);
+    let rigid = if frame_carries_rigid {
+        rigid_motions(system, at.q)
+    } else {
+        Mat::zeros(n, 0)
+    };
     let available = available_modes(system, at, interface, method, rigid.ncols());
     if modes > available {
         return Err(ReduceError::TooManyModes {
