@@ -6,8 +6,10 @@
 //! `contacts` [{…, `force_n`}] and `released_loads` {label: [N]} at the
 //! sample times, `energy`, `rigid` (the same for the rigid model with its
 //! `departure_s` and `departure_y_s`, or null), `calibrated` [{`name`, `value`, `target`, `achieved`, `standard_error`}]
-//! (empty: a prediction), `warnings`, the half-step check, and `paper`
-//! (the paper's values; null unless the model is the built-in one).
+//! (empty: a prediction), `warnings`, the half-step check, `paper`
+//! (the paper's values; null unless the model is the built-in one) and
+//! `fig10` (the paper's Fig. 10 study, [`study_table`] in text; null unless
+//! asked for).
 
 use crate::analysis::switch_off::{SwitchOffResult, DEPARTURE_FRACTION};
 use crate::analysis::switch_off_study::SwitchOffStudy;
