@@ -21,8 +21,11 @@ use ancf_modal::commands::switch_off::{run, SwitchOffRequest};
 use ancf_modal::commands::ModelInput;
 use ancf_modal::error::Source;
 use ancf_modal::model::SWITCH_OFF_MODEL_JSON;
+use proptest::prelude::*;
 use serde_json::Value;
 use std::process::Command;
+
+mod common;
 
 /// The built-in model's file with `edit` applied, as an input.
 fn edited(edit: impl Fn(&mut Value)) -> ModelInput {
@@ -190,4 +193,40 @@ fn fig10_on_a_model_without_the_ids_is_one_error_line() {
     );
     assert!(!json.exists(), "no file written on error");
     assert!(out.stdout.is_empty());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        failure_persistence: None,
+        ..common::fixed_cases(3, "SWITCH_OFF_FIG10_SEED", 38)
+    })]
+
+    /// On generated designs of the assembly (c_t, the spring's ground
+    /// point's y): the reference row is the switch-off's own time, every
+    /// ratio is its row's time over the reference's, the combined ratio is
+    /// the last row's, and the doubled pre-stress (twice the opening
+    /// moment) reaches the distance sooner.
+    #[test]
+    fn the_study_is_its_runs_over_the_reference(ct in 2.0f64..20.0, dy in -0.5e-3f64..0.5e-3) {
+        let input = edited(|v| {
+            by_id(&mut v["joints"], "hybrid")["torsion_stiffness"] = Value::from(ct);
+            let y = &mut by_id(&mut v["springs"], "helical_spring")["a"]["ground"][1];
+            *y = Value::from(y.as_f64().unwrap() + dy);
+        });
+        let request = SwitchOffRequest {
+            no_step_check: true,
+            fig10: true,
+            ..SwitchOffRequest::default()
+        };
+        let r = run(&input, &request).unwrap();
+        let study = r.study.unwrap();
+        let reference = r.result.flexible.time_to_distance_s.unwrap();
+        prop_assert_eq!(study.rows[0].time_to_distance_s, Some(reference));
+        for row in &study.rows {
+            let t = row.time_to_distance_s.unwrap();
+            prop_assert!((row.ratio_to_reference.unwrap() - t / reference).abs() < 1e-12);
+        }
+        prop_assert_eq!(study.combined_ratio, study.rows[4].ratio_to_reference);
+        prop_assert!(study.rows[1].time_to_distance_s.unwrap() < reference);
+    }
 }
