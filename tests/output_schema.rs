@@ -111,6 +111,7 @@ fn time_domain_documents_conform() {
             "--end-time",
             "0.0005",
             "--compare-rigid",
+            "--fig10",
             "--json",
         ]),
     );

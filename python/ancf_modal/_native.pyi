@@ -183,11 +183,13 @@ class Model:
         sample_rate: float = 67200.0,
         compare_rigid: bool = False,
         no_step_check: bool = False,
+        fig10: bool = False,
     ) -> "SwitchOffResult":
         """The switch-off (``ancf-modal switch-off``): ``end_time`` [s] in
         steps of ``step`` [s]; the time for ``point`` ("BEAM:S", S [m], or
         "BODY") to travel ``distance`` [m] along ``direction``, sampled at
-        ``sample_rate`` [Hz]."""
+        ``sample_rate`` [Hz]; ``fig10`` adds the paper's Fig. 10 study
+        (``SwitchOffResult.fig10``, predictions)."""
     def transient(
         self,
         end_time: float = 0.01,
@@ -608,6 +610,11 @@ class SwitchOffResult:
     @property
     def half_step_time_to_distance_s(self) -> Optional[float]:
         """The time to the distance at half the step [s]."""
+    @property
+    def fig10(self) -> Optional[Dict[str, Any]]:
+        """The paper's Fig. 10 study (``fig10=True``; ``switch-off --json``'s
+        ``fig10``): ``rows``, ``combined_ratio`` beside
+        ``paper_combined_ratio``, ``calibrated``; predictions. None without it."""
     @property
     def warnings(self) -> List[str]:
         """Things the reader must know (also raised as ``ModelWarning``)."""

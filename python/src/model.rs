@@ -613,8 +613,9 @@ impl PyModel {
     /// with S [m], or "BODY"; default node 0 of the first beam) to travel
     /// `distance` [m] along `direction` (dx, dy), sampled at `sample_rate`
     /// [Hz]; `compare_rigid` runs the model with rigid beams beside it,
-    /// `no_step_check` skips the run at half the step.
-    #[pyo3(signature = (end_time = 3e-3, step = 1e-6, distance = 2e-3, direction = (1.0, 0.0), point = None, sample_rate = 67200.0, compare_rigid = false, no_step_check = false))]
+    /// `no_step_check` skips the run at half the step; `fig10` adds the
+    /// paper's Fig. 10 study (`SwitchOffResult.fig10`, predictions).
+    #[pyo3(signature = (end_time = 3e-3, step = 1e-6, distance = 2e-3, direction = (1.0, 0.0), point = None, sample_rate = 67200.0, compare_rigid = false, no_step_check = false, fig10 = false))]
     #[allow(clippy::too_many_arguments)]
     fn switch_off(
         &self,
@@ -627,6 +628,7 @@ impl PyModel {
         sample_rate: f64,
         compare_rigid: bool,
         no_step_check: bool,
+        fig10: bool,
     ) -> PyResult<crate::switch_off::PySwitchOffResult> {
         let r = crate::switch_off::Request {
             end_time,
@@ -637,6 +639,7 @@ impl PyModel {
             sample_rate,
             compare_rigid,
             no_step_check,
+            fig10,
         };
         crate::switch_off::run(self, py, r)
     }

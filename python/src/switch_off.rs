@@ -23,6 +23,7 @@ pub struct Request<'a> {
     pub sample_rate: f64,
     pub compare_rigid: bool,
     pub no_step_check: bool,
+    pub fig10: bool,
 }
 
 /// The switch-off of `model`.
@@ -40,6 +41,7 @@ pub fn run(model: &PyModel, py: Python<'_>, r: Request<'_>) -> PyResult<PySwitch
         sample_rate: r.sample_rate,
         compare_rigid: r.compare_rigid,
         no_step_check: r.no_step_check,
+        fig10: r.fig10,
     };
     let input = model.input();
     let label = model.label();
@@ -124,6 +126,22 @@ impl PySwitchOffResult {
     #[getter]
     fn half_step_time_to_distance_s(&self) -> Option<f64> {
         self.run.result.half_step_time_s
+    }
+
+    /// The paper's Fig. 10 study (`fig10=True`) as a dict: `rows` (each
+    /// change's `time_to_distance_s`, `ratio_to_reference`, `paper`),
+    /// `combined_ratio` beside `paper_combined_ratio`, `calibrated`; every
+    /// time a prediction. None without it.
+    #[getter]
+    fn fig10<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.run
+            .study
+            .as_ref()
+            .map(|s| {
+                let value = serde_json::to_value(s).expect("the study serializes");
+                crate::json_to_python(py, &value)
+            })
+            .transpose()
     }
 
     /// Things the reader must know (a run that ended early).

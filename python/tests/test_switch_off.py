@@ -50,3 +50,27 @@ def test_bad_point_names_the_argument(cli):
         "--no-step-check",
     )
     assert str(e.value) == line.replace("--point: ", "point: ", 1)
+
+
+def test_fig10_equals_the_command_line(cli):
+    """The paper's Fig. 10 study (`switch-off --fig10`): the same rows from
+    Python as from the command line, and the combined ratio the combined
+    time over the reference's (a prediction; nothing calibrated)."""
+    run = ancf_modal.Model.builtin("rcbo_switch_off").switch_off(no_step_check=True, fig10=True)
+    doc = cli.json("switch-off", "models/rcbo_switch_off.json", "--no-step-check", "--fig10")
+    study = run.fig10
+    assert study == run.to_dict()["fig10"]
+    assert [r["change"] for r in study["rows"]] == [r["change"] for r in doc["fig10"]["rows"]]
+    for mine, theirs in zip(study["rows"], doc["fig10"]["rows"]):
+        assert mine["time_to_distance_s"] == pytest.approx(theirs["time_to_distance_s"], rel=1e-12)
+    rows = study["rows"]
+    assert rows[0]["time_to_distance_s"] == run.time_to_distance_s
+    assert study["combined_ratio"] == pytest.approx(
+        rows[-1]["time_to_distance_s"] / rows[0]["time_to_distance_s"], rel=1e-12
+    )
+    assert study["paper_combined_ratio"] == pytest.approx(1 / 3)
+    assert study["calibrated"] == []
+    # Without the flag there is no study.
+    assert ancf_modal.Model.builtin("rcbo_switch_off").switch_off(
+        no_step_check=True, end_time=1e-4
+    ).fig10 is None

@@ -14,6 +14,7 @@ pub mod simulate;
 pub mod statics;
 pub mod sweep;
 pub mod switch_off;
+pub mod switch_off_study;
 pub mod transient;
 pub mod zero_modes;
 

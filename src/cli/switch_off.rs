@@ -43,6 +43,10 @@ pub struct SwitchOffArgs {
     /// Skip the check run at half the step.
     #[arg(long)]
     pub no_step_check: bool,
+    /// Also run the paper's Fig. 10 study: the pre-stress ×2, c_t = 1 N m/rad and the spring's
+    /// ground point −1 mm in y, each alone and all three together (predictions).
+    #[arg(long)]
+    pub fig10: bool,
 }
 
 /// Two numbers written `A,B`.
@@ -86,6 +90,7 @@ pub fn run(args: SwitchOffArgs) -> Result<Warnings> {
         sample_rate: args.sample_rate,
         compare_rigid: args.compare_rigid,
         no_step_check: args.no_step_check,
+        fig10: args.fig10,
     };
     let run = switch_off(&input, &request).map_err(command_error)?;
     if let Some(path) = &args.output.csv {

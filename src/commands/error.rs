@@ -49,6 +49,13 @@ pub enum CommandError {
         #[source]
         source: SimulationError,
     },
+    /// The paper's Fig. 10 study does not apply to the model.
+    #[error("{model}")]
+    Study {
+        model: String,
+        #[source]
+        source: Box<crate::analysis::switch_off_study::StudyError>,
+    },
     /// A measurement or mode-set file is bad.
     #[error(transparent)]
     Measured(#[from] MeasuredError),
@@ -220,6 +227,7 @@ impl CommandError {
             | CommandError::OtherModes { .. }
             | CommandError::Write(_)
             | CommandError::RigidBeams { .. }
+            | CommandError::Study { .. }
             | CommandError::Plot(_) => true,
             CommandError::Simulation { source, .. } => matches!(
                 source,

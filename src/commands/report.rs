@@ -226,7 +226,14 @@ fn render(input: &ModelInput, p: Page, request: &ReportRequest) -> Result<Report
         };
         let r = run_switch_off(model, &settings)
             .map_err(|e| CommandError::simulation(input.label(), e))?;
-        sections.push(switch_off_section(&r));
+        // The paper's Fig. 10 study for the paper's model (`switch-off
+        // --fig10`).
+        let study = if r.builtin {
+            Some(super::switch_off::fig10(input, &r)?)
+        } else {
+            None
+        };
+        sections.push(switch_off_section(&r, study.as_ref()));
     }
     let mut mode_sets = vec![ModeSet {
         title: "Modes at the reference",

@@ -5,14 +5,19 @@
 //! [s], samples at `sample_rate` [Hz]); the time [s] for a tracked point
 //! to travel `distance` [m] along `direction`, optionally beside the model
 //! with rigid beams and the same run at half the step
-//! ([`crate::analysis::switch_off`]).
+//! ([`crate::analysis::switch_off`]); with `fig10`, the paper's Fig. 10
+//! study beside it: the pre-stress doubled, c_t lowered and the spring's
+//! attachment moved −1 mm, each alone and all three together, each a
+//! prediction ([`crate::analysis::switch_off_study`]).
 
 use super::{CommandError, ModelInput, Run};
 use crate::analysis::switch_off::{run_switch_off, SwitchOffResult, SwitchOffSettings};
+use crate::analysis::switch_off_study::{run_study, SwitchOffStudy};
+use crate::model::Model;
 use crate::model::PointSpec;
 use crate::output::figures::switch_off::write_switch_off_figures;
 use crate::output::plot::PlotSize;
-use crate::output::switch_off_report::{switch_off_csv, switch_off_table};
+use crate::output::switch_off_report::{study_table, switch_off_csv, switch_off_table};
 use crate::results::SwitchOffOutput;
 use std::path::Path;
 
@@ -36,6 +41,9 @@ pub struct SwitchOffRequest {
     pub compare_rigid: bool,
     /// Skip the check run at half the step.
     pub no_step_check: bool,
+    /// Also run the paper's Fig. 10 study (the three changes alone and
+    /// together, with the same settings).
+    pub fig10: bool,
 }
 
 impl Default for SwitchOffRequest {
@@ -50,6 +58,7 @@ impl Default for SwitchOffRequest {
             sample_rate: s.sample_rate,
             compare_rigid: s.compare_rigid,
             no_step_check: false,
+            fig10: false,
         }
     }
 }
@@ -84,6 +93,8 @@ pub fn parse_point(text: &str) -> Result<PointSpec, String> {
 pub struct SwitchOffRun {
     /// The flexible run, the rigid one and the half-step check.
     pub result: SwitchOffResult,
+    /// The paper's Fig. 10 study (`fig10`), else `None`.
+    pub study: Option<SwitchOffStudy>,
     /// The document with the run's warnings (the analysis's own warnings
     /// are the result's, [`SwitchOffResult::warnings`], at the head of the
     /// document's list).
@@ -117,16 +128,45 @@ pub fn run(input: &ModelInput, request: &SwitchOffRequest) -> Result<SwitchOffRu
     };
     let result = run_switch_off(&input.model, &settings)
         .map_err(|e| CommandError::simulation(input.label(), e))?;
+    let study = if request.fig10 {
+        Some(fig10(input, &result)?)
+    } else {
+        None
+    };
+    let mut output = SwitchOffOutput::new(&result);
+    output.fig10 = study.clone();
     Ok(SwitchOffRun {
-        document: Run::of(input, SwitchOffOutput::new(&result)),
+        document: Run::of(input, output),
         result,
+        study,
+    })
+}
+
+/// The paper's Fig. 10 study beside the switch-off `result` of `input`'s
+/// model: the same settings, the ON states continued from the built-in
+/// model's as the switch-off's.
+pub fn fig10(input: &ModelInput, result: &SwitchOffResult) -> Result<SwitchOffStudy, CommandError> {
+    run_study(
+        &input.model,
+        &Model::switch_off_builtin(),
+        &result.settings,
+        result.flexible.time_to_distance_s,
+        &result.calibrated,
+    )
+    .map_err(|source| CommandError::Study {
+        model: input.label(),
+        source: Box::new(source),
     })
 }
 
 impl SwitchOffRun {
     /// The command line's report.
     pub fn text(&self) -> String {
-        switch_off_table(&self.result)
+        let mut text = switch_off_table(&self.result);
+        if let Some(study) = &self.study {
+            text.push_str(&study_table(study, &self.result));
+        }
+        text
     }
 
     /// The tracked point's samples as CSV (`--csv`).

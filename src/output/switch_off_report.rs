@@ -6,10 +6,13 @@
 //! `contacts` [{…, `force_n`}] and `released_loads` {label: [N]} at the
 //! sample times, `energy`, `rigid` (the same for the rigid model with its
 //! `departure_s` and `departure_y_s`, or null), `calibrated` [{`name`, `value`, `target`, `achieved`, `standard_error`}]
-//! (empty: a prediction), `warnings`, the half-step check, and `paper`
-//! (the paper's values; null unless the model is the built-in one).
+//! (empty: a prediction), `warnings`, the half-step check, `paper`
+//! (the paper's values; null unless the model is the built-in one) and
+//! `fig10` (the paper's Fig. 10 study, [`study_table`] in text; null unless
+//! asked for).
 
 use crate::analysis::switch_off::{SwitchOffResult, DEPARTURE_FRACTION};
+use crate::analysis::switch_off_study::SwitchOffStudy;
 
 use std::fmt::Write;
 
@@ -161,6 +164,61 @@ pub fn switch_off_table(r: &SwitchOffResult) -> String {
         r.flexible.min_step_s,
         r.flexible.newton_iterations as f64 / r.flexible.steps.max(1) as f64
     );
+    s
+}
+
+/// What a study's times are: predictions, of a model that calibrated
+/// what it lists.
+pub fn study_label(study: &SwitchOffStudy) -> String {
+    if study.calibrated.is_empty() {
+        String::from("every time a prediction; nothing calibrated")
+    } else {
+        let names: Vec<&str> = study.calibrated.iter().map(|c| c.name.as_str()).collect();
+        format!(
+            "every time a prediction of the model with {} CALIBRATED",
+            names.join(", ")
+        )
+    }
+}
+
+/// The paper's Fig. 10 study printed after `switch-off`'s report.
+pub fn study_table(study: &SwitchOffStudy, r: &SwitchOffResult) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "Fig. 10 study ({}): time for {} to travel {:.3} mm",
+        study_label(study),
+        r.point_label,
+        r.settings.distance * 1e3
+    );
+    let _ = writeln!(
+        s,
+        "  {:<48}{:>12}{:>8}  the paper's text",
+        "change", "time", "ratio"
+    );
+    for row in &study.rows {
+        let ratio = row
+            .ratio_to_reference
+            .map_or_else(|| String::from("–"), |q| format!("{q:.3}"));
+        let _ = writeln!(
+            s,
+            "  {:<48}{:>12}{ratio:>8}  {}",
+            row.change,
+            ms(row.time_to_distance_s),
+            row.paper
+        );
+        if let Some(e) = &row.error {
+            let _ = writeln!(s, "    failed: {e}");
+        }
+    }
+    if let Some(q) = study.combined_ratio {
+        let _ = writeln!(
+            s,
+            "all three together / reference = {q:.3} (a prediction), beside the paper's ≈ 1/3 ({:.3}; 2 mm in ≈ {:.1} ms)",
+            study.paper_combined_ratio,
+            study.paper_combined_time_s * 1e3
+        );
+    }
     s
 }
 

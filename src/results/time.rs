@@ -8,6 +8,7 @@ use crate::analysis::simulate::{EnergyBalance, Simulation, SimulationSettings};
 use crate::analysis::statics::start::Start;
 use crate::analysis::statics::Branch;
 use crate::analysis::switch_off::{Calibrated, SwitchOffResult, SwitchOffRun};
+use crate::analysis::switch_off_study::SwitchOffStudy;
 use crate::analysis::transient::contacts::ContactStats;
 use crate::model::reference::Errors;
 use schemars::JsonSchema;
@@ -359,6 +360,10 @@ pub struct SwitchOffOutput {
     pub rigid: Option<RigidRun>,
     /// The paper's values; null unless the model is the built-in one.
     pub paper: Option<PaperSwitchOff>,
+    /// The paper's Fig. 10 study (`fig10`: the pre-stress doubled, c_t
+    /// lowered, the spring's attachment −1 mm, alone and together; every
+    /// time a prediction, `calibrated` says of what model); else null.
+    pub fig10: Option<SwitchOffStudy>,
 }
 
 impl SwitchOffOutput {
@@ -386,6 +391,7 @@ impl SwitchOffOutput {
                 time_to_distance_s: PAPER_TIME_TO_2MM_S,
                 rigid_departure_s: PAPER_RIGID_DEPARTURE_S,
             }),
+            fig10: None,
         }
     }
 }

@@ -4,6 +4,7 @@
 use super::{Section, Table};
 use crate::analysis::impulse::{Excitation, ImpulseResult};
 use crate::analysis::switch_off::SwitchOffResult;
+use crate::analysis::switch_off_study::SwitchOffStudy;
 use crate::measured::analysis::FrfAnalysis;
 use crate::model::{Model, TimeFunction};
 use crate::output::calibrate_report::calibrate_table;
@@ -11,6 +12,7 @@ use crate::output::figures::switch_off::{time_figure, trajectory_figure};
 use crate::output::figures::{response_figure, spectrum_figure};
 use crate::output::frf_report::{frf_figure, frf_table, ResponseQuantity};
 use crate::output::plot::{Figure, PlotSize};
+use crate::output::switch_off_report::study_label;
 use crate::results::{CalibrationOutput, IdentifyOutput};
 use realfft::num_complex::Complex64;
 
@@ -91,7 +93,7 @@ pub fn has_release(model: &Model) -> bool {
 /// calibrated (nothing for the built-in model), and the figures of
 /// `switch-off --plot` (the tracked point against time with the contact
 /// forces and released loads, and the trajectory).
-pub fn switch_off_section(r: &SwitchOffResult) -> Section {
+pub fn switch_off_section(r: &SwitchOffResult, study: Option<&SwitchOffStudy>) -> Section {
     let ms = |t: Option<f64>| t.map_or("not reached".to_string(), |t| format!("{:.4} ms", t * 1e3));
     let mut rows = vec![vec![
         "this model, flexible".to_string(),
@@ -127,24 +129,69 @@ pub fn switch_off_section(r: &SwitchOffResult) -> Section {
         ));
     }
     notes.extend(r.warnings.iter().cloned());
+    let mut tables = vec![Table {
+        caption: format!(
+            "Time for {} to travel {} mm",
+            r.point_label,
+            r.settings.distance * 1e3
+        ),
+        header: vec!["run".into(), "time".into()],
+        rows,
+    }];
+    if let Some(study) = study {
+        tables.push(study_report_table(study, r));
+        if let Some(q) = study.combined_ratio {
+            notes.push(format!(
+                "Fig. 10: all three together / reference = {q:.3}, a prediction, beside the paper's ≈ 1/3 (2 mm in ≈ {:.1} ms).",
+                study.paper_combined_time_s * 1e3
+            ));
+        }
+    }
     Section {
         id: "switch-off".into(),
         title: "Switch-off".into(),
         notes,
-        tables: vec![Table {
-            caption: format!(
-                "Time for {} to travel {} mm",
-                r.point_label,
-                r.settings.distance * 1e3
-            ),
-            header: vec!["run".into(), "time".into()],
-            rows,
-        }],
+        tables,
         preformatted: Vec::new(),
         figures: vec![
             (Figure::Line(time_figure(r)), FIGURE_SIZE),
             (Figure::Line(trajectory_figure(r)), FIGURE_SIZE),
         ],
+    }
+}
+
+/// The paper's Fig. 10 study as a table (`switch-off --fig10`'s).
+fn study_report_table(study: &SwitchOffStudy, r: &SwitchOffResult) -> Table {
+    let rows = study
+        .rows
+        .iter()
+        .map(|row| {
+            vec![
+                row.change.clone(),
+                row.time_to_distance_s.map_or_else(
+                    || row.error.clone().unwrap_or_else(|| "not reached".into()),
+                    |t| format!("{:.4} ms", t * 1e3),
+                ),
+                row.ratio_to_reference
+                    .map_or_else(|| "–".into(), |q| format!("{q:.3}")),
+                row.paper.clone(),
+            ]
+        })
+        .collect();
+    Table {
+        caption: format!(
+            "The paper's Fig. 10: time for {} to travel {} mm ({})",
+            r.point_label,
+            r.settings.distance * 1e3,
+            study_label(study)
+        ),
+        header: vec![
+            "change".into(),
+            "time".into(),
+            "ratio to the reference".into(),
+            "the paper's text".into(),
+        ],
+        rows,
     }
 }
 
