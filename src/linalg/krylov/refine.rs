@@ -10,7 +10,7 @@
 
 use super::{EigenFailure, KrylovModes, Operator, StiffnessProducts, GUARD, REFINE_STEPS};
 use crate::linalg::dense::symmetric_eigen_qr;
-use crate::linalg::sparse::mul_vec;
+use crate::linalg::sparse::mul_block;
 use crate::linalg::vector::dot;
 use faer::sparse::SparseColMat;
 use faer::{Mat, Par};
@@ -35,9 +35,7 @@ fn mm(a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> Mat<f64> {
 /// M W for every column.
 fn m_block(m: &SparseColMat<usize, f64>, w: &Mat<f64>) -> Mat<f64> {
     let mut out = Mat::zeros(w.nrows(), w.ncols());
-    for c in 0..w.ncols() {
-        mul_vec(m, w.col_as_slice(c), out.col_as_slice_mut(c));
-    }
+    mul_block(m, w.as_ref(), out.as_mut());
     out
 }
 
