@@ -32,7 +32,7 @@ mod refine;
 use super::dense::symmetric_eigen_qr;
 use super::inertia::negative_eigenvalues;
 use super::sparse::{diagonal, mul_vec, Triplets};
-use super::vector::{axpy, dot};
+use super::vector::{axpy, dot_long as dot};
 use super::EigenFailure;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
