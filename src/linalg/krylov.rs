@@ -34,11 +34,18 @@ use super::inertia::negative_eigenvalues;
 use super::sparse::{diagonal, mul_vec, Triplets};
 use super::vector::{axpy, dot_long as dot};
 use super::EigenFailure;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, LdltRef, SymbolicCholesky, SymmetricOrdering,
+};
 use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
+use faer::sparse::SparseColMatRef;
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
-use faer::{Mat, MatMut, Par, Side};
+use faer::{Conj, Mat, MatMut, Par, Side};
 use refine::{refine, Refinement};
+use std::sync::Arc;
 
 /// Inverse-iteration steps per trial shift.
 const INVERSE_STEPS: usize = 4;
@@ -117,13 +124,65 @@ struct Shifted {
     k_values: Vec<f64>,
     m_values: Vec<f64>,
     llt: Option<SymbolicLlt<usize>>,
+    /// Refined only: where Cholesky fails, an LDLᵀ before LU (see
+    /// [`Shifted::factor`]); its analysis once made.
+    symmetric_fallback: bool,
+    ldlt: Option<Arc<SymbolicCholesky<usize>>>,
     factor: Factor,
 }
 
 enum Factor {
     None,
     Llt(Llt<usize, f64>),
+    Ldlt(Box<Ldlt>),
     Lu(Box<Lu<usize, f64>>),
+}
+
+/// A sparse LDLᵀ factor (no pivoting) of K − σM.
+struct Ldlt {
+    symbolic: Arc<SymbolicCholesky<usize>>,
+    values: Vec<f64>,
+}
+
+impl Ldlt {
+    /// LDLᵀ of `a` on `symbolic`; None on a zero or non-finite pivot.
+    fn new(
+        symbolic: Arc<SymbolicCholesky<usize>>,
+        a: SparseColMatRef<'_, usize, f64>,
+    ) -> Option<Self> {
+        let par = faer::get_global_parallelism();
+        let mut values = vec![0.0f64; symbolic.len_val()];
+        let mut mem = MemBuffer::try_new(
+            symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
+        )
+        .ok()?;
+        symbolic
+            .factorize_numeric_ldlt(
+                &mut values,
+                a,
+                Side::Lower,
+                LdltRegularization::default(),
+                par,
+                MemStack::new(&mut mem),
+                Default::default(),
+            )
+            .ok()?;
+        values
+            .iter()
+            .all(|v| v.is_finite())
+            .then_some(Ldlt { symbolic, values })
+    }
+
+    fn solve_in_place(&self, x: MatMut<'_, f64>) {
+        let par = faer::get_global_parallelism();
+        let mut mem = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(x.ncols(), par));
+        LdltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+            Conj::No,
+            x,
+            par,
+            MemStack::new(&mut mem),
+        );
+    }
 }
 
 impl Shifted {
@@ -149,6 +208,8 @@ impl Shifted {
             k_values,
             m_values,
             llt: None,
+            symmetric_fallback: false,
+            ldlt: None,
             factor: Factor::None,
         })
     }
@@ -189,22 +250,44 @@ impl Shifted {
         let symbolic = self.llt.clone().expect("symbolic factorization");
         self.factor = match Llt::try_new_with_symbolic(symbolic, a.as_ref(), Side::Lower) {
             Ok(l) => Factor::Llt(l),
-            Err(_) => {
-                let s =
-                    SymbolicLu::try_new(a.symbolic()).map_err(|_| EigenFailure::Factorization)?;
-                Factor::Lu(Box::new(
-                    Lu::try_new_with_symbolic(s, a.as_ref())
-                        .map_err(|_| EigenFailure::Factorization)?,
-                ))
+            Err(_) if self.symmetric_fallback => {
+                // Refined: the factor is a preconditioner and Lanczos'
+                // operator only (the precise products set the accuracy),
+                // and where round-off of order ε|K| makes K − σM
+                // indefinite just above the shift, a symmetric LDLᵀ on one
+                // fill-reducing analysis costs a Cholesky's, LU about four.
+                if self.ldlt.is_none() {
+                    self.ldlt = factorize_symbolic_cholesky(
+                        a.symbolic(),
+                        Side::Lower,
+                        SymmetricOrdering::Amd,
+                        Default::default(),
+                    )
+                    .ok()
+                    .map(Arc::new);
+                }
+                match self.ldlt.clone().and_then(|s| Ldlt::new(s, a.as_ref())) {
+                    Some(l) => Factor::Ldlt(Box::new(l)),
+                    None => Self::lu(a.as_ref())?,
+                }
             }
+            Err(_) => Self::lu(a.as_ref())?,
         };
         Ok(())
+    }
+
+    fn lu(a: SparseColMatRef<'_, usize, f64>) -> Result<Factor, EigenFailure> {
+        let s = SymbolicLu::try_new(a.symbolic()).map_err(|_| EigenFailure::Factorization)?;
+        Ok(Factor::Lu(Box::new(
+            Lu::try_new_with_symbolic(s, a).map_err(|_| EigenFailure::Factorization)?,
+        )))
     }
 
     /// Solves for every column of `x` in place.
     fn solve_block(&self, x: MatMut<'_, f64>) {
         match &self.factor {
             Factor::Llt(l) => l.solve_in_place(x),
+            Factor::Ldlt(l) => l.solve_in_place(x),
             Factor::Lu(l) => l.solve_in_place(x),
             Factor::None => unreachable!("solve before factor"),
         }
@@ -215,6 +298,7 @@ impl Shifted {
         let col = MatMut::from_column_major_slice_mut(x, n, 1);
         match &self.factor {
             Factor::Llt(l) => l.solve_in_place(col),
+            Factor::Ldlt(l) => l.solve_in_place(col),
             Factor::Lu(l) => l.solve_in_place(col),
             Factor::None => unreachable!("solve before factor"),
         }
@@ -346,7 +430,10 @@ fn modes(
         .collect();
     let mut op = Operator {
         m: &m_csc,
-        shifted: Shifted::new(k, m)?,
+        shifted: Shifted {
+            symmetric_fallback: products.is_some(),
+            ..Shifted::new(k, m)?
+        },
         z: deflate.to_vec(),
         mz,
         scratch: vec![0.0; n],
