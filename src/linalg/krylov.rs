@@ -119,8 +119,8 @@ pub struct KrylovModes {
 
 /// The shifted matrix K − σM on a fixed pattern, factored.
 struct Shifted {
+    /// The pattern of K and M together, and their values on it.
     symbolic: SymbolicSparseColMat<usize>,
-    argsort: faer::sparse::Argsort<usize>,
     k_values: Vec<f64>,
     m_values: Vec<f64>,
     llt: Option<SymbolicLlt<usize>>,
@@ -202,9 +202,16 @@ impl Shifted {
         }
         let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
             .map_err(|_| EigenFailure::Factorization)?;
+        drop(pairs);
+        // Repeated entries summed onto the pattern, once.
+        let on_pattern = |values: &[f64]| {
+            SparseColMat::new_from_argsort(symbolic.clone(), &argsort, values)
+                .map(|a| a.into_parts().1)
+                .map_err(|_| EigenFailure::Factorization)
+        };
+        let (k_values, m_values) = (on_pattern(&k_values)?, on_pattern(&m_values)?);
         Ok(Shifted {
             symbolic,
-            argsort,
             k_values,
             m_values,
             llt: None,
@@ -222,8 +229,12 @@ impl Shifted {
             .zip(&self.m_values)
             .map(|(k, m)| k - sigma * m)
             .collect();
-        SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &values)
-            .map_err(|_| EigenFailure::Factorization)
+        Ok(SparseColMat::new(self.symbolic.clone(), values))
+    }
+
+    /// M on the common pattern.
+    fn mass(&self) -> SparseColMat<usize, f64> {
+        SparseColMat::new(self.symbolic.clone(), self.m_values.clone())
     }
 
     /// How many eigenvalues of the pencil lie below σ (Sylvester's
@@ -393,8 +404,11 @@ fn modes(
     } else {
         wanted_out
     };
-    let k_csc = k.to_sparse();
-    let m_csc = m.to_sparse();
+    let shifted = Shifted {
+        symmetric_fallback: products.is_some(),
+        ..Shifted::new(k, m)?
+    };
+    let m_csc = shifted.mass();
     let md = diagonal(&m_csc);
     if let Some(i) = md.iter().position(|&v| !(v > 0.0 && v.is_finite())) {
         let mut direction = vec![0.0; n];
@@ -414,7 +428,7 @@ fn modes(
             perturbation: 0.0,
         });
     }
-    let kd = diagonal(&k_csc);
+    let kd = diagonal(&shifted.matrix(0.0)?);
     let lmax = kd
         .iter()
         .zip(&md)
@@ -430,10 +444,7 @@ fn modes(
         .collect();
     let mut op = Operator {
         m: &m_csc,
-        shifted: Shifted {
-            symmetric_fallback: products.is_some(),
-            ..Shifted::new(k, m)?
-        },
+        shifted,
         z: deflate.to_vec(),
         mz,
         scratch: vec![0.0; n],
