@@ -36,11 +36,12 @@ use super::vector::{axpy, dot_long as dot};
 use super::EigenFailure;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
+use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, LdltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, LdltRef, LltRef, SymbolicCholesky, SymmetricOrdering,
 };
-use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::SparseColMatRef;
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
 use faer::{Conj, Mat, MatMut, Par, Side};
@@ -123,65 +124,96 @@ struct Shifted {
     symbolic: SymbolicSparseColMat<usize>,
     k_values: Vec<f64>,
     m_values: Vec<f64>,
-    llt: Option<SymbolicLlt<usize>>,
+    /// The fill-reducing analysis of the pattern, made once and shared
+    /// by every shift's LLᵀ and LDLᵀ.
+    analysis: Option<Arc<SymbolicCholesky<usize>>>,
     /// Refined only: where Cholesky fails, an LDLᵀ before LU (see
-    /// [`Shifted::factor`]); its analysis once made.
+    /// [`Shifted::factor`]).
     symmetric_fallback: bool,
-    ldlt: Option<Arc<SymbolicCholesky<usize>>>,
     factor: Factor,
 }
 
 enum Factor {
     None,
-    Llt(Llt<usize, f64>),
-    Ldlt(Box<Ldlt>),
+    Cholesky(Box<Cholesky>),
     Lu(Box<Lu<usize, f64>>),
 }
 
-/// A sparse LDLᵀ factor (no pivoting) of K − σM.
-struct Ldlt {
+/// A sparse LLᵀ, or LDLᵀ without pivoting, of K − σM.
+struct Cholesky {
     symbolic: Arc<SymbolicCholesky<usize>>,
     values: Vec<f64>,
+    ldlt: bool,
 }
 
-impl Ldlt {
-    /// LDLᵀ of `a` on `symbolic`; None on a zero or non-finite pivot.
+impl Cholesky {
+    /// LLᵀ (or LDLᵀ) of `a` on `symbolic`; None where it breaks down (a
+    /// non-positive pivot for LLᵀ, a zero or non-finite one for LDLᵀ).
     fn new(
         symbolic: Arc<SymbolicCholesky<usize>>,
         a: SparseColMatRef<'_, usize, f64>,
+        ldlt: bool,
     ) -> Option<Self> {
         let par = faer::get_global_parallelism();
         let mut values = vec![0.0f64; symbolic.len_val()];
-        let mut mem = MemBuffer::try_new(
-            symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
-        )
-        .ok()?;
-        symbolic
-            .factorize_numeric_ldlt(
-                &mut values,
-                a,
-                Side::Lower,
-                LdltRegularization::default(),
-                par,
-                MemStack::new(&mut mem),
-                Default::default(),
-            )
-            .ok()?;
-        values
-            .iter()
-            .all(|v| v.is_finite())
-            .then_some(Ldlt { symbolic, values })
+        let scratch = if ldlt {
+            symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default())
+        } else {
+            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default())
+        };
+        let mut mem = MemBuffer::try_new(scratch).ok()?;
+        let stack = MemStack::new(&mut mem);
+        let ok = if ldlt {
+            symbolic
+                .factorize_numeric_ldlt(
+                    &mut values,
+                    a,
+                    Side::Lower,
+                    LdltRegularization::default(),
+                    par,
+                    stack,
+                    Default::default(),
+                )
+                .is_ok()
+        } else {
+            symbolic
+                .factorize_numeric_llt(
+                    &mut values,
+                    a,
+                    Side::Lower,
+                    LltRegularization::default(),
+                    par,
+                    stack,
+                    Default::default(),
+                )
+                .is_ok()
+        };
+        (ok && values.iter().all(|v| v.is_finite())).then_some(Cholesky {
+            symbolic,
+            values,
+            ldlt,
+        })
     }
 
     fn solve_in_place(&self, x: MatMut<'_, f64>) {
         let par = faer::get_global_parallelism();
         let mut mem = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(x.ncols(), par));
-        LdltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
-            Conj::No,
-            x,
-            par,
-            MemStack::new(&mut mem),
-        );
+        let stack = MemStack::new(&mut mem);
+        if self.ldlt {
+            LdltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+                Conj::No,
+                x,
+                par,
+                stack,
+            );
+        } else {
+            LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+                Conj::No,
+                x,
+                par,
+                stack,
+            );
+        }
     }
 }
 
@@ -214,9 +246,8 @@ impl Shifted {
             symbolic,
             k_values,
             m_values,
-            llt: None,
+            analysis: None,
             symmetric_fallback: false,
-            ldlt: None,
             factor: Factor::None,
         })
     }
@@ -252,37 +283,30 @@ impl Shifted {
 
     fn factor(&mut self, sigma: f64) -> Result<(), EigenFailure> {
         let a = self.matrix(sigma)?;
-        if self.llt.is_none() {
-            self.llt = Some(
-                SymbolicLlt::try_new(a.symbolic(), Side::Lower)
-                    .map_err(|_| EigenFailure::Factorization)?,
-            );
+        if self.analysis.is_none() {
+            self.analysis = Some(Arc::new(
+                factorize_symbolic_cholesky(
+                    a.symbolic(),
+                    Side::Lower,
+                    SymmetricOrdering::Amd,
+                    Default::default(),
+                )
+                .map_err(|_| EigenFailure::Factorization)?,
+            ));
         }
-        let symbolic = self.llt.clone().expect("symbolic factorization");
-        self.factor = match Llt::try_new_with_symbolic(symbolic, a.as_ref(), Side::Lower) {
-            Ok(l) => Factor::Llt(l),
-            Err(_) if self.symmetric_fallback => {
-                // Refined: the factor is a preconditioner and Lanczos'
-                // operator only (the precise products set the accuracy),
-                // and where round-off of order ε|K| makes K − σM
-                // indefinite just above the shift, a symmetric LDLᵀ on one
-                // fill-reducing analysis costs a Cholesky's, LU about four.
-                if self.ldlt.is_none() {
-                    self.ldlt = factorize_symbolic_cholesky(
-                        a.symbolic(),
-                        Side::Lower,
-                        SymmetricOrdering::Amd,
-                        Default::default(),
-                    )
-                    .ok()
-                    .map(Arc::new);
-                }
-                match self.ldlt.clone().and_then(|s| Ldlt::new(s, a.as_ref())) {
-                    Some(l) => Factor::Ldlt(Box::new(l)),
-                    None => Self::lu(a.as_ref())?,
-                }
-            }
-            Err(_) => Self::lu(a.as_ref())?,
+        let analysis = self.analysis.clone().expect("symbolic factorization");
+        // Refined, the factor is a preconditioner and Lanczos' operator
+        // only (the precise products set the accuracy); where round-off
+        // of order ε|K| makes K − σM indefinite just above the shift, an
+        // LDLᵀ on the same analysis costs a Cholesky's, LU about four.
+        let cholesky = Cholesky::new(analysis.clone(), a.as_ref(), false).or_else(|| {
+            self.symmetric_fallback
+                .then(|| Cholesky::new(analysis, a.as_ref(), true))
+                .flatten()
+        });
+        self.factor = match cholesky {
+            Some(c) => Factor::Cholesky(Box::new(c)),
+            None => Self::lu(a.as_ref())?,
         };
         Ok(())
     }
@@ -297,8 +321,7 @@ impl Shifted {
     /// Solves for every column of `x` in place.
     fn solve_block(&self, x: MatMut<'_, f64>) {
         match &self.factor {
-            Factor::Llt(l) => l.solve_in_place(x),
-            Factor::Ldlt(l) => l.solve_in_place(x),
+            Factor::Cholesky(l) => l.solve_in_place(x),
             Factor::Lu(l) => l.solve_in_place(x),
             Factor::None => unreachable!("solve before factor"),
         }
@@ -308,8 +331,7 @@ impl Shifted {
         let n = x.len();
         let col = MatMut::from_column_major_slice_mut(x, n, 1);
         match &self.factor {
-            Factor::Llt(l) => l.solve_in_place(col),
-            Factor::Ldlt(l) => l.solve_in_place(col),
+            Factor::Cholesky(l) => l.solve_in_place(col),
             Factor::Lu(l) => l.solve_in_place(col),
             Factor::None => unreachable!("solve before factor"),
         }
