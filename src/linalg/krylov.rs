@@ -5,8 +5,10 @@
 //! its eigenvalues θ = 1/(λ − σ) are largest for the λ nearest the shift.
 //! K − σM is factored by faer's sparse Cholesky (its symbolic analysis and
 //! fill-reducing ordering computed once for the pattern of K and M together
-//! and reused for every shift), or by faer's sparse LU when it is
-//! indefinite (a pre-stressed state with an unstable direction).
+//! and reused for every shift), when refined by an LDLᵀ on the same
+//! analysis where round-off breaks the Cholesky, or by faer's sparse LU
+//! when it is indefinite (a pre-stressed state with an unstable
+//! direction); see [`shifted`].
 //!
 //! The shift is negative and scaled to the model: starting from
 //! σ = −√ε·maxᵢ Kᵢᵢ/Mᵢᵢ, one solve u = S b gives the Rayleigh quotient
@@ -28,17 +30,16 @@
 //! invariant subspace found early is left for a fresh M-orthogonal vector).
 
 mod refine;
+mod shifted;
 
 use super::dense::symmetric_eigen_qr;
-use super::inertia::negative_eigenvalues;
 use super::sparse::{diagonal, mul_vec, Triplets};
-use super::vector::{axpy, dot};
+use super::vector::{axpy, dot_long as dot};
 use super::EigenFailure;
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
-use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
-use faer::{Mat, MatMut, Par, Side};
+use faer::sparse::SparseColMat;
+use faer::{Mat, Par};
 use refine::{refine, Refinement};
+use shifted::Shifted;
 
 /// Inverse-iteration steps per trial shift.
 const INVERSE_STEPS: usize = 4;
@@ -108,117 +109,6 @@ pub struct KrylovModes {
     /// Refined only: the largest change of an eigenvalue from the factor's
     /// pencil to the refined one [SI: λ units].
     pub perturbation: f64,
-}
-
-/// The shifted matrix K − σM on a fixed pattern, factored.
-struct Shifted {
-    symbolic: SymbolicSparseColMat<usize>,
-    argsort: faer::sparse::Argsort<usize>,
-    k_values: Vec<f64>,
-    m_values: Vec<f64>,
-    llt: Option<SymbolicLlt<usize>>,
-    factor: Factor,
-}
-
-enum Factor {
-    None,
-    Llt(Llt<usize, f64>),
-    Lu(Box<Lu<usize, f64>>),
-}
-
-impl Shifted {
-    fn new(k: &Triplets, m: &Triplets) -> Result<Self, EigenFailure> {
-        let n = k.nrows();
-        let mut pairs: Vec<Pair<usize, usize>> = Vec::with_capacity(k.len() + m.len());
-        let (mut k_values, mut m_values) = (Vec::new(), Vec::new());
-        for (i, j, v) in k.entries() {
-            pairs.push(Pair { row: i, col: j });
-            k_values.push(v);
-            m_values.push(0.0);
-        }
-        for (i, j, v) in m.entries() {
-            pairs.push(Pair { row: i, col: j });
-            k_values.push(0.0);
-            m_values.push(v);
-        }
-        let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
-            .map_err(|_| EigenFailure::Factorization)?;
-        Ok(Shifted {
-            symbolic,
-            argsort,
-            k_values,
-            m_values,
-            llt: None,
-            factor: Factor::None,
-        })
-    }
-
-    /// K − σM on the common pattern.
-    fn matrix(&self, sigma: f64) -> Result<SparseColMat<usize, f64>, EigenFailure> {
-        let values: Vec<f64> = self
-            .k_values
-            .iter()
-            .zip(&self.m_values)
-            .map(|(k, m)| k - sigma * m)
-            .collect();
-        SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &values)
-            .map_err(|_| EigenFailure::Factorization)
-    }
-
-    /// How many eigenvalues of the pencil lie below σ (Sylvester's
-    /// inertia of K − σM); σ is nudged up when it hits one exactly.
-    fn count_below(&self, sigma: f64) -> Result<usize, EigenFailure> {
-        let mut s = sigma;
-        for _ in 0..4 {
-            match negative_eigenvalues(self.matrix(s)?.as_ref()) {
-                Ok(count) => return Ok(count),
-                Err(_) => s += 1e-9 * s.abs().max(f64::MIN_POSITIVE),
-            }
-        }
-        Err(EigenFailure::Factorization)
-    }
-
-    fn factor(&mut self, sigma: f64) -> Result<(), EigenFailure> {
-        let a = self.matrix(sigma)?;
-        if self.llt.is_none() {
-            self.llt = Some(
-                SymbolicLlt::try_new(a.symbolic(), Side::Lower)
-                    .map_err(|_| EigenFailure::Factorization)?,
-            );
-        }
-        let symbolic = self.llt.clone().expect("symbolic factorization");
-        self.factor = match Llt::try_new_with_symbolic(symbolic, a.as_ref(), Side::Lower) {
-            Ok(l) => Factor::Llt(l),
-            Err(_) => {
-                let s =
-                    SymbolicLu::try_new(a.symbolic()).map_err(|_| EigenFailure::Factorization)?;
-                Factor::Lu(Box::new(
-                    Lu::try_new_with_symbolic(s, a.as_ref())
-                        .map_err(|_| EigenFailure::Factorization)?,
-                ))
-            }
-        };
-        Ok(())
-    }
-
-    /// Solves for every column of `x` in place.
-    fn solve_block(&self, x: MatMut<'_, f64>) {
-        match &self.factor {
-            Factor::Llt(l) => l.solve_in_place(x),
-            Factor::Lu(l) => l.solve_in_place(x),
-            Factor::None => unreachable!("solve before factor"),
-        }
-    }
-
-    fn solve(&self, x: &mut [f64]) {
-        let n = x.len();
-        let col = MatMut::from_column_major_slice_mut(x, n, 1);
-        match &self.factor {
-            Factor::Llt(l) => l.solve_in_place(col),
-            Factor::Lu(l) => l.solve_in_place(col),
-            Factor::None => unreachable!("solve before factor"),
-        }
-    }
 }
 
 /// The pencil, its shifted factor and the deflation space.
@@ -309,8 +199,8 @@ fn modes(
     } else {
         wanted_out
     };
-    let k_csc = k.to_sparse();
-    let m_csc = m.to_sparse();
+    let shifted = Shifted::new(k, m, products.is_some())?;
+    let m_csc = shifted.mass();
     let md = diagonal(&m_csc);
     if let Some(i) = md.iter().position(|&v| !(v > 0.0 && v.is_finite())) {
         let mut direction = vec![0.0; n];
@@ -330,7 +220,7 @@ fn modes(
             perturbation: 0.0,
         });
     }
-    let kd = diagonal(&k_csc);
+    let kd = diagonal(&shifted.matrix(0.0)?);
     let lmax = kd
         .iter()
         .zip(&md)
@@ -346,7 +236,7 @@ fn modes(
         .collect();
     let mut op = Operator {
         m: &m_csc,
-        shifted: Shifted::new(k, m)?,
+        shifted,
         z: deflate.to_vec(),
         mz,
         scratch: vec![0.0; n],
