@@ -45,14 +45,20 @@ def add_flexible_body(
     body: Any,
     position: Tuple[float, float, float] = (0.0, 0.0, 0.0),
     clamp: Sequence[int] = (),
+    hold_slope_length: bool = False,
 ) -> Dict[str, Any]:
     """Adds ``body`` (an ``ancf_modal.ReducedBody``) to the Exudyn system ``mbs``.
 
     ``position`` [m] is the frame's reference position: node positions are
     the model's, so (0, 0, 0) puts the body where the model has it.
     ``clamp`` lists interface points (indices into the body's interface)
-    to weld to the ground: the interface node and its virtual node are
-    each held in x and y (position and slope of the beam there). A body
+    to weld to the ground, as ancf-modal's weld joint does: the interface
+    node is held in x and y, and its virtual node across the beam (the
+    slope's direction; a distance constraint to a ground point 1 m away
+    along the beam's normal, which holds the normal displacement in the
+    linearization), so the beam may still stretch there. With
+    ``hold_slope_length`` the virtual node is held in x and y too (the
+    whole slope: no axial strain at the point). A body
     reduced with ``keep_supports`` carries its supports in its basis and
     no rigid motion on its frame: its frame is fixed to the ground.
 
@@ -128,17 +134,34 @@ def add_flexible_body(
         )
     if clamp:
         ground = mbs.AddObject(eii.ObjectGround())
+    def ground_at(point: np.ndarray) -> Any:
+        at = np.asarray(position, dtype=float) + point
+        return mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=ground, localPosition=list(at)))
+
+    def body_at(node: int) -> Any:
+        return mbs.AddMarker(
+            eii.MarkerSuperElementPosition(
+                bodyNumber=obj, meshNodeNumbers=[node], weightingFactors=[1.0]
+            )
+        )
+
     for index in clamp:
-        for node in interface_nodes[index]:
-            at = np.asarray(position, dtype=float) + positions[node]
-            mg = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=ground, localPosition=list(at)))
-            mn = mbs.AddMarker(
-                eii.MarkerSuperElementPosition(
-                    bodyNumber=obj, meshNodeNumbers=[node], weightingFactors=[1.0]
+        node, virtual = interface_nodes[index]
+        held = (node, virtual) if hold_slope_length else (node,)
+        for k in held:
+            mbs.AddObject(
+                eii.ObjectJointSpherical(
+                    markerNumbers=[ground_at(positions[k]), body_at(k)], constrainedAxes=[1, 1, 0]
                 )
             )
+        if not hold_slope_length:
+            tangent = positions[virtual] - positions[node]
+            normal = np.array([-tangent[1], tangent[0], 0.0]) / np.linalg.norm(tangent)
             mbs.AddObject(
-                eii.ObjectJointSpherical(markerNumbers=[mg, mn], constrainedAxes=[1, 1, 0])
+                eii.ObjectConnectorDistance(
+                    markerNumbers=[ground_at(positions[virtual] + normal), body_at(virtual)],
+                    distance=1.0,
+                )
             )
     return {
         "object": obj,

@@ -13,8 +13,8 @@
 //!   elastic modes on both sides.
 //! - Free-interface (built free): the first interface point held (its four
 //!   coordinates, position and slope: a weld to the ground that also fixes
-//!   the slope's length, as two ground joints on the node and its virtual
-//!   node do in Exudyn).
+//!   the slope's length, as `add_flexible_body(..., hold_slope_length=True)`
+//!   does in Exudyn with two ground joints on the node and its virtual node).
 //!
 //! The reduced model is the body's motions q = [R Ψ] η with its mass
 //! [R Ψ]ᵀ M [R Ψ] and, as the multibody code's floating frame has it, the
