@@ -88,7 +88,8 @@ fn a_compressed_strip_s_rotation_is_softened_and_signed() {
     );
     let quotient = -12.0 * p / (7850.0 * 5e-3 * 5e-4 * 0.25);
     let k = rigid_stiffening(&r.system, &r.linearization(), &r.reduction);
-    assert!((k / quotient - 1.0).abs() < 1e-3, "RᵀKR {k} vs {quotient}");
+    // Within the stretch P/EA = 4e-7 and round-off.
+    assert!((k / quotient - 1.0).abs() < 1e-5, "RᵀKR {k} vs {quotient}");
     let c = &r.document.output.check;
     assert_eq!(c.frame_hz.len(), 1, "{:?}", c.frame_hz);
     let f = c.frame_hz[0];
