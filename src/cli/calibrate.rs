@@ -251,6 +251,14 @@ fn run_transient(args: &CalibrateArgs, input: &ModelInput) -> Result<Warnings> {
         balance: args.balance.clone(),
         tolerance_s: args.tolerance,
         max_evaluations: args.max_evaluations as usize,
+        step: args
+            .experiment
+            .step
+            .unwrap_or(CalibrateTransientRequest::default().step),
+        end_time: args
+            .experiment
+            .end_time
+            .unwrap_or(CalibrateTransientRequest::default().end_time),
         ..CalibrateTransientRequest::default()
     };
     let run = run(input, &request).map_err(|e| match e {

@@ -22,12 +22,12 @@ pub struct ExperimentArgs {
     /// Pulse duration tF [s] (default: the model's, 1e-4 s).
     #[arg(long, value_name = "S", allow_hyphen_values = true, value_parser = super::values::positive)]
     pub duration: Option<f64>,
-    /// End time [s].
-    #[arg(long, value_name = "S", default_value_t = ImpulseRequest::default().end_time, allow_hyphen_values = true, value_parser = super::values::positive)]
-    pub end_time: f64,
-    /// Time step [s].
-    #[arg(long, value_name = "S", default_value_t = ImpulseRequest::default().step, allow_hyphen_values = true, value_parser = super::values::positive)]
-    pub step: f64,
+    /// End time [s] (default: 0.1 s; `calibrate --quantity`/`--trajectory`: the switch-off's 0.003 s).
+    #[arg(long, value_name = "S", allow_hyphen_values = true, value_parser = super::values::positive)]
+    pub end_time: Option<f64>,
+    /// Time step [s] (default: 1e-6 s).
+    #[arg(long, value_name = "S", allow_hyphen_values = true, value_parser = super::values::positive)]
+    pub step: Option<f64>,
     /// Spectral radius at infinity of generalized-α (1 = no numerical damping).
     #[arg(long, value_name = "R", default_value_t = ImpulseRequest::default().spectral_radius, allow_hyphen_values = true, value_parser = super::values::unit_interval)]
     pub spectral_radius: f64,
@@ -55,8 +55,8 @@ impl ExperimentArgs {
         ImpulseRequest {
             amplitude: self.amplitude,
             duration: self.duration,
-            end_time: self.end_time,
-            step: self.step,
+            end_time: self.end_time.unwrap_or(ImpulseRequest::default().end_time),
+            step: self.step.unwrap_or(ImpulseRequest::default().step),
             spectral_radius: self.spectral_radius,
             sample_rate: self.sample_rate,
             sensor: self.sensor.clone(),
