@@ -390,6 +390,8 @@ pub enum SimulationError {
     /// validation.
     #[error("the model with every beam rigid")]
     RigidModel(#[source] Box<InvalidModel>),
+    #[error("the time integration diverged before the tracked point reached its distance: run again up to {time_s:e} s, its energy balance misses by {fraction:.3e} times the energy put in (a sound run: below 1e-2)")]
+    Unsound { time_s: f64, fraction: f64 },
     #[error("joint `{joint}` is a released support: it lets go of the static equilibrium's hold, so the run must start from the static equilibrium")]
     ReleaseNeedsEquilibrium { joint: String },
 }

@@ -130,9 +130,9 @@ fn fit_documents_conform() {
             "--quantity",
             "time_to_distance_s",
             "--target",
-            "0.82e-3",
+            "1.8e-3",
             "--param",
-            "springs[helical_spring].a.ground[1]=0.0019847:0.0039847",
+            "springs[helical_spring].a.ground[1]=-0.001:0.001",
             "--json",
         ]),
     );

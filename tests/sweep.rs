@@ -521,10 +521,13 @@ fn switch_off_sweeps_carry_node0_traces_that_cross_2_mm_at_their_time() {
         let (t0, t1) = (trace.time_s[k - 1], trace.time_s[k]);
         let x = trace.x_m[k - 1] + (t - t0) / (t1 - t0) * (trace.x_m[k] - trace.x_m[k - 1]);
         let travel = x - trace.x_m[0];
-        // Between samples 15 µs apart x(t) is nearly linear: the
-        // interpolation's error is ~ẍ Δt²/8 ≈ 1e-7 m.
+        // Between samples 15 µs apart the interpolation's error is about
+        // ẍΔt²/8, ẍΔt² the trace's second difference there (large where
+        // the pin strikes its slot): twice that, and 1e-7 m.
+        let second = |j: usize| (trace.x_m[j + 1] - 2.0 * trace.x_m[j] + trace.x_m[j - 1]).abs();
+        let bound = 2.0 * second(k - 1).max(second(k)) / 8.0 + 1e-7;
         assert!(
-            (travel - 2e-3).abs() < 1e-6,
+            (travel - 2e-3).abs() < bound,
             "point {}: node 0 travelled {travel:.6e} m at its time {t:.6e} s, not 2 mm",
             p.index
         );

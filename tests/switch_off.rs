@@ -161,11 +161,14 @@ fn switch_off_json_has_the_designed_keys() {
         .find(|&k| (fy[k] - ry[k]).abs() > 0.05 * 2e-3)
         .unwrap();
     assert_eq!(doc["node0"]["time_s"][k].as_f64().unwrap(), in_y);
-    assert_eq!(
-        doc["calibrated"],
-        json!([]),
-        "the built-in run is a prediction"
-    );
+    // One number of the built-in model is a fit, where F_x² acts, and the
+    // document says so with its value in the model.
+    let model = ancf_modal::Model::switch_off_builtin();
+    let calibrated = doc["calibrated"].as_array().unwrap();
+    assert_eq!(calibrated.len(), 1, "{calibrated:?}");
+    assert_eq!(calibrated[0]["name"], "loads[0].at.s");
+    assert_eq!(calibrated[0]["value"].as_f64(), model.loads[0].at.s);
+    assert!(doc["uncalibrated"]["time_to_distance_s"].is_number());
     assert!(doc["paper"]["time_to_distance_s"].is_number());
     assert_eq!(doc["tracked_point"], "node 0 of blade");
     // Contact forces and the released load at the sample times.

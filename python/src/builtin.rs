@@ -2,9 +2,13 @@
 
 /// (file stem, JSON text) of every file in `models/`; the Python suite
 /// checks that the list is complete.
-pub const MODELS: [(&str, &str); 5] = [
+pub const MODELS: [(&str, &str); 6] = [
     ("rcbo_free_free", ancf::model::DEFAULT_MODEL_JSON),
     ("rcbo_switch_off", ancf::model::SWITCH_OFF_MODEL_JSON),
+    (
+        "rcbo_switch_off_uncalibrated",
+        ancf::model::SWITCH_OFF_UNCALIBRATED_MODEL_JSON,
+    ),
     (
         "rcbo_prestressed",
         include_str!("../../models/rcbo_prestressed.json"),

@@ -148,7 +148,7 @@ impl PyModel {
     /// A model shipped with the package, by the file stem of `models/`:
     /// `rcbo_free_free` (the paper's free-free assembly, the command line's
     /// built-in model), `rcbo_prestressed`, `rcbo_switch_off`,
-    /// `beam_free_free`, `cantilever`.
+    /// `rcbo_switch_off_uncalibrated`, `beam_free_free`, `cantilever`.
     #[staticmethod]
     #[pyo3(signature = (name = "rcbo_free_free"))]
     fn builtin(py: Python<'_>, name: &str) -> PyResult<PyModel> {

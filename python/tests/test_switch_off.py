@@ -1,6 +1,8 @@
 """Model.switch_off against its own samples, the energy balance and the
 command line."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -27,8 +29,20 @@ def test_the_tracked_point_travels_the_distance_at_the_reported_time(run):
 
 def test_energy_balance(run):
     energy = run.to_dict()["energy"]
-    # README: the balance error is 8e-6 of the stored energy.
-    assert abs(energy["error_j"]) < 1e-4 * energy["stored_j"]
+    # README: the balance error is 3.3e-4 of the stored energy (the pin's
+    # impacts each add theirs), under the 1e-3 a warning starts at.
+    assert abs(energy["error_j"]) < 1e-3 * energy["stored_j"]
+
+
+def test_one_number_is_calibrated_and_the_uncalibrated_time_is_beside_it(run):
+    doc = run.to_dict()
+    model = json.loads(ancf_modal.Model.builtin("rcbo_switch_off").to_json())
+    assert doc["calibrated"] == model["calibrated"]
+    assert [c["name"] for c in doc["calibrated"]] == ["loads[0].at.s"]
+    assert doc["calibrated"][0]["value"] == model["loads"][0]["at"]["s"]
+    assert run.time_to_distance_s == pytest.approx(1.75e-3, rel=1e-4)
+    tip = ancf_modal.Model.builtin("rcbo_switch_off_uncalibrated").switch_off(no_step_check=True)
+    assert doc["uncalibrated"]["time_to_distance_s"] == tip.time_to_distance_s
 
 
 def test_equals_the_command_line(cli, run):
@@ -55,7 +69,8 @@ def test_bad_point_names_the_argument(cli):
 def test_fig10_equals_the_command_line(cli):
     """The paper's Fig. 10 study (`switch-off --fig10`): the same rows from
     Python as from the command line, and the combined ratio the combined
-    time over the reference's (a prediction; nothing calibrated)."""
+    time over the reference's (a prediction of the model whose F_x² point
+    is calibrated)."""
     run = ancf_modal.Model.builtin("rcbo_switch_off").switch_off(no_step_check=True, fig10=True)
     doc = cli.json("switch-off", "models/rcbo_switch_off.json", "--no-step-check", "--fig10")
     study = run.fig10
@@ -69,7 +84,7 @@ def test_fig10_equals_the_command_line(cli):
         rows[-1]["time_to_distance_s"] / rows[0]["time_to_distance_s"], rel=1e-12
     )
     assert study["paper_combined_ratio"] == pytest.approx(1 / 3)
-    assert study["calibrated"] == []
+    assert study["calibrated"] == run.to_dict()["calibrated"] != []
     # Without the flag there is no study.
     assert ancf_modal.Model.builtin("rcbo_switch_off").switch_off(
         no_step_check=True, end_time=1e-4

@@ -286,19 +286,23 @@ mod tests {
     use super::*;
     use crate::model::Model;
 
-    /// The built-in model's preload (24.06 N compression) was set from this
-    /// balance with the measured F_c = 2.92 N (its description).
+    /// The built-in model's preload (11.06 N compression) was set from this
+    /// balance with the measured F_c = 2.92 N (its description), and so was
+    /// its uncalibrated companion's (36.47 N, F_x² at the tip).
     #[test]
     fn builtin_preload_is_the_balance_with_the_measured_contact_force() {
-        let m = Model::switch_off_builtin();
-        let p = balanced_preload(&m, "helical_spring", "fixed_contact", 2.92).unwrap();
-        let f = balance_contact_force(&m, "helical_spring", "fixed_contact").unwrap();
-        assert!((p + 24.06).abs() < 0.05, "preload {p}, contact force {f}");
-        assert!((f - 2.92).abs() < 0.01, "contact force {f}");
-        let mut moved = m.to_model();
-        moved.springs[0].a.ground = Some([0.0, 0.0]);
-        let moved = moved.validated().unwrap();
-        let p = balanced_preload(&moved, "helical_spring", "fixed_contact", 2.92).unwrap();
-        assert!((p + 36.47).abs() < 0.1, "preload {p}");
+        for (m, preload) in [
+            (Model::switch_off_builtin(), -11.06),
+            (Model::switch_off_uncalibrated_builtin(), -36.47),
+        ] {
+            let p = balanced_preload(&m, "helical_spring", "fixed_contact", 2.92).unwrap();
+            let f = balance_contact_force(&m, "helical_spring", "fixed_contact").unwrap();
+            assert!(
+                (p - preload).abs() < 0.005,
+                "{}: preload {p}, contact force {f}",
+                m.name
+            );
+            assert!((f - 2.92).abs() < 1e-3, "{}: contact force {f}", m.name);
+        }
     }
 }

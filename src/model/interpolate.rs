@@ -36,10 +36,17 @@ impl Model {
     /// designs of one assembly (they differ in more than real numbers).
     pub fn path_to(&self, to: &ValidModel) -> Option<DesignPath> {
         let mut from = serde_json::to_value(self).expect("models serialize");
-        let to_json = serde_json::to_value(&**to).expect("models serialize");
+        let mut to_json = serde_json::to_value(&**to).expect("models serialize");
         for key in FREE_TEXT {
             if let (Some(slot), Some(v)) = (from.get_mut(key), to_json.get(key)) {
                 slot.clone_from(v);
+            }
+        }
+        // What was calibrated is a record about a design, not a number of
+        // it: the designs along the path carry none.
+        for json in [&mut from, &mut to_json] {
+            if let Some(o) = json.as_object_mut() {
+                o.remove("calibrated");
             }
         }
         same_structure(&from, &to_json).then(|| DesignPath {

@@ -4,6 +4,7 @@
 //! Reading a model gives a [`ValidModel`], the only kind of model a
 //! [`crate::System`] is built from ([`valid`]).
 
+pub mod calibrated;
 mod contact;
 mod interpolate;
 pub mod number;
@@ -18,6 +19,7 @@ mod types;
 pub mod valid;
 pub mod validate;
 
+pub use calibrated::Calibrated;
 pub use contact::*;
 pub use interpolate::DesignPath;
 pub use placement::Placement;
@@ -36,6 +38,9 @@ pub const DEFAULT_MODEL_JSON: &str = include_str!("../../models/rcbo_free_free.j
 /// The paper's switch-off assembly (pre-stressed ON state, contacts),
 /// embedded in the binary: the default of `switch-off`.
 pub const SWITCH_OFF_MODEL_JSON: &str = include_str!("../../models/rcbo_switch_off.json");
+/// The built-in switch-off assembly before its calibration.
+pub const SWITCH_OFF_UNCALIBRATED_MODEL_JSON: &str =
+    include_str!("../../models/rcbo_switch_off_uncalibrated.json");
 
 impl Model {
     /// Parse and validate a model from JSON text.
@@ -106,6 +111,13 @@ impl Model {
     pub fn switch_off_builtin() -> ValidModel {
         Model::from_json(SWITCH_OFF_MODEL_JSON, Source::BuiltIn)
             .expect("the built-in switch-off model is valid")
+    }
+
+    /// The built-in switch-off assembly before its calibration (F_x² at
+    /// the blade tip; its description says what else follows from that).
+    pub fn switch_off_uncalibrated_builtin() -> ValidModel {
+        Model::from_json(SWITCH_OFF_UNCALIBRATED_MODEL_JSON, Source::BuiltIn)
+            .expect("the built-in uncalibrated switch-off model is valid")
     }
 
     /// The JSON Schema of the model file, generated from these serde types

@@ -85,6 +85,14 @@ pub enum UnitWarning {
         reference: String,
         ratio: f64,
     },
+    #[error("calibrated[{index}]: `{name}` was calibrated to {value:e} ({target}), but the model has {}: it is no longer the calibrated model, and the record is left out of the outputs", now.map_or(String::from("no number there"), |v| format!("{v:e}")))]
+    StaleCalibration {
+        index: usize,
+        name: String,
+        value: f64,
+        target: String,
+        now: Option<f64>,
+    },
     #[error("{path}: the spring is {} m long at the reference, {} times the {part_size} of {part} it holds: are all its points in metres?", significant(*length, 3), significant(*ratio, 3))]
     SpringLength {
         /// The spring (`springs[0]`).
@@ -152,6 +160,17 @@ impl Model {
             }
         }
         warnings.extend(self.size_warnings());
+        warnings.extend(
+            self.stale_calibrations()
+                .into_iter()
+                .map(|(index, r, now)| UnitWarning::StaleCalibration {
+                    index,
+                    name: r.name,
+                    value: r.value,
+                    target: r.target,
+                    now,
+                }),
+        );
         warnings
     }
 

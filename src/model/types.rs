@@ -42,6 +42,10 @@ pub struct Model {
     /// Rayleigh damping C = αM + βK of the whole assembly.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub damping: Option<RayleighDamping>,
+    /// What was calibrated to make this model (written by `calibrate`; see
+    /// [`super::calibrated`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub calibrated: Vec<super::Calibrated>,
 }
 
 /// A straight, stress-free ANCF cable beam in its reference configuration.

@@ -23,8 +23,13 @@ fn parameter_row(s: &mut String, p: &FittedParameter, bounds: bool) {
     };
     let _ = writeln!(
         s,
-        "  {:<24} {:>13.6e} {:>15.9e} {:>+10.4}  {:<8} {range}",
-        p.name, p.initial, p.fitted, p.change_percent, p.unit
+        "  {:<24} {:>13.6e} {:>15.9e} {:>10}  {:<8} {range}",
+        p.name,
+        p.initial,
+        p.fitted,
+        p.change_percent
+            .map_or_else(|| String::from("—"), |c| format!("{c:+.4}")),
+        p.unit
     );
 }
 

@@ -74,7 +74,16 @@ pub fn switch_off_table(r: &SwitchOffResult) -> String {
         );
     }
     let flexible = r.flexible.time_to_distance_s;
-    let _ = writeln!(s, "{:<34}{:>16}", "this tool, flexible", ms(flexible));
+    let fitted = r
+        .calibrated
+        .iter()
+        .any(|c| c.target.starts_with("time_to_distance_s"));
+    let label = if fitted {
+        "this tool, flexible (calibrated)"
+    } else {
+        "this tool, flexible"
+    };
+    let _ = writeln!(s, "{label:<34}{:>16}", ms(flexible));
     if flexible.is_none() {
         let _ = writeln!(s, "{}", short_of_distance(r));
     }
@@ -88,6 +97,15 @@ pub fn switch_off_table(r: &SwitchOffResult) -> String {
             "{:<34}{:>16}{change}",
             "this tool, flexible, half step",
             ms(Some(h))
+        );
+    }
+    if let Some(u) = &r.uncalibrated {
+        let _ = writeln!(
+            s,
+            "{:<34}{:>16} (a prediction: model {}, F_x² at the blade tip)",
+            "this tool, uncalibrated",
+            ms(u.time_to_distance_s),
+            u.model
         );
     }
     if let Some(rigid) = &r.rigid {

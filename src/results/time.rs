@@ -7,7 +7,7 @@ use crate::analysis::impulse::{Excitation, ImpulseResult};
 use crate::analysis::simulate::{EnergyBalance, Simulation, SimulationSettings};
 use crate::analysis::statics::start::Start;
 use crate::analysis::statics::Branch;
-use crate::analysis::switch_off::{Calibrated, SwitchOffResult, SwitchOffRun};
+use crate::analysis::switch_off::{Calibrated, SwitchOffResult, SwitchOffRun, Uncalibrated};
 use crate::analysis::switch_off_study::SwitchOffStudy;
 use crate::analysis::transient::contacts::ContactStats;
 use crate::model::reference::Errors;
@@ -337,6 +337,9 @@ pub struct SwitchOffOutput {
     pub tracked_point: String,
     /// Parameters calibrated in the model (empty: a prediction).
     pub calibrated: Vec<Calibrated>,
+    /// The built-in model's uncalibrated companion (F_x² at the blade tip)
+    /// and its time, a prediction beside the fit; null for other models.
+    pub uncalibrated: Option<Uncalibrated>,
     /// The analysis's warnings (the provenance block's list starts with them).
     pub warnings: Vec<String>,
     /// Travel distance of the tracked point [m].
@@ -374,6 +377,7 @@ impl SwitchOffOutput {
             model: r.model.clone(),
             tracked_point: r.point_label.clone(),
             calibrated: r.calibrated.clone(),
+            uncalibrated: r.uncalibrated.clone(),
             warnings: r.warnings.clone(),
             distance_m: r.settings.distance,
             direction: r.settings.direction,

@@ -122,8 +122,13 @@ pub struct FittedParameter {
     pub lower: f64,
     /// Upper bound of the search [SI, `unit`].
     pub upper: f64,
-    /// (fitted − initial)/initial × 100.
-    pub change_percent: f64,
+    /// (fitted − initial)/initial × 100; null when the initial value is 0.
+    pub change_percent: Option<f64>,
+}
+
+/// (fitted − initial)/initial × 100, `None` from an initial 0.
+pub fn change_percent(initial: f64, fitted: f64) -> Option<f64> {
+    (initial != 0.0).then(|| 100.0 * (fitted - initial) / initial)
 }
 
 /// One evaluation of the model.
@@ -274,7 +279,7 @@ pub fn calibrate_with(
             fitted: v,
             lower: p.lower,
             upper: p.upper,
-            change_percent: 100.0 * (v - p.initial) / p.initial,
+            change_percent: change_percent(p.initial, v),
         })
         .collect();
     let sensitivities_hz = e_fit
@@ -643,7 +648,7 @@ fn derived(set: &ParameterSet, fitted: &Model) -> Vec<FittedParameter> {
                 fitted: r,
                 lower: r,
                 upper: r,
-                change_percent: 100.0 * (r - r0) / r0,
+                change_percent: change_percent(r0, r),
             });
         }
     }

@@ -353,7 +353,19 @@ pub fn calibrate_transient(
             )
         }
     };
-    let fitted_model = runs.model(&values)?;
+    // The fitted model says what was fitted (model::calibrated).
+    let fitted_model = runs
+        .model(&values)?
+        .into_model()
+        .with_calibrations(&calibrated)
+        .validated()
+        .map_err(|e| TransientFitError::Point {
+            at: String::from("the fitted model"),
+            source: PointError::Invalid {
+                path: e.path,
+                problem: e.problem,
+            },
+        })?;
     let times = |values: &[f64], runs: &mut Runs| runs.run(values).map(|r| r.time_to_distance_s);
     let initial = runs.resolved.initial.clone();
     let initial_time_s = times(&initial, &mut runs)?;
@@ -381,7 +393,7 @@ pub fn calibrate_transient(
             fitted: values[k],
             lower: r.lower[k],
             upper: r.upper[k],
-            change_percent: 100.0 * (values[k] - r.initial[k]) / r.initial[k],
+            change_percent: super::change_percent(r.initial[k], values[k]),
         })
         .collect();
     Ok(TransientCalibration {

@@ -161,7 +161,7 @@ impl IdentifyRun {
                 "equivalent geometry: {} = {:.4} mm ({:+.2} % on {:.4} mm) gives {:.3} Hz (eigenvalue, {} evaluations)",
                 p.name,
                 1e3 * p.fitted,
-                p.change_percent,
+                p.change_percent.unwrap_or(f64::NAN),
                 1e3 * p.initial,
                 achieved_hz,
                 c.result.evaluations

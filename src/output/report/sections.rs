@@ -95,10 +95,28 @@ pub fn has_release(model: &Model) -> bool {
 /// forces and released loads, and the trajectory).
 pub fn switch_off_section(r: &SwitchOffResult, study: Option<&SwitchOffStudy>) -> Section {
     let ms = |t: Option<f64>| t.map_or("not reached".to_string(), |t| format!("{:.4} ms", t * 1e3));
+    let fitted = r
+        .calibrated
+        .iter()
+        .any(|c| c.target.starts_with("time_to_distance_s"));
     let mut rows = vec![vec![
-        "this model, flexible".to_string(),
+        if fitted {
+            "this model, flexible (calibrated)"
+        } else {
+            "this model, flexible"
+        }
+        .to_string(),
         ms(r.flexible.time_to_distance_s),
     ]];
+    if let Some(u) = &r.uncalibrated {
+        rows.push(vec![
+            format!(
+                "uncalibrated ({}, F_x² at the blade tip; a prediction)",
+                u.model
+            ),
+            ms(u.time_to_distance_s),
+        ]);
+    }
     if let Some(rigid) = &r.rigid {
         rows.push(vec![
             "this model, rigid beams".into(),
