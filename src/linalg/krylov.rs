@@ -113,8 +113,7 @@ pub struct KrylovModes {
 
 /// The pencil, its shifted factor and the deflation space.
 struct Operator<'a> {
-    m: &'a SparseColMat<usize, f64>,
-    shifted: Shifted,
+    shifted: Shifted<'a>,
     /// Z and M Z (M-orthonormal deflation vectors).
     z: Vec<Vec<f64>>,
     mz: Vec<Vec<f64>>,
@@ -122,12 +121,17 @@ struct Operator<'a> {
 }
 
 impl Operator<'_> {
+    /// M (on the factor's pattern).
+    fn m(&self) -> &SparseColMat<usize, f64> {
+        self.shifted.mass()
+    }
+
     /// Adds M-orthonormal vectors to the deflated space.
     fn deflate_also(&mut self, vectors: &Mat<f64>) {
         for c in 0..vectors.ncols() {
             let z = vectors.col_as_slice(c).to_vec();
             let mut mz = vec![0.0; z.len()];
-            mul_vec(self.m, &z, &mut mz);
+            mul_vec(self.shifted.mass(), &z, &mut mz);
             self.z.push(z);
             self.mz.push(mz);
         }
@@ -143,13 +147,13 @@ impl Operator<'_> {
 
     /// out = S x = (K − σM)⁻¹ M x, deflated.
     fn apply(&mut self, x: &[f64], out: &mut [f64]) {
-        mul_vec(self.m, x, out);
+        mul_vec(self.shifted.mass(), x, out);
         self.shifted.solve(out);
         self.deflate(out);
     }
 
     fn m_dot(&mut self, x: &[f64], y: &[f64]) -> f64 {
-        mul_vec(self.m, x, &mut self.scratch);
+        mul_vec(self.shifted.mass(), x, &mut self.scratch);
         dot(&self.scratch, y)
     }
 }
@@ -162,7 +166,7 @@ pub fn lowest_modes(
     deflate: &[Vec<f64>],
     settings: &KrylovSettings,
 ) -> Result<KrylovModes, EigenFailure> {
-    modes(k, m, deflate, settings, None)
+    modes(&k.to_sparse(), &m.to_sparse(), deflate, settings, None)
 }
 
 /// [`lowest_modes`], then refined with precise products K x: the factor
@@ -175,8 +179,8 @@ pub fn lowest_modes(
 /// the pencil's own modes, the factor's error acting only as a
 /// preconditioner's. Residuals are returned in the M⁻¹ norm.
 pub fn lowest_modes_refined(
-    k: &Triplets,
-    m: &Triplets,
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
     deflate: &[Vec<f64>],
     settings: &KrylovSettings,
     products: &StiffnessProducts,
@@ -185,8 +189,8 @@ pub fn lowest_modes_refined(
 }
 
 fn modes(
-    k: &Triplets,
-    m: &Triplets,
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
     deflate: &[Vec<f64>],
     settings: &KrylovSettings,
     products: Option<&StiffnessProducts>,
@@ -200,8 +204,7 @@ fn modes(
         wanted_out
     };
     let shifted = Shifted::new(k, m, products.is_some())?;
-    let m_csc = shifted.mass();
-    let md = diagonal(&m_csc);
+    let md = diagonal(shifted.mass());
     if let Some(i) = md.iter().position(|&v| !(v > 0.0 && v.is_finite())) {
         let mut direction = vec![0.0; n];
         direction[i] = 1.0;
@@ -220,7 +223,7 @@ fn modes(
             perturbation: 0.0,
         });
     }
-    let kd = diagonal(&shifted.matrix(0.0)?);
+    let kd = diagonal(shifted.stiffness());
     let lmax = kd
         .iter()
         .zip(&md)
@@ -230,12 +233,11 @@ fn modes(
         .iter()
         .map(|z| {
             let mut out = vec![0.0; n];
-            mul_vec(&m_csc, z, &mut out);
+            mul_vec(shifted.mass(), z, &mut out);
             out
         })
         .collect();
     let mut op = Operator {
-        m: &m_csc,
         shifted,
         z: deflate.to_vec(),
         mz,
@@ -288,14 +290,17 @@ fn modes(
                 factorizations,
             },
             values.clone(),
-            vectors.clone(),
+            vectors,
         )?;
         if refined.values.len() == wanted_out && refined.residuals.iter().all(|b| b.is_finite()) {
             return Ok(refined);
         }
         // The block lost directions, or a mode has no other mode to take a
         // gap to (a small problem whose wanted and guard modes fill it):
-        // Lanczos' own result, certified below.
+        // Lanczos' own result (computed again, the same: its vectors were
+        // the refinement's start, not kept beside it on a large model),
+        // certified below.
+        (values, vectors, steps) = lanczos(&mut op, &u, wanted, sigma, settings)?;
     }
     let wanted = wanted_out;
     values.truncate(wanted);
@@ -380,7 +385,7 @@ fn lanczos(
         op.deflate(&mut w);
         let mut b2 = 0.0;
         for pass in 0..2 {
-            mul_vec(op.m, &w, &mut mw);
+            mul_vec(op.shifted.mass(), &w, &mut mw);
             let coefs: Vec<f64> = basis.iter().map(|q| dot(q, &mw)).collect();
             if pass == 0 {
                 a = *coefs.last().expect("basis not empty");
@@ -413,7 +418,7 @@ fn lanczos(
                 .collect();
             op.deflate(&mut fresh);
             for _ in 0..2 {
-                mul_vec(op.m, &fresh, &mut mw);
+                mul_vec(op.shifted.mass(), &fresh, &mut mw);
                 let coefs: Vec<f64> = basis.iter().map(|q| dot(q, &mw)).collect();
                 for (q, c) in basis.iter().zip(&coefs) {
                     axpy(-c, q, &mut fresh);
