@@ -59,6 +59,7 @@ use crate::linalg::vector::{argmax_abs, dot};
 use crate::linalg::{EigenFailure, Triplets};
 use crate::system::{EnergyBreakdown, Linearization, System};
 use faer::linalg::solvers::Solve;
+use faer::sparse::SparseColMat;
 use faer::{Mat, Side};
 use serde::Serialize;
 
@@ -390,8 +391,14 @@ impl Elastic {
 
 /// The reduced pencil in one of two storages.
 enum Pencil {
-    Dense { k: Mat<f64>, m: Mat<f64> },
-    Sparse { k: Triplets, m: Triplets },
+    Dense {
+        k: Mat<f64>,
+        m: Mat<f64>,
+    },
+    Sparse {
+        k: SparseColMat<usize, f64>,
+        m: SparseColMat<usize, f64>,
+    },
 }
 
 /// Modal analysis linearized at `at`.
@@ -446,9 +453,18 @@ pub fn modal(
     let z_reduced: Vec<Vec<f64>> = zero.shapes.iter().map(|s| ns.restrict(s)).collect();
     let solve = |sparse: bool| -> Result<Elastic, AnalysisError> {
         let pencil = if sparse {
-            let (mut k, mut m) = (Triplets::new(dim, dim), Triplets::new(dim, dim));
-            system.add_tangent_stiffness(at, &mut Projected::new(&ns, &mut k));
-            system.mass().add_into(&mut Projected::new(&ns, &mut m));
+            // One triplet list at a time, dropped once compressed (the
+            // lists take three times the compressed matrices' memory).
+            let k = {
+                let mut k = Triplets::new(dim, dim);
+                system.add_tangent_stiffness(at, &mut Projected::new(&ns, &mut k));
+                k.to_sparse()
+            };
+            let m = {
+                let mut m = Triplets::new(dim, dim);
+                system.mass().add_into(&mut Projected::new(&ns, &mut m));
+                m.to_sparse()
+            };
             Pencil::Sparse { k, m }
         } else {
             let (mut k, mut m) = (Mat::zeros(dim, dim), Mat::zeros(dim, dim));
@@ -700,12 +716,12 @@ fn error_bounds(
             factor.map(|f| Box::new(move |r: &mut Mat<f64>| f.solve_in_place(r)) as _)
         }
         Pencil::Sparse { k, m } => {
-            let (kc, mc) = (k.to_sparse(), m.to_sparse());
+            let (kc, mc) = (k, m);
             let (mut kx, mut mx) = (vec![0.0; dim], vec![0.0; dim]);
             for (j, &lambda) in values.iter().enumerate() {
                 let x = vectors.col_as_slice(j);
-                mul_vec(&kc, x, &mut kx);
-                mul_vec(&mc, x, &mut mx);
+                mul_vec(kc, x, &mut kx);
+                mul_vec(mc, x, &mut mx);
                 for i in 0..dim {
                     residuals[(i, j)] = kx[i] - lambda * mx[i];
                 }

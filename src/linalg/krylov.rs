@@ -23,7 +23,9 @@
 //! Known zero modes (M-orthonormal columns Z) are deflated: every Krylov
 //! vector is made M-orthogonal to them, so the iteration sees only the
 //! elastic spectrum. Full re-orthogonalization (classical Gram–Schmidt,
-//! twice) in the M inner product; the Ritz problem is solved by
+//! twice, against the whole basis at once: the basis is kept with its M
+//! products, so a pass is two matrix–vector products) in the M inner
+//! product; the Ritz problem is solved by
 //! [`super::dense::symmetric_eigen_qr`]. The basis grows until the wanted
 //! Ritz pairs have residual estimates |βⱼ sⱼᵢ| ≤ tolerance·|θᵢ| (a short
 //! Lanczos, no restarts: shift-invert converges in a few steps per mode; an
@@ -36,8 +38,9 @@ use super::dense::symmetric_eigen_qr;
 use super::sparse::{diagonal, mul_vec, Triplets};
 use super::vector::{axpy, dot_long as dot};
 use super::EigenFailure;
+use faer::linalg::matmul::matmul;
 use faer::sparse::SparseColMat;
-use faer::{Mat, Par};
+use faer::{Accum, Mat, MatMut, MatRef, Par};
 use refine::{refine, Refinement};
 use shifted::Shifted;
 
@@ -113,8 +116,7 @@ pub struct KrylovModes {
 
 /// The pencil, its shifted factor and the deflation space.
 struct Operator<'a> {
-    m: &'a SparseColMat<usize, f64>,
-    shifted: Shifted,
+    shifted: Shifted<'a>,
     /// Z and M Z (M-orthonormal deflation vectors).
     z: Vec<Vec<f64>>,
     mz: Vec<Vec<f64>>,
@@ -122,12 +124,17 @@ struct Operator<'a> {
 }
 
 impl Operator<'_> {
+    /// M (on the factor's pattern).
+    fn m(&self) -> &SparseColMat<usize, f64> {
+        self.shifted.mass()
+    }
+
     /// Adds M-orthonormal vectors to the deflated space.
     fn deflate_also(&mut self, vectors: &Mat<f64>) {
         for c in 0..vectors.ncols() {
             let z = vectors.col_as_slice(c).to_vec();
             let mut mz = vec![0.0; z.len()];
-            mul_vec(self.m, &z, &mut mz);
+            mul_vec(self.shifted.mass(), &z, &mut mz);
             self.z.push(z);
             self.mz.push(mz);
         }
@@ -141,15 +148,8 @@ impl Operator<'_> {
         }
     }
 
-    /// out = S x = (K − σM)⁻¹ M x, deflated.
-    fn apply(&mut self, x: &[f64], out: &mut [f64]) {
-        mul_vec(self.m, x, out);
-        self.shifted.solve(out);
-        self.deflate(out);
-    }
-
     fn m_dot(&mut self, x: &[f64], y: &[f64]) -> f64 {
-        mul_vec(self.m, x, &mut self.scratch);
+        mul_vec(self.shifted.mass(), x, &mut self.scratch);
         dot(&self.scratch, y)
     }
 }
@@ -162,7 +162,7 @@ pub fn lowest_modes(
     deflate: &[Vec<f64>],
     settings: &KrylovSettings,
 ) -> Result<KrylovModes, EigenFailure> {
-    modes(k, m, deflate, settings, None)
+    modes(&k.to_sparse(), &m.to_sparse(), deflate, settings, None)
 }
 
 /// [`lowest_modes`], then refined with precise products K x: the factor
@@ -175,8 +175,8 @@ pub fn lowest_modes(
 /// the pencil's own modes, the factor's error acting only as a
 /// preconditioner's. Residuals are returned in the M⁻¹ norm.
 pub fn lowest_modes_refined(
-    k: &Triplets,
-    m: &Triplets,
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
     deflate: &[Vec<f64>],
     settings: &KrylovSettings,
     products: &StiffnessProducts,
@@ -185,8 +185,8 @@ pub fn lowest_modes_refined(
 }
 
 fn modes(
-    k: &Triplets,
-    m: &Triplets,
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
     deflate: &[Vec<f64>],
     settings: &KrylovSettings,
     products: Option<&StiffnessProducts>,
@@ -200,8 +200,7 @@ fn modes(
         wanted_out
     };
     let shifted = Shifted::new(k, m, products.is_some())?;
-    let m_csc = shifted.mass();
-    let md = diagonal(&m_csc);
+    let md = diagonal(shifted.mass());
     if let Some(i) = md.iter().position(|&v| !(v > 0.0 && v.is_finite())) {
         let mut direction = vec![0.0; n];
         direction[i] = 1.0;
@@ -220,7 +219,7 @@ fn modes(
             perturbation: 0.0,
         });
     }
-    let kd = diagonal(&shifted.matrix(0.0)?);
+    let kd = diagonal(shifted.stiffness());
     let lmax = kd
         .iter()
         .zip(&md)
@@ -230,12 +229,11 @@ fn modes(
         .iter()
         .map(|z| {
             let mut out = vec![0.0; n];
-            mul_vec(&m_csc, z, &mut out);
+            mul_vec(shifted.mass(), z, &mut out);
             out
         })
         .collect();
     let mut op = Operator {
-        m: &m_csc,
         shifted,
         z: deflate.to_vec(),
         mz,
@@ -245,6 +243,9 @@ fn modes(
     let mut b: Vec<f64> = (0..n).map(|i| 1.0 + 0.5 * (1.7 * i as f64).sin()).collect();
     op.deflate(&mut b);
     let mut u = vec![0.0; n];
+    // M b and M u kept beside b and u: one product with M per step.
+    let (mut mb, mut mu) = (vec![0.0; n], vec![0.0; n]);
+    mul_vec(op.shifted.mass(), &b, &mut mb);
     let mut factorizations = 0;
     // Refined, the shift need only be of the right order: the block
     // iteration, not Lanczos, sets the accuracy.
@@ -256,11 +257,16 @@ fn modes(
         // approaches the lowest ω² rather than the start vector's mean.
         let mut rho = f64::INFINITY;
         for _ in 0..INVERSE_STEPS {
-            op.apply(&b, &mut u);
-            let (umb, umu) = (op.m_dot(&u, &b), op.m_dot(&u, &u));
+            // u = S b.
+            u.copy_from_slice(&mb);
+            op.shifted.solve(&mut u);
+            op.deflate(&mut u);
+            mul_vec(op.shifted.mass(), &u, &mut mu);
+            let (umb, umu) = (dot(&u, &mb), dot(&u, &mu));
             rho = umb / umu + sigma;
             let scale = 1.0 / umu.sqrt();
             b.iter_mut().zip(&u).for_each(|(bi, ui)| *bi = ui * scale);
+            mb.iter_mut().zip(&mu).for_each(|(bi, ui)| *bi = ui * scale);
         }
         if let Some(products) = products {
             // The iterate's Rayleigh quotient from the precise products:
@@ -268,7 +274,7 @@ fn modes(
             // mesh exceeds λ₁ and walks the shift far below it.
             let mut kb = vec![Vec::new()];
             products(&[&b], &mut kb);
-            rho = dot(&b, &kb[0]) / op.m_dot(&b, &b);
+            rho = dot(&b, &kb[0]) / dot(&b, &mb);
         }
         if !(rho.is_finite()) || rho <= 0.0 || -sigma <= 1.5 * rho {
             break;
@@ -288,14 +294,17 @@ fn modes(
                 factorizations,
             },
             values.clone(),
-            vectors.clone(),
+            vectors,
         )?;
         if refined.values.len() == wanted_out && refined.residuals.iter().all(|b| b.is_finite()) {
             return Ok(refined);
         }
         // The block lost directions, or a mode has no other mode to take a
         // gap to (a small problem whose wanted and guard modes fill it):
-        // Lanczos' own result, certified below.
+        // Lanczos' own result (computed again, the same: its vectors were
+        // the refinement's start, not kept beside it on a large model),
+        // certified below.
+        (values, vectors, steps) = lanczos(&mut op, &u, wanted, sigma, settings)?;
     }
     let wanted = wanted_out;
     values.truncate(wanted);
@@ -349,6 +358,89 @@ fn modes(
     })
 }
 
+/// The Lanczos basis V and M V (each column's M V comes free with the
+/// operator's product M v), in blocks of [`CHUNK`] columns, so that
+/// re-orthogonalization is matrix–vector products reading the basis once,
+/// not one dot product and one update per column, and the basis grows
+/// without copying.
+struct Basis {
+    n: usize,
+    len: usize,
+    v: Vec<Mat<f64>>,
+    mv: Vec<Mat<f64>>,
+}
+
+/// Columns per block of [`Basis`].
+const CHUNK: usize = 16;
+
+impl Basis {
+    fn new(n: usize) -> Self {
+        Basis {
+            n,
+            len: 0,
+            v: Vec::new(),
+            mv: Vec::new(),
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Appends v and M v.
+    fn push(&mut self, v: &[f64], mv: &[f64]) {
+        let (b, c) = (self.len / CHUNK, self.len % CHUNK);
+        if c == 0 {
+            self.v.push(Mat::zeros(self.n, CHUNK));
+            self.mv.push(Mat::zeros(self.n, CHUNK));
+        }
+        self.v[b].col_as_slice_mut(c).copy_from_slice(v);
+        self.mv[b].col_as_slice_mut(c).copy_from_slice(mv);
+        self.len += 1;
+    }
+
+    /// The used columns of block b.
+    fn block(&self, b: usize) -> (MatRef<'_, f64>, MatRef<'_, f64>) {
+        let cols = (self.len - b * CHUNK).min(CHUNK);
+        (self.v[b].subcols(0, cols), self.mv[b].subcols(0, cols))
+    }
+
+    /// w ← w − V (M V)ᵀ w (one classical Gram–Schmidt pass in the M inner
+    /// product); returns the last coefficient, (M v_last)ᵀ w.
+    fn orthogonalize(&self, w: &mut [f64]) -> f64 {
+        let n = w.len();
+        let mut last = 0.0;
+        // All coefficients from the w given, then the update.
+        let coefs: Vec<Mat<f64>> = (0..self.v.len())
+            .map(|b| {
+                let (_, mv) = self.block(b);
+                let mut c = Mat::zeros(mv.ncols(), 1);
+                let w = MatRef::from_column_major_slice(w, n, 1);
+                matmul(c.as_mut(), Accum::Replace, mv.transpose(), w, 1.0, Par::Seq);
+                c
+            })
+            .collect();
+        let mut w = MatMut::from_column_major_slice_mut(w, n, 1);
+        for (b, c) in coefs.iter().enumerate() {
+            let (v, _) = self.block(b);
+            matmul(w.as_mut(), Accum::Add, v, c.as_ref(), -1.0, Par::Seq);
+            last = c[(c.nrows() - 1, 0)];
+        }
+        last
+    }
+
+    /// V Y for a j × k matrix Y.
+    fn combine(&self, y: MatRef<'_, f64>) -> Mat<f64> {
+        let mut out = Mat::zeros(self.n, y.ncols());
+        for b in 0..self.v.len() {
+            let (v, _) = self.block(b);
+            let rows = y.subrows(b * CHUNK, v.ncols());
+            matmul(out.as_mut(), Accum::Add, v, rows, 1.0, Par::Seq);
+        }
+        out
+    }
+}
+
 /// Lanczos with full re-orthogonalization in the M inner product from
 /// `start`; returns the wanted lowest λ = σ + 1/θ, their M-normalized
 /// vectors and the basis size.
@@ -361,7 +453,7 @@ fn lanczos(
 ) -> Result<(Vec<f64>, Mat<f64>, usize), EigenFailure> {
     let n = start.len();
     let limit = settings.max_basis.max(wanted + 2).min(n - op.z.len());
-    let mut basis: Vec<Vec<f64>> = Vec::new();
+    let mut basis = Basis::new(n);
     let (mut alpha, mut beta): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
     let mut v = start.to_vec();
     op.deflate(&mut v);
@@ -373,25 +465,19 @@ fn lanczos(
     let mut w = vec![0.0; n];
     let mut mw = vec![0.0; n];
     loop {
-        op.apply(&v, &mut w);
-        basis.push(std::mem::take(&mut v));
-        // Two passes of classical Gram–Schmidt against the whole basis.
-        let mut a = 0.0;
+        // w = S v, with M v kept beside v.
+        mul_vec(op.shifted.mass(), &v, &mut mw);
+        basis.push(&v, &mw);
+        w.copy_from_slice(&mw);
+        op.shifted.solve(&mut w);
         op.deflate(&mut w);
-        let mut b2 = 0.0;
-        for pass in 0..2 {
-            mul_vec(op.m, &w, &mut mw);
-            let coefs: Vec<f64> = basis.iter().map(|q| dot(q, &mw)).collect();
-            if pass == 0 {
-                a = *coefs.last().expect("basis not empty");
-            }
-            for (q, c) in basis.iter().zip(&coefs) {
-                axpy(-c, q, &mut w);
-            }
-            // wᵀMw once w is M-orthogonal to the basis (and to the
-            // deflated space, which the basis is M-orthogonal to).
-            b2 = dot(&w, &mw);
-        }
+        // Two passes of classical Gram–Schmidt against the whole basis.
+        let a = basis.orthogonalize(&mut w);
+        basis.orthogonalize(&mut w);
+        // wᵀMw once w is M-orthogonal to the basis (and to the deflated
+        // space, which the basis is M-orthogonal to).
+        mul_vec(op.shifted.mass(), &w, &mut mw);
+        let b2 = dot(&w, &mw);
         alpha.push(a);
         let b = b2.max(0.0).sqrt();
         let j = basis.len();
@@ -412,13 +498,8 @@ fn lanczos(
                 .map(|i| (2.3 * i as f64 + 0.7 * j as f64).sin())
                 .collect();
             op.deflate(&mut fresh);
-            for _ in 0..2 {
-                mul_vec(op.m, &fresh, &mut mw);
-                let coefs: Vec<f64> = basis.iter().map(|q| dot(q, &mw)).collect();
-                for (q, c) in basis.iter().zip(&coefs) {
-                    axpy(-c, q, &mut fresh);
-                }
-            }
+            basis.orthogonalize(&mut fresh);
+            basis.orthogonalize(&mut fresh);
             let norm = op.m_dot(&fresh, &fresh).max(0.0).sqrt();
             if norm > 0.0 {
                 beta.push(0.0);
@@ -431,22 +512,20 @@ fn lanczos(
             let (theta, s) = ritz(&alpha, &beta)?;
             let order = wanted_order(&theta, sigma);
             let count = wanted.min(order.len());
-            let mut values = Vec::with_capacity(count);
-            let mut vectors = Mat::zeros(n, count);
-            for (c, &i) in order.iter().take(count).enumerate() {
-                values.push(sigma + 1.0 / theta[i]);
-                let x = vectors.col_as_slice_mut(c);
-                for (r, q) in basis.iter().enumerate() {
-                    axpy(s[(r, i)], q, x);
-                }
-            }
+            let values = order
+                .iter()
+                .take(count)
+                .map(|&i| sigma + 1.0 / theta[i])
+                .collect();
+            let y = Mat::from_fn(j, count, |r, c| s[(r, order[c])]);
+            let vectors = basis.combine(y.as_ref());
             if !done && count < wanted {
                 return Err(EigenFailure::NoConvergence);
             }
             return Ok((values, vectors, j));
         }
         beta.push(b);
-        v = w.iter().map(|x| x / b).collect();
+        v.iter_mut().zip(&w).for_each(|(vi, wi)| *vi = wi / b);
     }
 }
 

@@ -106,11 +106,18 @@ pub fn mul_vec(a: &SparseColMat<usize, f64>, x: &[f64], y: &mut [f64]) {
 }
 
 /// Y = A X for a compressed-column A and a block X of several columns,
-/// reading A once: X is taken row by row (each entry of A meets all the
-/// columns at once), and each column of Y is summed in the order
+/// reading A once: each entry of A meets all the columns at once (row j of
+/// X gathered, rows of Y accumulated row-major in `scratch`, which keeps
+/// its allocation from call to call: a fresh block of a large model costs
+/// its page faults), and each column of Y is summed in the order
 /// [`mul_vec`] sums it, so that the two agree to the last bit (for finite
 /// entries: mul_vec skips a zero x, which adds ±0 here).
-pub fn mul_block(a: &SparseColMat<usize, f64>, x: MatRef<'_, f64>, mut y: MatMut<'_, f64>) {
+pub fn mul_block(
+    a: &SparseColMat<usize, f64>,
+    x: MatRef<'_, f64>,
+    mut y: MatMut<'_, f64>,
+    scratch: &mut Vec<f64>,
+) {
     let k = x.ncols();
     if k == 1 {
         let x = x.col(0).try_as_col_major().expect("a column is contiguous");
@@ -120,23 +127,20 @@ pub fn mul_block(a: &SparseColMat<usize, f64>, x: MatRef<'_, f64>, mut y: MatMut
     }
     let a = a.as_ref();
     let n = a.nrows();
-    // X and Y row-major: row r at [r k, (r + 1) k), filled and read row by
-    // row (k sequential streams in the column-major blocks).
-    let mut xt = vec![0.0; x.nrows() * k];
-    for (r, row) in xt.chunks_exact_mut(k).enumerate() {
-        for (c, v) in row.iter_mut().enumerate() {
-            *v = x[(r, c)];
+    scratch.clear();
+    scratch.resize(n * k, 0.0);
+    let mut xj = vec![0.0; k];
+    for j in 0..a.ncols().min(x.nrows()) {
+        for (c, v) in xj.iter_mut().enumerate() {
+            *v = x[(j, c)];
         }
-    }
-    let mut yt = vec![0.0; n * k];
-    for (j, xj) in xt.chunks_exact(k).enumerate().take(a.ncols()) {
         for (i, v) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
-            for (y, x) in yt[i * k..(i + 1) * k].iter_mut().zip(xj) {
+            for (y, x) in scratch[i * k..(i + 1) * k].iter_mut().zip(&xj) {
                 *y += v * x;
             }
         }
     }
-    for (r, row) in yt.chunks_exact(k).enumerate() {
+    for (r, row) in scratch.chunks_exact(k).enumerate() {
         for (c, &v) in row.iter().enumerate() {
             y[(r, c)] = v;
         }
@@ -188,7 +192,7 @@ mod tests {
             (r as f64 + 1.0) * (c as f64 - 1.5) + 0.1 * c as f64
         });
         let mut yb = Mat::zeros(3, 4);
-        mul_block(&s, xb.as_ref(), yb.as_mut());
+        mul_block(&s, xb.as_ref(), yb.as_mut(), &mut Vec::new());
         for c in 0..4 {
             let xc: Vec<f64> = (0..3).map(|r| xb[(r, c)]).collect();
             mul_vec(&s, &xc, &mut y);

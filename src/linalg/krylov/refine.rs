@@ -11,7 +11,6 @@
 use super::{EigenFailure, KrylovModes, Operator, StiffnessProducts, GUARD, REFINE_STEPS};
 use crate::linalg::dense::symmetric_eigen_qr;
 use crate::linalg::sparse::mul_block;
-use crate::linalg::vector::dot;
 use faer::sparse::SparseColMat;
 use faer::{Mat, Par};
 
@@ -30,8 +29,87 @@ pub(super) struct Refinement {
     pub(super) factorizations: usize,
 }
 
-/// A B, sequential (a parallel product of these thin blocks waits on its
-/// barriers more than it computes on two busy cores).
+/// Blocks of n rows reused from step to step: a fresh block of a large
+/// model (51 MB at 100,000 elements and 16 columns) costs its page faults,
+/// which were a third of the refinement's time. Contents of a block taken
+/// are stale; every user overwrites them.
+struct Pool {
+    n: usize,
+    free: Vec<Mat<f64>>,
+    /// Row-major scratch of [`mul_block`].
+    scratch: Vec<f64>,
+    /// The products' outputs, kept with their allocations.
+    products: Vec<Vec<f64>>,
+}
+
+impl Pool {
+    fn new(n: usize) -> Self {
+        Pool {
+            n,
+            free: Vec::new(),
+            scratch: Vec::new(),
+            products: Vec::new(),
+        }
+    }
+
+    /// An n × k block of stale values.
+    fn take(&mut self, k: usize) -> Mat<f64> {
+        let mut m = self.free.pop().unwrap_or_else(|| Mat::zeros(0, 0));
+        m.truncate(m.nrows().min(self.n), m.ncols().min(k));
+        m.resize_with(self.n, k, |_, _| 0.0);
+        m
+    }
+
+    fn give(&mut self, m: Mat<f64>) {
+        self.free.push(m);
+    }
+
+    /// A B into a block of the pool, sequential (a parallel product of
+    /// these thin blocks waits on its barriers more than it computes on two
+    /// busy cores).
+    fn mm(&mut self, a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> Mat<f64> {
+        let mut out = self.take(b.ncols());
+        faer::linalg::matmul::matmul(out.as_mut(), faer::Accum::Replace, a, b, 1.0, Par::Seq);
+        out
+    }
+
+    /// A B + C D in one block of the pool.
+    fn mm2(
+        &mut self,
+        a: faer::MatRef<'_, f64>,
+        b: faer::MatRef<'_, f64>,
+        c: faer::MatRef<'_, f64>,
+        d: faer::MatRef<'_, f64>,
+    ) -> Mat<f64> {
+        let mut out = self.mm(a, b);
+        faer::linalg::matmul::matmul(out.as_mut(), faer::Accum::Add, c, d, 1.0, Par::Seq);
+        out
+    }
+
+    /// M W for every column, into a block of the pool.
+    fn m_block(&mut self, m: &SparseColMat<usize, f64>, w: &Mat<f64>) -> Mat<f64> {
+        let mut out = self.take(w.ncols());
+        mul_block(m, w.as_ref(), out.as_mut(), &mut self.scratch);
+        out
+    }
+
+    /// K W for every column by the precise products, into a block of the
+    /// pool.
+    fn k_block(&mut self, products: &StiffnessProducts, w: &Mat<f64>) -> Mat<f64> {
+        let refs: Vec<&[f64]> = (0..w.ncols()).map(|c| w.col_as_slice(c)).collect();
+        let mut out = std::mem::take(&mut self.products);
+        out.resize_with(refs.len(), Vec::new);
+        products(&refs, &mut out[..refs.len()]);
+        let mut kw = self.take(w.ncols());
+        for (c, o) in out.iter().take(refs.len()).enumerate() {
+            kw.col_as_slice_mut(c).copy_from_slice(o);
+        }
+        self.products = out;
+        kw
+    }
+}
+
+/// A B (small blocks).
 fn mm(a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> Mat<f64> {
     let mut out = Mat::zeros(a.nrows(), b.ncols());
     faer::linalg::matmul::matmul(out.as_mut(), faer::Accum::Replace, a, b, 1.0, Par::Seq);
@@ -43,33 +121,6 @@ fn sub_mm(out: &mut Mat<f64>, a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>
     faer::linalg::matmul::matmul(out.as_mut(), faer::Accum::Add, a, b, -1.0, Par::Seq);
 }
 
-/// A B + C D in one block (the second product added in place).
-fn mm2(
-    a: faer::MatRef<'_, f64>,
-    b: faer::MatRef<'_, f64>,
-    c: faer::MatRef<'_, f64>,
-    d: faer::MatRef<'_, f64>,
-) -> Mat<f64> {
-    let mut out = mm(a, b);
-    faer::linalg::matmul::matmul(out.as_mut(), faer::Accum::Add, c, d, 1.0, Par::Seq);
-    out
-}
-
-/// M W for every column.
-fn m_block(m: &SparseColMat<usize, f64>, w: &Mat<f64>) -> Mat<f64> {
-    let mut out = Mat::zeros(w.nrows(), w.ncols());
-    mul_block(m, w.as_ref(), out.as_mut());
-    out
-}
-
-/// K W for every column, by the precise products.
-fn k_block(products: &StiffnessProducts, w: &Mat<f64>) -> Mat<f64> {
-    let refs: Vec<&[f64]> = (0..w.ncols()).map(|c| w.col_as_slice(c)).collect();
-    let mut out = vec![Vec::new(); refs.len()];
-    products(&refs, &mut out);
-    Mat::from_fn(w.nrows(), w.ncols(), |r, c| out[c][r])
-}
-
 /// Makes the columns of `w` deflated, M-orthogonal to X (M X given) and
 /// M-orthonormal among themselves (twice: deflation and block
 /// Gram–Schmidt, then the Gram matrix's eigenvectors, dropping directions
@@ -78,11 +129,12 @@ fn k_block(products: &StiffnessProducts, w: &Mat<f64>) -> Mat<f64> {
 /// zero modes included, into a spurious Ritz value.
 fn orthonormalize_against(
     op: &Operator,
+    pool: &mut Pool,
     x: &Mat<f64>,
     mx: &Mat<f64>,
     mut w: Mat<f64>,
 ) -> Result<Mat<f64>, EigenFailure> {
-    let m = op.m;
+    let m = op.m();
     for _ in 0..2 {
         for c in 0..w.ncols() {
             op.deflate(w.col_as_slice_mut(c));
@@ -91,8 +143,9 @@ fn orthonormalize_against(
             let c = mm(mx.transpose(), w.as_ref());
             sub_mm(&mut w, x.as_ref(), c.as_ref());
         }
-        let mw = m_block(m, &w);
+        let mw = pool.m_block(m, &w);
         let g = mm(w.transpose(), mw.as_ref());
+        pool.give(mw);
         let g = Mat::from_fn(g.nrows(), g.ncols(), |i, j| 0.5 * (g[(i, j)] + g[(j, i)]));
         let (vals, vecs) = symmetric_eigen_qr(&g, Par::Seq)?;
         let top = vals.iter().fold(0.0f64, |a, &v| a.max(v));
@@ -102,7 +155,8 @@ fn orthonormalize_against(
         let t = Mat::from_fn(vecs.nrows(), keep.len(), |r, c| {
             vecs[(r, keep[c])] / vals[keep[c]].sqrt()
         });
-        w = mm(w.as_ref(), t.as_ref());
+        let out = pool.mm(w.as_ref(), t.as_ref());
+        pool.give(std::mem::replace(&mut w, out));
     }
     Ok(w)
 }
@@ -124,6 +178,7 @@ pub(super) fn refine(
             op.deflate(w.col_as_slice_mut(c));
         }
     };
+    let mut pool = Pool::new(n);
     let empty = Mat::<f64>::zeros(n, 0);
     let mut start = lanczos_vectors;
     deflate_block(op, &mut start);
@@ -140,8 +195,10 @@ pub(super) fn refine(
         for step in 0..=REFINE_STEPS {
             if let Some(w) = pending.take() {
                 // Rayleigh–Ritz on [X, W] with the precise products.
-                let w = orthonormalize_against(op, &x, &mx, w)?;
-                let kw = k_block(products, &w);
+                let w = orthonormalize_against(op, &mut pool, &x, &mx, w)?;
+                // M X is formed again below: its block serves K W.
+                pool.give(std::mem::replace(&mut mx, Mat::zeros(0, 0)));
+                let kw = pool.k_block(products, &w);
                 let (q, s) = (x.ncols(), x.ncols() + w.ncols());
                 let xkw = mm(x.transpose(), kw.as_ref());
                 let wkw = mm(w.transpose(), kw.as_ref());
@@ -164,12 +221,13 @@ pub(super) fn refine(
                 theta = order.iter().take(keep).map(|&i| vals[i]).collect();
                 let y_top = Mat::from_fn(q, keep, |r, c| vecs[(r, order[c])]);
                 let y_bot = Mat::from_fn(s - q, keep, |r, c| vecs[(q + r, order[c])]);
-                x = mm2(x.as_ref(), y_top.as_ref(), w.as_ref(), y_bot.as_ref());
-                drop(w);
-                kx = mm2(kx.as_ref(), y_top.as_ref(), kw.as_ref(), y_bot.as_ref());
-                drop(kw);
-                drop(std::mem::replace(&mut mx, Mat::zeros(0, 0)));
-                mx = m_block(op.m, &x);
+                let x_new = pool.mm2(x.as_ref(), y_top.as_ref(), w.as_ref(), y_bot.as_ref());
+                pool.give(std::mem::replace(&mut x, x_new));
+                pool.give(w);
+                let kx_new = pool.mm2(kx.as_ref(), y_top.as_ref(), kw.as_ref(), y_bot.as_ref());
+                pool.give(std::mem::replace(&mut kx, kx_new));
+                pool.give(kw);
+                mx = pool.m_block(op.m(), &x);
             }
             if step == REFINE_STEPS {
                 break;
@@ -179,8 +237,13 @@ pub(super) fn refine(
             // by Galerkin, so (K − σM)⁻¹r is M-orthogonal to the block's
             // modes; P is accurate away from the lowest modes).
             let keep = x.ncols();
-            let r = Mat::from_fn(n, keep, |i, j| kx[(i, j)] - theta[j] * mx[(i, j)]);
-            let mut w = r.clone();
+            let mut w = pool.take(keep);
+            for (j, &t) in theta.iter().enumerate().take(keep) {
+                let (kxj, mxj) = (kx.col_as_slice(j), mx.col_as_slice(j));
+                for ((wij, k), m) in w.col_as_slice_mut(j).iter_mut().zip(kxj).zip(mxj) {
+                    *wij = k - t * m;
+                }
+            }
             op.shifted.solve_block(w.as_mut());
             deflate_block(op, &mut w);
             let c = mm(mx.transpose(), w.as_ref());
@@ -192,7 +255,13 @@ pub(super) fn refine(
                     // component cₖ of x along mode k adds cₖ²|λₖ − λ| to the
                     // Rayleigh quotient's error and cₖ²(λₖ − θ)²/(λₖ − σ)
                     // to η²); twice that for P standing in for K − σM.
-                    let eta2 = dot(r.col_as_slice(j), w.col_as_slice(j)).abs();
+                    // r formed again (no block kept for it).
+                    let (kxj, mxj, wj) =
+                        (kx.col_as_slice(j), mx.col_as_slice(j), w.col_as_slice(j));
+                    let eta2 = (0..n)
+                        .map(|i| (kxj[i] - theta[j] * mxj[i]) * wj[i])
+                        .sum::<f64>()
+                        .abs();
                     let t = theta[j];
                     let gap = theta
                         .iter()
@@ -214,11 +283,14 @@ pub(super) fn refine(
                 .fold(0.0f64, |a, (b, t)| a.max(b / t.abs()));
             let stalled = worst >= 0.5 * previous_worst;
             if worst <= RESOLVED || stalled || step + 1 == REFINE_STEPS {
+                pool.give(w);
                 break;
             }
             previous_worst = worst;
             pending = Some(w);
         }
+        // The spare blocks go before the count's factorization.
+        pool.free.clear();
         // The factor's perturbation of the pencil, as seen on these modes.
         perturbation = lanczos_values
             .iter()

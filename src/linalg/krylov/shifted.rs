@@ -12,7 +12,6 @@
 //! too, faer's sparse LU (a pre-stressed state with an unstable direction).
 
 use super::super::inertia::negative_eigenvalues;
-use super::super::sparse::Triplets;
 use super::EigenFailure;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
@@ -23,16 +22,17 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::SparseColMatRef;
-use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Side};
+use std::borrow::Cow;
 use std::sync::Arc;
 
 /// The shifted matrix K − σM on a fixed pattern, factored.
-pub(super) struct Shifted {
-    /// The pattern of K and M together, and their values on it.
-    symbolic: SymbolicSparseColMat<usize>,
-    k_values: Vec<f64>,
-    m_values: Vec<f64>,
+pub(super) struct Shifted<'a> {
+    /// K and M on their common pattern: the caller's own matrices where
+    /// their patterns agree (a beam's K and M do), merged copies otherwise.
+    k: Cow<'a, SparseColMat<usize, f64>>,
+    m: Cow<'a, SparseColMat<usize, f64>>,
     /// The fill-reducing analysis of the pattern, made once and shared
     /// by every shift's LLᵀ and LDLᵀ.
     analysis: Option<Arc<SymbolicCholesky<usize>>>,
@@ -126,41 +126,78 @@ impl Cholesky {
     }
 }
 
-impl Shifted {
-    /// K and M on their common pattern; `symmetric_fallback`: an LDLᵀ
-    /// before LU where the Cholesky breaks down (refined runs).
+/// A on the pattern of A and B together (sorted row indices in every
+/// column, as faer's compressed matrices keep them), explicit zeros where
+/// only B has an entry.
+fn on_union(
+    a: &SparseColMat<usize, f64>,
+    b: &SparseColMat<usize, f64>,
+) -> Result<[SparseColMat<usize, f64>; 2], EigenFailure> {
+    let (a, b) = (a.as_ref(), b.as_ref());
+    let n = a.ncols();
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    col_ptr.push(0usize);
+    let (mut rows, mut av, mut bv) = (Vec::new(), Vec::new(), Vec::new());
+    for j in 0..n {
+        let (ra, va) = (a.row_idx_of_col_raw(j), a.val_of_col(j));
+        let (rb, vb) = (b.row_idx_of_col_raw(j), b.val_of_col(j));
+        let (mut p, mut q) = (0, 0);
+        while p < ra.len() || q < rb.len() {
+            let (i, x, y) = match (ra.get(p), rb.get(q)) {
+                (Some(&i), Some(&k)) if i == k => {
+                    p += 1;
+                    q += 1;
+                    (i, va[p - 1], vb[q - 1])
+                }
+                (Some(&i), Some(&k)) if i < k => {
+                    p += 1;
+                    (i, va[p - 1], 0.0)
+                }
+                (Some(&i), None) => {
+                    p += 1;
+                    (i, va[p - 1], 0.0)
+                }
+                (_, Some(&k)) => {
+                    q += 1;
+                    (k, 0.0, vb[q - 1])
+                }
+                (None, None) => unreachable!("loop condition"),
+            };
+            rows.push(i);
+            av.push(x);
+            bv.push(y);
+        }
+        col_ptr.push(rows.len());
+    }
+    let symbolic = SymbolicSparseColMat::new_checked(a.nrows(), n, col_ptr, None, rows);
+    Ok([
+        SparseColMat::new(symbolic.clone(), av),
+        SparseColMat::new(symbolic, bv),
+    ])
+}
+
+impl<'a> Shifted<'a> {
+    /// K and M (compressed, each column's rows sorted) on their common
+    /// pattern; `symmetric_fallback`: an LDLᵀ before LU where the Cholesky
+    /// breaks down (refined runs).
     pub(super) fn new(
-        k: &Triplets,
-        m: &Triplets,
+        k: &'a SparseColMat<usize, f64>,
+        m: &'a SparseColMat<usize, f64>,
         symmetric_fallback: bool,
     ) -> Result<Self, EigenFailure> {
-        let n = k.nrows();
-        let mut pairs: Vec<Pair<usize, usize>> = Vec::with_capacity(k.len() + m.len());
-        let (mut k_values, mut m_values) = (Vec::new(), Vec::new());
-        for (i, j, v) in k.entries() {
-            pairs.push(Pair { row: i, col: j });
-            k_values.push(v);
-            m_values.push(0.0);
-        }
-        for (i, j, v) in m.entries() {
-            pairs.push(Pair { row: i, col: j });
-            k_values.push(0.0);
-            m_values.push(v);
-        }
-        let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
-            .map_err(|_| EigenFailure::Factorization)?;
-        drop(pairs);
-        // Repeated entries summed onto the pattern, once.
-        let on_pattern = |values: &[f64]| {
-            SparseColMat::new_from_argsort(symbolic.clone(), &argsort, values)
-                .map(|a| a.into_parts().1)
-                .map_err(|_| EigenFailure::Factorization)
+        let same = {
+            let (a, b) = (k.symbolic(), m.symbolic());
+            a.col_ptr() == b.col_ptr() && a.row_idx() == b.row_idx()
         };
-        let (k_values, m_values) = (on_pattern(&k_values)?, on_pattern(&m_values)?);
+        let (k, m) = if same {
+            (Cow::Borrowed(k), Cow::Borrowed(m))
+        } else {
+            let [kk, mm] = on_union(k, m)?;
+            (Cow::Owned(kk), Cow::Owned(mm))
+        };
         Ok(Shifted {
-            symbolic,
-            k_values,
-            m_values,
+            k,
+            m,
             analysis: None,
             symmetric_fallback,
             factor: Factor::None,
@@ -170,17 +207,28 @@ impl Shifted {
     /// K − σM on the common pattern.
     pub(super) fn matrix(&self, sigma: f64) -> Result<SparseColMat<usize, f64>, EigenFailure> {
         let values: Vec<f64> = self
-            .k_values
+            .k
+            .val()
             .iter()
-            .zip(&self.m_values)
+            .zip(self.m.val())
             .map(|(k, m)| k - sigma * m)
             .collect();
-        Ok(SparseColMat::new(self.symbolic.clone(), values))
+        let symbolic = self
+            .k
+            .symbolic()
+            .to_owned()
+            .map_err(|_| EigenFailure::Factorization)?;
+        Ok(SparseColMat::new(symbolic, values))
     }
 
     /// M on the common pattern.
-    pub(super) fn mass(&self) -> SparseColMat<usize, f64> {
-        SparseColMat::new(self.symbolic.clone(), self.m_values.clone())
+    pub(super) fn mass(&self) -> &SparseColMat<usize, f64> {
+        &self.m
+    }
+
+    /// K on the common pattern.
+    pub(super) fn stiffness(&self) -> &SparseColMat<usize, f64> {
+        &self.k
     }
 
     /// How many eigenvalues of the pencil lie below σ (Sylvester's
