@@ -7,13 +7,15 @@
 //!
 //! Elastic energy (Gerstmayr & Irschik 2008):
 //! `U = ½∫(EA ε² + EI κ²) dx`, ε = |r'| − 1, κ = (r' × r'')/|r'|².
-//! [`CableElement::elastic_force_into`] returns `Q_s = ∂U/∂e` and
+//! [`CableElement::elastic_force_into`] returns `Q_s = ∂U/∂e`
+//! ([`super::cable_force`]) and
 //! [`CableElement::tangent_into`] its exact derivative `K = ∂Q_s/∂e`.
 //! The mass matrix `ρA Le ∫ SᵀS dξ` is constant.
 //!
 //! Quadrature: 5 Gauss points for the axial part (exact for the linear part,
 //! whose integrand is of degree 4) and 3 for bending (degree 2).
 
+use super::cable_force::ForceTables;
 use crate::model::{Material, Section};
 use nalgebra::{Matrix2, Matrix4, SMatrix, SVector, Vector2, Vector4};
 
@@ -144,14 +146,14 @@ pub fn gauss01(n: usize) -> Vec<(f64, f64)> {
 
 /// Shape derivatives at one quadrature point, weight already times Le.
 #[derive(Debug, Clone, Copy)]
-struct QuadPoint {
-    w: f64,
+pub(super) struct QuadPoint {
+    pub(super) w: f64,
     d1: Vector4<f64>,
     d2: Vector4<f64>,
 }
 
-const AXIAL_POINTS: usize = 5;
-const BENDING_POINTS: usize = 3;
+pub(super) const AXIAL_POINTS: usize = 5;
+pub(super) const BENDING_POINTS: usize = 3;
 
 /// One cable element: length, section and its precomputed quadrature data.
 #[derive(Debug, Clone)]
@@ -159,11 +161,13 @@ pub struct CableElement {
     /// Reference length [SI: m].
     pub le: f64,
     pub section: CableSection,
-    axial: [QuadPoint; AXIAL_POINTS],
-    bending: [QuadPoint; BENDING_POINTS],
+    pub(super) axial: [QuadPoint; AXIAL_POINTS],
+    pub(super) bending: [QuadPoint; BENDING_POINTS],
     /// ρA Le ∫ SᵢSⱼ dξ over the four shape functions [SI: kg, kg m, kg m²];
     /// the element mass matrix is this times I₂.
     mass4: Matrix4<f64>,
+    /// The quadrature points' shape derivatives by shape function.
+    pub(super) tables: ForceTables,
 }
 
 /// Strain energy of an element split by kind [SI: J].
@@ -305,12 +309,20 @@ impl CableElement {
             let s = shape(le, xi).s;
             mass4 += s * s.transpose() * (section.rho_a * le * w);
         }
+        let axial: [QuadPoint; AXIAL_POINTS] = std::array::from_fn(|i| make(ax[i]));
+        let bending: [QuadPoint; BENDING_POINTS] = std::array::from_fn(|i| make(bd[i]));
+        let tables = ForceTables {
+            axial_d1: std::array::from_fn(|i| axial.map(|qp| qp.d1[i])),
+            bending_d1: std::array::from_fn(|i| bending.map(|qp| qp.d1[i])),
+            bending_d2: std::array::from_fn(|i| bending.map(|qp| qp.d2[i])),
+        };
         CableElement {
             le,
             section,
-            axial: std::array::from_fn(|i| make(ax[i])),
-            bending: std::array::from_fn(|i| make(bd[i])),
+            axial,
+            bending,
             mass4,
+            tables,
         }
     }
 
@@ -372,28 +384,6 @@ impl CableElement {
             out.bending += 0.5 * qp.w * self.section.ei * kappa * kappa;
         }
         out
-    }
-
-    /// Elastic force `Q_s = ∂U/∂e`, added into `out`.
-    pub fn elastic_force_into(&self, e: &Vec8, out: &mut Vec8) {
-        let CableSection { ea, ei, .. } = self.section;
-        for qp in &self.axial {
-            let (r1, l, eps) = axial_strain(e, &qp.d1);
-            let f = r1 * (qp.w * ea * eps / l);
-            for i in 0..4 {
-                out[2 * i] += qp.d1[i] * f.x;
-                out[2 * i + 1] += qp.d1[i] * f.y;
-            }
-        }
-        for qp in &self.bending {
-            let b = BendingPoint::new(e, qp);
-            let c = qp.w * ei * b.kappa;
-            for i in 0..4 {
-                let g = b.p * qp.d1[i] + b.q * qp.d2[i];
-                out[2 * i] += c * g.x;
-                out[2 * i + 1] += c * g.y;
-            }
-        }
     }
 
     /// Tangent stiffness `∂Q_s/∂e` split into its axial and bending parts,

@@ -4,6 +4,8 @@
 //! - [`element`] — the planar ANCF cable element: Hermite shape functions,
 //!   mass matrix, axial strain and curvature energy, their gradients and
 //!   Hessians [SI: N, N/m];
+//! - [`cable_force`] — the element's elastic force, point by point in
+//!   arrays [SI: N];
 //! - [`anchor`] — a material point of a beam, rigid body, point mass or
 //!   the ground, its position and Jacobian in q;
 //! - [`pair`] — two anchors, the geometry joints, springs and contacts
@@ -20,6 +22,7 @@
 //! assembly.
 
 pub mod anchor;
+pub mod cable_force;
 pub mod contact;
 pub mod element;
 pub mod joint;

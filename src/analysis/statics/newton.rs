@@ -30,6 +30,9 @@ impl Solver<'_> {
         let f_ref = self.force_reference(&snap, &state.q, g, l);
         let c_tol = 1e-11 * self.length;
         let mut iterations = 0;
+        // Whether the reduced tangent's eigenvalues were found clear of
+        // zero in this solve.
+        let mut clear = false;
         loop {
             let r = norm_inf(&snap.r);
             if norm_inf(&snap.c) <= c_tol && r <= self.settings.tolerance * f_ref {
@@ -42,7 +45,7 @@ impl Solver<'_> {
                 });
             }
             iterations += 1;
-            let step = self.tangent_solver(&state.q, &snap, l, contacts)?;
+            let step = self.tangent_solver(&state.q, &snap, l, contacts, &mut clear)?;
             let dq = step.correction(&snap, f_ref, true, self)?;
             let size = self.scaled_norm(&dq);
             let mut alpha = 1.0;
@@ -93,12 +96,25 @@ impl Solver<'_> {
     }
 
     /// The tangent at q with the snapshot's multipliers, reduced and factored.
+    ///
+    /// A small reduced tangent that is not definite is factored by LU when
+    /// its eigenvalues are clear of zero ([`Solver::nonsingular_lu`]), by
+    /// its modes otherwise (a mechanism: a motion without stiffness, which
+    /// the constraints' layout gives at every iterate alike). The
+    /// eigenvalues cost several times the LU: once they were clear in a
+    /// Newton solve (`clear`), its next iterations take the LU without
+    /// them. A solve that meets a tangent turning singular (a limit point)
+    /// stalls and the continuation retries it with a shorter increment or
+    /// another mode, each retry starting with the test again; the
+    /// converged states' stability is checked on its own
+    /// ([`Solver::lowest_mode`]).
     fn tangent_solver(
         &self,
         q: &[f64],
         snap: &Snapshot,
         loads: f64,
         contacts: Regularize,
+        clear: &mut bool,
     ) -> Result<TangentSolver, NewtonFailure> {
         let sys = self.system;
         let n = sys.ndof();
@@ -116,8 +132,7 @@ impl Solver<'_> {
             Factor::Empty
         } else if d > crate::analysis::modal::DENSE_MAX {
             let mut kr = Triplets::new(d, d);
-            sys.add_tangent_stiffness(&at, &mut Projected::new(&snap.ns, &mut kr));
-            sys.add_contact_regularization(q, contacts, &mut Projected::new(&snap.ns, &mut kr));
+            project(&k, &snap.ns, &mut kr);
             // Large: the reduced tangent stays sparse; Cholesky when it is
             // definite, LU past a loss of stability (the stability check
             // then finds the critical load), an error when it is singular
@@ -139,12 +154,14 @@ impl Solver<'_> {
             }
         } else {
             let mut kr = Mat::zeros(d, d);
-            sys.add_tangent_stiffness(&at, &mut Projected::new(&snap.ns, &mut kr));
-            sys.add_contact_regularization(q, contacts, &mut Projected::new(&snap.ns, &mut kr));
+            project(&k, &snap.ns, &mut kr);
             symmetrize(&mut kr);
             if let Some(llt) = definite_factor(&kr) {
                 Factor::Cholesky(llt)
+            } else if *clear {
+                Factor::Lu(kr.partial_piv_lu())
             } else if let Some(lu) = self.nonsingular_lu(&kr, &snap.ns) {
+                *clear = true;
                 Factor::Lu(lu)
             } else {
                 Factor::Modes(
@@ -159,4 +176,11 @@ impl Solver<'_> {
             factor,
         })
     }
+}
+
+/// NᵀKN added into `out` from K's entries as assembled, in their order: the
+/// same sums as projecting the assembly itself, without a second assembly.
+fn project(k: &Triplets, ns: &NullSpace, out: &mut impl Scatter) {
+    let mut p = Projected::new(ns, out);
+    k.entries().for_each(|(i, j, v)| p.add(i, j, v));
 }
