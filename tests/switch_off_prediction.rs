@@ -355,3 +355,83 @@ fn the_distance_line_sits_where_a_run_travelling_backwards_crosses_it() {
     let (lo, hi) = (s.y[k - 1].min(s.y[k]), s.y[k - 1].max(s.y[k]));
     assert!(lo <= at && at <= hi, "{lo}..{hi} against {at}");
 }
+
+/// A calibrated model edited anywhere, not only at the fitted number, is
+/// no longer the calibrated one: its record is warned about and left out
+/// (trial 16 changed a density and kept "(calibrated)").
+#[test]
+fn an_edited_calibrated_model_is_no_longer_called_calibrated() {
+    use ancf_modal::model::UnitWarning;
+    let builtin = Model::switch_off_builtin();
+    assert_eq!(builtin.calibrations().len(), 1);
+    assert!(builtin.unit_warnings().is_empty());
+    let mut edited = builtin.to_model();
+    edited.joints[0].torsion_stiffness = Some(1.0);
+    assert!(edited.calibrations().is_empty());
+    let stale: Vec<UnitWarning> = edited
+        .unit_warnings()
+        .into_iter()
+        .filter(|w| matches!(w, UnitWarning::StaleCalibration { .. }))
+        .collect();
+    assert_eq!(stale.len(), 1, "{stale:?}");
+    // Its text and name do not count: they are not numbers of the design.
+    let mut renamed = builtin.to_model();
+    renamed.name = String::from("renamed");
+    renamed.description = String::from("another text");
+    assert_eq!(renamed.calibrations().len(), 1);
+}
+
+/// A trajectory the model cannot follow is no calibration: the lever's
+/// own path, written in millimetres (×1000), leaves both parameters'
+/// standard errors beyond their bounds, and the fit is refused in one line
+/// (trial 16's relay in mm was accepted with exit code 0).
+#[test]
+fn a_trajectory_in_other_units_is_refused() {
+    use ancf_modal::analysis::calibrate::transient::Trajectory;
+    use ancf_modal::analysis::calibrate::ParameterSpec;
+    use ancf_modal::commands::calibrate_transient::{
+        run, CalibrateTransientRequest, TrajectoryInput,
+    };
+    use ancf_modal::commands::ModelInput;
+    let m = model(lever(&[]));
+    let settings = SwitchOffSettings {
+        fixed_step: true,
+        sample_rate: 0.0,
+        ..lever_settings(4e-4)
+    };
+    let truth = run_switch_off(&m, &settings).unwrap().flexible;
+    let picks: Vec<usize> = (1..=30).map(|k| 10 * k).collect();
+    let mm = |v: &[f64]| picks.iter().map(|&k| 1e3 * v[k]).collect::<Vec<f64>>();
+    let request = CalibrateTransientRequest {
+        trajectory: Some(TrajectoryInput::Samples(Trajectory {
+            label: String::from("in mm"),
+            time_s: picks.iter().map(|&k| truth.time_s[k]).collect(),
+            x_m: mm(&truth.x_m),
+            y_m: mm(&truth.y_m),
+        })),
+        params: vec![
+            ParameterSpec {
+                name: String::from("springs[spring].preload"),
+                bounds: Some((-2.0 * PRELOAD, -0.5 * PRELOAD)),
+            },
+            ParameterSpec {
+                name: String::from("springs[spring].stiffness"),
+                bounds: Some((0.5 * SPRING_K, 2.0 * SPRING_K)),
+            },
+        ],
+        point: settings.point.clone(),
+        distance: settings.distance,
+        direction: settings.direction,
+        end_time: 4e-4,
+        ..CalibrateTransientRequest::default()
+    };
+    let input = ModelInput::from_model(m.to_model(), ancf_modal::error::Source::BuiltIn).unwrap();
+    let Err(e) = run(&input, &request) else {
+        panic!("a trajectory in mm was fitted")
+    };
+    let line = ancf_modal::error::chain_text(&e);
+    assert!(
+        line.contains("do not determine") && !line.contains('\n'),
+        "{line}"
+    );
+}

@@ -4,8 +4,11 @@
 //! is a fit and to what, and never present a fitted result as agreement.
 //!
 //! A record holds while the model still has the fitted value at the
-//! record's path (to 1e-12 relative): a model edited after its calibration
-//! no longer is the calibrated one, and a record that does not hold is
+//! record's path (to 1e-12 relative) and, when the record carries one, the
+//! same numbers as when it was fitted (`design_sha256`, the SHA-256 of the
+//! model's JSON with its name, description and records left out): a model
+//! edited after its calibration, at the fitted number or anywhere else, no
+//! longer is the calibrated one, and a record that does not hold is
 //! reported ([`super::UnitWarning::StaleCalibration`]) and left out of the
 //! outputs ([`Model::calibrations`]).
 
@@ -34,6 +37,10 @@ pub struct Calibrated {
     /// that meets one target exactly (no residual to estimate it from).
     #[serde(default)]
     pub standard_error: Option<f64>,
+    /// [`Model::design_sha256`] of the fitted model (module doc); records
+    /// without it hold on the value alone.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub design_sha256: Option<String>,
 }
 
 /// Relative agreement of a record's value with the model's number.
@@ -48,10 +55,34 @@ impl Model {
             .and_then(|p| p.number(json))
     }
 
-    /// Whether the model still has the record's value.
+    /// The SHA-256 (hex) of the model's numbers and structure: its JSON
+    /// with the name, the description and the calibration records left
+    /// out.
+    pub fn design_sha256(&self) -> String {
+        use sha2::{Digest, Sha256};
+        let mut json = serde_json::to_value(self).expect("models serialize");
+        if let Some(o) = json.as_object_mut() {
+            for key in ["name", "description", "calibrated"] {
+                o.remove(key);
+            }
+        }
+        let text = serde_json::to_string(&json).expect("JSON serializes");
+        Sha256::digest(text.as_bytes())
+            .iter()
+            .map(|b| format!("{b:02x}"))
+            .collect()
+    }
+
+    /// Whether the model still has the record's value (and its design).
     fn holds(&self, json: &serde_json::Value, record: &Calibrated) -> bool {
-        self.calibrated_number(json, record)
-            .is_some_and(|v| (v - record.value).abs() <= HOLDS * record.value.abs().max(1e-300))
+        let value = self
+            .calibrated_number(json, record)
+            .is_some_and(|v| (v - record.value).abs() <= HOLDS * record.value.abs().max(1e-300));
+        value
+            && record
+                .design_sha256
+                .as_ref()
+                .is_none_or(|h| *h == self.design_sha256())
     }
 
     /// The calibration records that hold (module doc), in file order.
@@ -82,12 +113,18 @@ impl Model {
             .collect()
     }
 
-    /// The model with `records` added to what it says was calibrated; an
-    /// earlier record of the same quantity is replaced.
+    /// The model with `records` added to what it says was calibrated,
+    /// each stamped with the model's design (an earlier record of the same
+    /// quantity is replaced; the others are stamped anew, as they still
+    /// describe this design).
     pub fn with_calibrations(mut self, records: &[Calibrated]) -> Model {
         self.calibrated
             .retain(|old| records.iter().all(|r| r.name != old.name));
         self.calibrated.extend(records.iter().cloned());
+        let design = self.design_sha256();
+        for r in &mut self.calibrated {
+            r.design_sha256 = Some(design.clone());
+        }
         self
     }
 }

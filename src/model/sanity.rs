@@ -85,7 +85,7 @@ pub enum UnitWarning {
         reference: String,
         ratio: f64,
     },
-    #[error("calibrated[{index}]: `{name}` was calibrated to {value:e} ({target}), but the model has {}: it is no longer the calibrated model, and the record is left out of the outputs", now.map_or(String::from("no number there"), |v| format!("{v:e}")))]
+    #[error("calibrated[{index}]: `{name}` was calibrated to {value:e} ({target}), but the model has {}: it is no longer the calibrated model, and the record is left out of the outputs", match now { Some(v) if v == value => String::from("other numbers than the fitted model elsewhere"), Some(v) => format!("{v:e}"), None => String::from("no number there") })]
     StaleCalibration {
         index: usize,
         name: String,

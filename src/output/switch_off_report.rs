@@ -151,13 +151,13 @@ pub fn switch_off_table(r: &SwitchOffResult) -> String {
     );
     let _ = writeln!(
         s,
-        "load work {:.4e} J, dissipated by the contacts {:.4e} J, the damping {:.4e} J and the integrator {:.4e} J, balance error {:.3e} J ({:.2e} of the stored {:.4e} J)",
+        "load work {:.4e} J, dissipated by the contacts {:.4e} J, the damping {:.4e} J and the integrator {:.4e} J, balance error {:.3e} J ({} the stored {:.4e} J)",
         e.load_work_j,
         e.contact_dissipation_j,
         e.damping_dissipation_j,
         e.numerical_dissipation_j,
         e.error_j,
-        e.error_j.abs() / e.stored_j.max(f64::MIN_POSITIVE),
+        stored_share(e.error_j, e.stored_j),
         e.stored_j
     );
     let t = &r.flexible.time_s;
@@ -185,6 +185,16 @@ pub fn switch_off_table(r: &SwitchOffResult) -> String {
     s
 }
 
+/// The balance error as a share of the energy stored at the start, in
+/// words ("3.33e-4 of"; "with nothing stored, against" when none is).
+fn stored_share(error: f64, stored: f64) -> String {
+    if stored > 0.0 {
+        format!("{:.2e} of", error.abs() / stored)
+    } else {
+        String::from("with nothing stored at the start, against")
+    }
+}
+
 /// What a study's times are: predictions, of a model that calibrated
 /// what it lists.
 pub fn study_label(study: &SwitchOffStudy) -> String {
@@ -193,7 +203,7 @@ pub fn study_label(study: &SwitchOffStudy) -> String {
     } else {
         let names: Vec<&str> = study.calibrated.iter().map(|c| c.name.as_str()).collect();
         format!(
-            "every time a prediction of the model with {} CALIBRATED",
+            "the reference's model has {} CALIBRATED; every change is a prediction",
             names.join(", ")
         )
     }

@@ -125,6 +125,13 @@ pub enum TransientFitError {
     Unreachable { low: f64, high: f64, target: f64 },
     #[error("the time to distance jumps over {target:e} s at {at:e} (closest {best:e} s): no parameter value within the bounds gives it")]
     Jump { at: f64, best: f64, target: f64 },
+    #[error("the samples do not determine `{name}`: {} (rms residual {rms:.4e} m): a parameter without effect on the path, or samples in other units than seconds and metres", undetermined(*standard_error, *width))]
+    Undetermined {
+        name: String,
+        standard_error: Option<f64>,
+        width: f64,
+        rms: f64,
+    },
     #[error("the trajectory fit used its {evaluations} experiments before reaching a least-squares optimum (rms residual {rms:e} m); allow more")]
     TrajectoryExhausted { evaluations: usize, rms: f64 },
     #[error("no fit within {evaluations} experiments (best {best:e} s against {target:e} s)")]
@@ -491,6 +498,7 @@ fn fit_time(
         target: format!("time_to_distance_s = {target:.6e} s ({source})"),
         achieved: format!("time_to_distance_s = {:.6e} s", best.g + target),
         standard_error: None,
+        design_sha256: None,
     }];
     Ok((vec![best.x], calibrated))
 }
@@ -591,6 +599,14 @@ impl lm::Problem for Misfit<'_, '_> {
     }
 }
 
+/// Why a parameter is undetermined, in words.
+fn undetermined(standard_error: Option<f64>, width: f64) -> String {
+    match standard_error {
+        Some(e) => format!("its standard error {e:.4e} is not below its bounds' width {width:.4e}"),
+        None => String::from("the path does not change with it (its standard error is unbounded)"),
+    }
+}
+
 /// (fitted values, calibrated records, (initial rms, fitted rms) [SI: m]).
 type TrajectoryFit = (Vec<f64>, Vec<Calibrated>, (f64, f64));
 
@@ -648,15 +664,45 @@ fn fit_trajectory(
     let jtj = j.transpose() * &j;
     let cov = jtj.try_inverse();
     let fitted_rms = rms(&outcome.best);
+    let error = |k: usize| {
+        cov.as_ref()
+            .map(|c| (s2 * c[(k, k)]).max(0.0).sqrt() * scale[k].abs())
+    };
+    // A parameter the samples do not determine (no effect on them, or an
+    // error wider than its bounds: samples in other units than metres, a
+    // model that does not follow them) is no calibration.
+    // With JᵀJ singular, the parameter named is the one the path moves
+    // least with (its Jacobian column the shortest).
+    let order: Vec<usize> = if cov.is_some() {
+        (0..n).collect()
+    } else {
+        let mut o: Vec<usize> = (0..n).collect();
+        o.sort_by(|&a, &b| j.column(a).norm().total_cmp(&j.column(b).norm()));
+        o
+    };
+    for k in order {
+        let (lo, hi) = (
+            problem.runs.resolved.lower[k],
+            problem.runs.resolved.upper[k],
+        );
+        let width = (hi - lo).abs();
+        if !error(k).is_some_and(|e| e.is_finite() && e < width) {
+            return Err(TransientFitError::Undetermined {
+                name: problem.runs.resolved.names[k].clone(),
+                standard_error: error(k),
+                width,
+                rms: fitted_rms,
+            });
+        }
+    }
     let calibrated = (0..n)
         .map(|k| Calibrated {
             name: problem.runs.resolved.names[k].clone(),
             value: values[k],
             target: format!("the trajectory {} ({m} samples of t, x, y)", tr.label),
             achieved: format!("rms residual {fitted_rms:.4e} m (start {initial_rms:.4e} m)"),
-            standard_error: cov
-                .as_ref()
-                .map(|c| (s2 * c[(k, k)]).max(0.0).sqrt() * scale[k].abs()),
+            standard_error: error(k),
+            design_sha256: None,
         })
         .collect();
     Ok((values, calibrated, (initial_rms, fitted_rms)))
