@@ -39,7 +39,7 @@ pub struct Calibrated {
     pub standard_error: Option<f64>,
     /// [`Model::design_sha256`] of the fitted model (module doc); records
     /// without it hold on the value alone.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub design_sha256: Option<String>,
 }
 

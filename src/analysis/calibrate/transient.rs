@@ -373,6 +373,13 @@ pub fn calibrate_transient(
                 problem: e.problem,
             },
         })?;
+    // The records as the fitted model holds them (stamped with its design).
+    let calibrated: Vec<Calibrated> = fitted_model
+        .calibrated
+        .iter()
+        .filter(|r| calibrated.iter().any(|c| c.name == r.name))
+        .cloned()
+        .collect();
     let times = |values: &[f64], runs: &mut Runs| runs.run(values).map(|r| r.time_to_distance_s);
     let initial = runs.resolved.initial.clone();
     let initial_time_s = times(&initial, &mut runs)?;
