@@ -22,10 +22,10 @@ pub struct ExperimentArgs {
     /// Pulse duration tF [s] (default: the model's, 1e-4 s).
     #[arg(long, value_name = "S", allow_hyphen_values = true, value_parser = super::values::positive)]
     pub duration: Option<f64>,
-    /// End time [s] (default: 0.1 s; `calibrate --quantity`/`--trajectory`: the switch-off's 0.003 s).
+    /// End time [s] (`calibrate --quantity`/`--trajectory`: the switch-off's 0.003 s when left out) [default: 0.1]
     #[arg(long, value_name = "S", allow_hyphen_values = true, value_parser = super::values::positive)]
     pub end_time: Option<f64>,
-    /// Time step [s] (default: 1e-6 s).
+    /// Time step [s] [default: 0.000001]
     #[arg(long, value_name = "S", allow_hyphen_values = true, value_parser = super::values::positive)]
     pub step: Option<f64>,
     /// Spectral radius at infinity of generalized-α (1 = no numerical damping).
