@@ -61,6 +61,24 @@ pub fn scale(a: f64, x: &mut [f64]) {
     x.iter_mut().for_each(|v| *v *= a);
 }
 
+/// max |xᵢ|·wᵢ (wᵢ = 1 without weights; NaNs skipped, as `f64::max` does;
+/// 0 for none), in four running maxima: the maximum does not depend on the
+/// order, and four chains take a quarter of the one chain's latency.
+pub fn largest_weighted(x: &[f64], w: Option<&[f64]>) -> f64 {
+    let mut m = [0.0f64; 4];
+    let term = |i: usize| x[i].abs() * w.map_or(1.0, |w| w[i]);
+    let whole = x.len() / 4 * 4;
+    for i in (0..whole).step_by(4) {
+        for (k, m) in m.iter_mut().enumerate() {
+            *m = m.max(term(i + k));
+        }
+    }
+    for i in whole..x.len() {
+        m[0] = m[0].max(term(i));
+    }
+    m[0].max(m[1]).max(m[2].max(m[3]))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
