@@ -346,6 +346,7 @@ impl CableElement {
 
     /// Adds the inertial force M a of element accelerations `a` into `out`
     /// [SI: N].
+    #[inline(always)]
     pub fn add_inertial_force(&self, a: &Vec8, out: &mut Vec8) {
         for i in 0..4 {
             let (mut fx, mut fy) = (0.0, 0.0);

@@ -8,6 +8,7 @@
 use super::System;
 use crate::linalg::Scatter;
 use crate::mechanics::anchor::Hess;
+use crate::mechanics::cable_force::{elastic_forces_into, Wide, MAX_LANES};
 use crate::mechanics::element::{EnergySplit, Mat8, Vec8};
 use crate::mechanics::joint::ConstraintJac;
 use crate::mechanics::pair::{PairGrad, PairHess};
@@ -109,9 +110,10 @@ impl System {
     }
 
     /// Compiled for the machine's vector extensions (AVX2 where the CPU
-    /// has it, chosen at run time by `pulp`): the element force's square
-    /// roots and divisions four at a time. Rust never fuses a product and
-    /// a sum, so the results are the same bits on every path.
+    /// has it, chosen at run time by `pulp`): a beam's elements four at a
+    /// time, one per vector lane ([`elastic_forces_into`]), the rest one
+    /// by one; the sums into `out` in element order. Rust never fuses a
+    /// product and a sum, so the results are the same bits on every path.
     fn forces_into(&self, q: &[f64], a: Option<&[f64]>, out: &mut [f64]) {
         pulp::Arch::new().dispatch(Forces {
             sys: self,
@@ -122,20 +124,48 @@ impl System {
     }
 
     #[inline(always)]
-    fn forces_into_here(&self, q: &[f64], a: Option<&[f64]>, out: &mut [f64]) {
+    fn forces_into_here<S: pulp::Simd>(
+        &self,
+        simd: S,
+        q: &[f64],
+        a: Option<&[f64]>,
+        out: &mut [f64],
+    ) {
         out.fill(0.0);
+        let lanes = Wide::<S>::LANES;
         for b in &self.beams {
-            for (k, e) in b.elements.iter().enumerate() {
-                // An element's 8 coordinates are contiguous in q.
-                let dofs = b.dof0 + 4 * k..b.dof0 + 4 * k + 8;
-                let mut f = Vec8::zeros();
-                e.elastic_force_into(&Vec8::from_column_slice(&q[dofs.clone()]), &mut f);
-                if let Some(a) = a {
-                    e.add_inertial_force(&Vec8::from_column_slice(&a[dofs.clone()]), &mut f);
+            // Element k's 8 coordinates are q[dof0 + 4k..][..8].
+            let mut k = 0;
+            while k < b.elements.len() {
+                let group = &b.elements[k..(k + lanes).min(b.elements.len())];
+                // forces[c][j]: entry c of element k + j's force.
+                let mut forces = [[0.0; MAX_LANES]; 8];
+                let side_by_side = group.len() == lanes && (2..=MAX_LANES).contains(&lanes);
+                if side_by_side {
+                    let d0 = b.dof0 + 4 * k;
+                    elastic_forces_into(simd, group, &q[d0..d0 + 4 * lanes + 4], &mut forces);
+                } else {
+                    for (j, e) in group.iter().enumerate() {
+                        let d0 = b.dof0 + 4 * (k + j);
+                        let mut g = Vec8::zeros();
+                        e.elastic_force_into(&Vec8::from_column_slice(&q[d0..d0 + 8]), &mut g);
+                        for (f, g) in forces.iter_mut().zip(g.iter()) {
+                            f[j] = *g;
+                        }
+                    }
                 }
-                for (o, fi) in out[dofs].iter_mut().zip(f.iter()) {
-                    *o += fi;
+                // The sums in element order, as one element at a time.
+                for (j, e) in group.iter().enumerate() {
+                    let dofs = b.dof0 + 4 * (k + j)..b.dof0 + 4 * (k + j) + 8;
+                    let mut f = Vec8::from_fn(|c, _| forces[c][j]);
+                    if let Some(a) = a {
+                        e.add_inertial_force(&Vec8::from_column_slice(&a[dofs.clone()]), &mut f);
+                    }
+                    for (o, fi) in out[dofs].iter_mut().zip(f.iter()) {
+                        *o += fi;
+                    }
                 }
+                k += group.len();
             }
         }
         if let Some(a) = a {
@@ -535,7 +565,7 @@ impl pulp::WithSimd for Forces<'_> {
     type Output = ();
 
     #[inline(always)]
-    fn with_simd<S: pulp::Simd>(self, _: S) {
-        self.sys.forces_into_here(self.q, self.a, self.out)
+    fn with_simd<S: pulp::Simd>(self, simd: S) {
+        self.sys.forces_into_here(simd, self.q, self.a, self.out)
     }
 }
