@@ -30,15 +30,24 @@ pub struct SensorProbe {
     direction: Vector2<f64>,
 }
 
-/// Centroid and rotation of the best fit, with first and second rates.
+/// Centroid and rotation of the best fit, with first and second rates:
+/// the rotation as R(φ)ᵀ, and φ̇, φ̈.
 struct Fit {
     c: [Vector2<f64>; 3],
-    phi: [f64; 3],
+    rt: Matrix2<f64>,
+    phi_rates: [f64; 2],
 }
 
-fn rot_t(phi: f64) -> Matrix2<f64> {
-    let (s, c) = phi.sin_cos();
-    Matrix2::new(c, s, -s, c)
+/// R(φ)ᵀ for φ = atan2(s, c), c² + s² = `den`: (cos φ, sin φ) = (c, s)/√den,
+/// no angle formed (atan2 and sin_cos were a tenth of an impulse run).
+fn rot_t(c: f64, s: f64, den: f64) -> Matrix2<f64> {
+    if den > 0.0 {
+        let r = den.sqrt();
+        let (c, s) = (c / r, s / r);
+        Matrix2::new(c, s, -s, c)
+    } else {
+        Matrix2::identity()
+    }
 }
 
 /// J with Rᵀ' = Rᵀ J (d/dφ of Rᵀ(φ)).
@@ -101,7 +110,6 @@ impl SensorProbe {
                 cc[o] += p.dot(&d);
             }
         }
-        let phi = s[0].atan2(cc[0]);
         let den = cc[0] * cc[0] + s[0] * s[0];
         let num = cc[0] * s[1] - s[0] * cc[1];
         let phi_d = num / den;
@@ -110,7 +118,8 @@ impl SensorProbe {
         let phi_dd = (num_d * den - num * den_d) / (den * den);
         Fit {
             c,
-            phi: [phi, phi_d, phi_dd],
+            rt: rot_t(cc[0], s[0], den),
+            phi_rates: [phi_d, phi_dd],
         }
     }
 
@@ -140,22 +149,50 @@ impl SensorProbe {
             1
         };
         let fit = self.fit(st, order);
-        let rt = rot_t(fit.phi[0]);
+        let rt = fit.rt;
         let j = jm();
         let w = r - fit.c[0];
         let value = match quantity {
             SensorQuantity::Displacement => rt * w - self.offset0,
             SensorQuantity::Velocity => {
                 let wd = anchor.velocity(&st.q, &st.v) - fit.c[1];
-                rt * (wd + j * w * fit.phi[1])
+                rt * (wd + j * w * fit.phi_rates[0])
             }
             SensorQuantity::Acceleration => {
                 let wd = anchor.velocity(&st.q, &st.v) - fit.c[1];
                 let wdd = anchor.acceleration(&st.q, &st.v, &st.a) - fit.c[2];
-                let (pd, pdd) = (fit.phi[1], fit.phi[2]);
+                let (pd, pdd) = (fit.phi_rates[0], fit.phi_rates[1]);
                 rt * (wdd + j * wd * (2.0 * pd) + j * w * pdd - w * (pd * pd))
             }
         };
         value.dot(&self.direction)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// R(φ)ᵀ from (c, s)/√(c² + s²) is the one from φ = atan2(s, c),
+        /// sin φ and cos φ, to round-off (both are within an ulp or two of
+        /// the true rotation), at every angle and scale.
+        #[test]
+        fn rotation_without_the_angle_is_the_angles_rotation(
+            phi in -std::f64::consts::PI..std::f64::consts::PI,
+            scale in prop_oneof![Just(1.0), 1e-12..1e6f64],
+        ) {
+            let (c, s) = (scale * phi.cos(), scale * phi.sin());
+            let (sin, cos) = s.atan2(c).sin_cos();
+            let expected = Matrix2::new(cos, sin, -sin, cos);
+            let got = rot_t(c, s, c * c + s * s);
+            prop_assert!((got - expected).amax() <= 4.0 * f64::EPSILON, "{got} vs {expected}");
+        }
+    }
+
+    #[test]
+    fn no_rotation_without_a_fit() {
+        assert_eq!(rot_t(0.0, 0.0, 0.0), Matrix2::identity());
     }
 }
