@@ -62,6 +62,7 @@ use crate::system::{EnergyBreakdown, Linearization, System};
 use faer::linalg::solvers::Solve;
 use faer::sparse::SparseColMat;
 use faer::{Mat, Side};
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// Settings of a modal analysis.
@@ -402,6 +403,11 @@ enum Pencil {
     },
 }
 
+/// Columns per call of the precise stiffness products (each call holds
+/// two full-size vectors per column; the element states are formed once
+/// per call).
+const PRODUCT_COLUMNS: usize = 4;
+
 /// Modal analysis linearized at `at`.
 pub fn modal(
     system: &System,
@@ -495,16 +501,13 @@ pub fn modal(
                         ns.project_forces_into(f, o);
                     }
                 };
-                // Columns are independent: the block's two halves on two
-                // threads (the same operations per column, so the same bits).
+                // Columns are independent: a few at a time (each takes two
+                // full-size vectors), on the pool's threads (the same
+                // operations per column, so the same bits).
                 let products = |xs: &[&[f64]], out: &mut [&mut [f64]]| {
-                    let half = xs.len() / 2;
-                    if half == 0 {
-                        return products_of(xs, out);
-                    }
-                    let (xa, xb) = xs.split_at(half);
-                    let (oa, ob) = out.split_at_mut(half);
-                    rayon::join(|| products_of(xa, oa), || products_of(xb, ob));
+                    xs.par_chunks(PRODUCT_COLUMNS)
+                        .zip(out.par_chunks_mut(PRODUCT_COLUMNS))
+                        .for_each(|(x, o)| products_of(x, o));
                 };
                 let r = lowest_modes_refined(
                     k,
