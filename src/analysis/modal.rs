@@ -55,12 +55,14 @@ use crate::linalg::dense::{solve_generalized, MassFactor};
 use crate::linalg::krylov::{lowest_modes_refined, KrylovSettings};
 use crate::linalg::null_space::{symmetrize, NullSpace, Projected};
 use crate::linalg::sparse::mul_vec;
+use crate::linalg::sparse::on_common_pattern;
 use crate::linalg::vector::{argmax_abs, dot};
 use crate::linalg::{EigenFailure, Triplets};
 use crate::system::{EnergyBreakdown, Linearization, System};
 use faer::linalg::solvers::Solve;
 use faer::sparse::SparseColMat;
 use faer::{Mat, Side};
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// Settings of a modal analysis.
@@ -401,6 +403,11 @@ enum Pencil {
     },
 }
 
+/// Columns per call of the precise stiffness products (each call holds
+/// two full-size vectors per column; the element states are formed once
+/// per call).
+const PRODUCT_COLUMNS: usize = 4;
+
 /// Modal analysis linearized at `at`.
 pub fn modal(
     system: &System,
@@ -465,6 +472,8 @@ pub fn modal(
                 system.mass().add_into(&mut Projected::new(&ns, &mut m));
                 m.to_sparse()
             };
+            // One pattern for both, the originals dropped.
+            let [k, m] = on_common_pattern(&k, &m);
             Pencil::Sparse { k, m }
         } else {
             let (mut k, mut m) = (Mat::zeros(dim, dim), Mat::zeros(dim, dim));
@@ -483,14 +492,22 @@ pub fn modal(
             }
             Pencil::Sparse { k, m } => {
                 // K_r x from strain variations: (DN)ᵀ K (DN x).
-                let products = |xs: &[&[f64]], out: &mut [Vec<f64>]| {
+                let products_of = |xs: &[&[f64]], out: &mut [&mut [f64]]| {
                     let full: Vec<Vec<f64>> = xs.iter().map(|x| ns.expand(x)).collect();
                     let refs: Vec<&[f64]> = full.iter().map(Vec::as_slice).collect();
                     let mut kf = vec![Vec::new(); xs.len()];
                     system.stiffness_products(at, &refs, &mut kf);
                     for (o, f) in out.iter_mut().zip(&kf) {
-                        *o = ns.project_forces(f);
+                        ns.project_forces_into(f, o);
                     }
+                };
+                // Columns are independent: a few at a time (each takes two
+                // full-size vectors), on the pool's threads (the same
+                // operations per column, so the same bits).
+                let products = |xs: &[&[f64]], out: &mut [&mut [f64]]| {
+                    xs.par_chunks(PRODUCT_COLUMNS)
+                        .zip(out.par_chunks_mut(PRODUCT_COLUMNS))
+                        .for_each(|(x, o)| products_of(x, o));
                 };
                 let r = lowest_modes_refined(
                     k,

@@ -75,7 +75,7 @@ impl KrylovSettings {
 /// Products K x with several vectors x at once, formed more precisely
 /// than the assembled K allows (e.g. from strain variations): the
 /// refinement's residuals and Rayleigh–Ritz projections use them.
-pub type StiffnessProducts<'a> = dyn Fn(&[&[f64]], &mut [Vec<f64>]) + 'a;
+pub type StiffnessProducts<'a> = dyn Fn(&[&[f64]], &mut [&mut [f64]]) + 'a;
 
 /// Modes computed beside the wanted ones when refining: the gap above the
 /// highest wanted mode, and room for the block iteration.
@@ -272,9 +272,9 @@ fn modes(
             // The iterate's Rayleigh quotient from the precise products:
             // the factor's own estimate carries its error, which on a fine
             // mesh exceeds λ₁ and walks the shift far below it.
-            let mut kb = vec![Vec::new()];
-            products(&[&b], &mut kb);
-            rho = dot(&b, &kb[0]) / dot(&b, &mb);
+            let mut kb = vec![0.0; n];
+            products(&[&b], &mut [&mut kb]);
+            rho = dot(&b, &kb) / dot(&b, &mb);
         }
         if !(rho.is_finite()) || rho <= 0.0 || -sigma <= 1.5 * rho {
             break;
@@ -464,11 +464,13 @@ fn lanczos(
     v.iter_mut().for_each(|x| *x /= norm);
     let mut w = vec![0.0; n];
     let mut mw = vec![0.0; n];
+    // M v beside v: formed here for the start, then M w / β with v = w / β.
+    let mut mv = vec![0.0; n];
+    mul_vec(op.shifted.mass(), &v, &mut mv);
     loop {
-        // w = S v, with M v kept beside v.
-        mul_vec(op.shifted.mass(), &v, &mut mw);
-        basis.push(&v, &mw);
-        w.copy_from_slice(&mw);
+        // w = S v.
+        basis.push(&v, &mv);
+        w.copy_from_slice(&mv);
         op.shifted.solve(&mut w);
         op.deflate(&mut w);
         // Two passes of classical Gram–Schmidt against the whole basis.
@@ -504,6 +506,7 @@ fn lanczos(
             if norm > 0.0 {
                 beta.push(0.0);
                 v = fresh.iter().map(|x| x / norm).collect();
+                mul_vec(op.shifted.mass(), &v, &mut mv);
                 continue;
             }
         }
@@ -526,6 +529,7 @@ fn lanczos(
         }
         beta.push(b);
         v.iter_mut().zip(&w).for_each(|(vi, wi)| *vi = wi / b);
+        mv.iter_mut().zip(&mw).for_each(|(mvi, mwi)| *mvi = mwi / b);
     }
 }
 

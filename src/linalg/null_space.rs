@@ -196,12 +196,18 @@ impl NullSpace {
     /// forces in the reduced coordinates, as [`Projected`] maps a matrix.
     pub fn project_forces(&self, v: &[f64]) -> Vec<f64> {
         let mut out = vec![0.0; self.dim];
+        self.project_forces_into(v, &mut out);
+        out
+    }
+
+    /// [`Self::project_forces`] into a caller's buffer of the reduced size.
+    pub fn project_forces_into(&self, v: &[f64], out: &mut [f64]) {
+        out.fill(0.0);
         for (g, &vg) in v.iter().enumerate() {
             for &(r, z) in self.row(g) {
                 out[r] += z * vg;
             }
         }
-        out
     }
 
     /// NᵀAN of a dense symmetric n × n matrix (symmetrized).

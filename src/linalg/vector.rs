@@ -95,6 +95,20 @@ fn largest_of(x: &[f64], term: impl Fn(usize, f64) -> f64) -> f64 {
     m[0].max(m[1]).max(m[2].max(m[3]))
 }
 
+/// A deterministic value in [−1, 1) for entry (i, c) of a start block
+/// (SplitMix64 of the pair): columns independent of each other, with every
+/// mode present (a family like sin(a·i + b·c) spans two vectors only).
+pub fn scrambled(i: usize, c: usize) -> f64 {
+    let mut z = (i as u64)
+        .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        .wrapping_add((c as u64).wrapping_mul(0xD1B5_4A32_D192_ED03))
+        .wrapping_add(0x2545_F491_4F6C_DD1D);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

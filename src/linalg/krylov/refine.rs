@@ -11,6 +11,7 @@
 use super::{EigenFailure, KrylovModes, Operator, StiffnessProducts, GUARD, REFINE_STEPS};
 use crate::linalg::dense::symmetric_eigen_qr;
 use crate::linalg::sparse::mul_block;
+use crate::linalg::vector::scrambled;
 use faer::sparse::SparseColMat;
 use faer::{Mat, Par};
 
@@ -38,8 +39,6 @@ struct Pool {
     free: Vec<Mat<f64>>,
     /// Row-major scratch of [`mul_block`].
     scratch: Vec<f64>,
-    /// The products' outputs, kept with their allocations.
-    products: Vec<Vec<f64>>,
 }
 
 impl Pool {
@@ -48,7 +47,6 @@ impl Pool {
             n,
             free: Vec::new(),
             scratch: Vec::new(),
-            products: Vec::new(),
         }
     }
 
@@ -97,14 +95,17 @@ impl Pool {
     /// pool.
     fn k_block(&mut self, products: &StiffnessProducts, w: &Mat<f64>) -> Mat<f64> {
         let refs: Vec<&[f64]> = (0..w.ncols()).map(|c| w.col_as_slice(c)).collect();
-        let mut out = std::mem::take(&mut self.products);
-        out.resize_with(refs.len(), Vec::new);
-        products(&refs, &mut out[..refs.len()]);
         let mut kw = self.take(w.ncols());
-        for (c, o) in out.iter().take(refs.len()).enumerate() {
-            kw.col_as_slice_mut(c).copy_from_slice(o);
-        }
-        self.products = out;
+        let mut out: Vec<&mut [f64]> = kw
+            .as_mut()
+            .col_iter_mut()
+            .map(|c| {
+                c.try_as_col_major_mut()
+                    .expect("a column is contiguous")
+                    .as_slice_mut()
+            })
+            .collect();
+        products(&refs, &mut out);
         kw
     }
 }
@@ -326,7 +327,7 @@ pub(super) fn refine(
         // mode and a few more) beside the found ones.
         p += missing;
         pending = Some(Mat::from_fn(n, missing + GUARD, |i, c| {
-            (2.3 * i as f64 + 0.7 * (round * 7 + c) as f64 + 0.1).sin()
+            scrambled(i, round * 7 + c)
         }));
     }
     let w = run.wanted.min(theta.len());

@@ -13,6 +13,7 @@
 
 use super::super::inertia::negative_eigenvalues;
 use super::EigenFailure;
+use crate::linalg::sparse::on_common_pattern;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -21,8 +22,8 @@ use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, LdltRef, LltRef, SymbolicCholesky, SymmetricOrdering,
 };
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::SparseColMat;
 use faer::sparse::SparseColMatRef;
-use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Side};
 use std::borrow::Cow;
 use std::sync::Arc;
@@ -126,56 +127,6 @@ impl Cholesky {
     }
 }
 
-/// A on the pattern of A and B together (sorted row indices in every
-/// column, as faer's compressed matrices keep them), explicit zeros where
-/// only B has an entry.
-fn on_union(
-    a: &SparseColMat<usize, f64>,
-    b: &SparseColMat<usize, f64>,
-) -> Result<[SparseColMat<usize, f64>; 2], EigenFailure> {
-    let (a, b) = (a.as_ref(), b.as_ref());
-    let n = a.ncols();
-    let mut col_ptr = Vec::with_capacity(n + 1);
-    col_ptr.push(0usize);
-    let (mut rows, mut av, mut bv) = (Vec::new(), Vec::new(), Vec::new());
-    for j in 0..n {
-        let (ra, va) = (a.row_idx_of_col_raw(j), a.val_of_col(j));
-        let (rb, vb) = (b.row_idx_of_col_raw(j), b.val_of_col(j));
-        let (mut p, mut q) = (0, 0);
-        while p < ra.len() || q < rb.len() {
-            let (i, x, y) = match (ra.get(p), rb.get(q)) {
-                (Some(&i), Some(&k)) if i == k => {
-                    p += 1;
-                    q += 1;
-                    (i, va[p - 1], vb[q - 1])
-                }
-                (Some(&i), Some(&k)) if i < k => {
-                    p += 1;
-                    (i, va[p - 1], 0.0)
-                }
-                (Some(&i), None) => {
-                    p += 1;
-                    (i, va[p - 1], 0.0)
-                }
-                (_, Some(&k)) => {
-                    q += 1;
-                    (k, 0.0, vb[q - 1])
-                }
-                (None, None) => unreachable!("loop condition"),
-            };
-            rows.push(i);
-            av.push(x);
-            bv.push(y);
-        }
-        col_ptr.push(rows.len());
-    }
-    let symbolic = SymbolicSparseColMat::new_checked(a.nrows(), n, col_ptr, None, rows);
-    Ok([
-        SparseColMat::new(symbolic.clone(), av),
-        SparseColMat::new(symbolic, bv),
-    ])
-}
-
 impl<'a> Shifted<'a> {
     /// K and M (compressed, each column's rows sorted) on their common
     /// pattern; `symmetric_fallback`: an LDLᵀ before LU where the Cholesky
@@ -192,7 +143,7 @@ impl<'a> Shifted<'a> {
         let (k, m) = if same {
             (Cow::Borrowed(k), Cow::Borrowed(m))
         } else {
-            let [kk, mm] = on_union(k, m)?;
+            let [kk, mm] = on_common_pattern(k, m);
             (Cow::Owned(kk), Cow::Owned(mm))
         };
         Ok(Shifted {
