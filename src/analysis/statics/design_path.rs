@@ -10,14 +10,7 @@
 //! from the known design at τ = 0 to the wanted one at τ = 1); the
 //! equilibrium at τ = 0 is solved as usual, then each step starts Newton's
 //! method ([`super::continue_equilibrium`] at the full load factor) from
-//! the secant predictor: the line through the last two converged states,
-//! extended to the next τ (from the first state alone on the first step).
-//! A design change that moves a stiff contact's seat (a slot's end cap
-//! 1 mm along the path, the contact closed by 1 µm) opens or crushes the
-//! contact when the last state is taken as it is, and Newton's method
-//! starts from the contact's whole force out of balance whatever the step;
-//! the secant moves the parts with the seat, and leaves an error of the
-//! order of the step squared. Step control: the step doubles after a step
+//! the last converged state. Step control: the step doubles after a step
 //! that converged, is quartered after one that did not, and the path gives
 //! up below [`MIN_STEP`]. After every step the contacts that were closed at
 //! τ = 0 must still be, and the result must balance (checked
@@ -105,25 +98,12 @@ pub fn equilibrium_along_from(
         .map(|&i| prev.contacts[i].elastic_force(&eq.q))
         .collect();
     let (mut tau, mut step, mut steps) = (0.0f64, FIRST_STEP, 0usize);
-    // The converged state before the last one, its system and τ.
-    let mut before: Option<(System, Vec<f64>, f64)> = None;
     while tau < 1.0 {
         let next = (tau + step).min(1.0);
         let sys = build(next).map_err(invalid(next))?;
-        let transfer = |from: &System, q: &[f64]| {
-            sys.transfer_from(from, q)
-                .map_err(|source| DesignPathError::Transfer { at: next, source })
-        };
-        let mut q = transfer(&prev, &eq.q)?;
-        if let Some((older, q_older, tau_older)) = &before {
-            // The secant predictor (module doc), in the next design's
-            // coordinates.
-            let q_older = transfer(older, q_older)?;
-            let ratio = (next - tau) / (tau - tau_older);
-            q.iter_mut()
-                .zip(&q_older)
-                .for_each(|(a, b)| *a += ratio * (*a - b));
-        }
+        let q = sys
+            .transfer_from(&prev, &eq.q)
+            .map_err(|source| DesignPathError::Transfer { at: next, source })?;
         let start = Equilibrium {
             q,
             lambda: vec![0.0; sys.constraint_count()],
@@ -142,11 +122,8 @@ pub fn equilibrium_along_from(
                         at: next,
                     });
                 }
-                before = Some((
-                    std::mem::replace(&mut prev, sys),
-                    std::mem::replace(&mut eq, found).q,
-                    tau,
-                ));
+                eq = found;
+                prev = sys;
                 tau = next;
                 steps += 1;
                 step = (2.0 * step).min(1.0);
