@@ -24,16 +24,17 @@
 //! measurement, so the comparable quantity here is the y departure.
 
 use super::simulate::{simulate_from, time_to_distance, EnergyBalance, SimulationSettings};
-use super::statics::design_path::on_state_equilibrium;
+use super::statics::design_path::{on_state_equilibrium_from, PathStart};
 use super::statics::start::Start;
 use super::statics::StaticSettings;
-use super::statics::{Branch, BranchKind};
+use super::statics::{Branch, BranchKind, Equilibrium};
 use super::transient::contacts::ContactStats;
 use super::transient::TransientSettings;
-use crate::error::{Setting, SimulationError};
+use crate::error::{AnalysisError, Setting, SimulationError};
 use crate::mechanics::load::load_magnitudes;
 use crate::model::{Model, PointSpec, ValidModel};
 use crate::system::System;
+use std::cell::OnceCell;
 
 /// Rigid and flexible runs "depart" once their tracked points are this
 /// fraction of the travel distance apart.
@@ -309,19 +310,36 @@ fn tracked(model: &Model, settings: &SwitchOffSettings) -> Result<PointSpec, Sim
 /// (the energy a sound run books misses by 1e-5 to 1e-3 of it).
 pub const UNSOUND_FRACTION: f64 = 1e-2;
 
+/// The ON states of one switch-off, each solved once: base's own
+/// equilibrium, where every design path from it starts (the flexible
+/// runs' and the uncalibrated companion's), and the flexible run's ON
+/// state (the half-step run's too).
+#[derive(Default)]
+struct OnStates {
+    base: PathStart,
+    flexible: OnceCell<Result<Equilibrium, AnalysisError>>,
+}
+
 /// One run of `model` from its ON state (continued from `base`'s, see
-/// [`on_state_equilibrium`]).
+/// [`on_state_equilibrium_from`]): `on` holds it once solved, `start`
+/// base's equilibrium (both for systems built by [`System::new`]).
 fn run_one(
     model: &ValidModel,
     base: &ValidModel,
     point: &PointSpec,
     settings: &SwitchOffSettings,
     step: f64,
+    on: &OnceCell<Result<Equilibrium, AnalysisError>>,
+    start: &PathStart,
 ) -> Result<SwitchOffRun, SimulationError> {
     let point = model
         .resolve_point(point, "point")
         .map_err(|e| SimulationError::InvalidPoint { why: e.to_string() })?;
-    let on = on_state_equilibrium(model, base, System::new, &StaticSettings::default())?;
+    let on = on
+        .get_or_init(|| {
+            on_state_equilibrium_from(model, base, start, System::new, &StaticSettings::default())
+        })
+        .clone()?;
     let sys = System::new(model);
     let anchor = sys.anchor_of(&point);
     let mut sim_settings = settings.simulation(step);
@@ -401,7 +419,7 @@ pub fn run_switch_off(
 
 /// Run the switch-off experiment on `model`, its ON state continued from
 /// the equilibrium of `base` when `model` is a design of base's assembly
-/// (differs only in real numbers; [`on_state_equilibrium`]): the ON state
+/// (differs only in real numbers; [`on_state_equilibrium_from`]): the ON state
 /// of a changed design is the one its contacts hold, or the error says
 /// where a contact lets go. Otherwise the ON state is solved from the
 /// reference.
@@ -412,7 +430,16 @@ pub fn run_switch_off_from(
 ) -> Result<SwitchOffResult, SimulationError> {
     settings.validate()?;
     let point = tracked(model, settings)?;
-    let flexible = run_one(model, base, &point, settings, settings.step)?;
+    let on = OnStates::default();
+    let flexible = run_one(
+        model,
+        base,
+        &point,
+        settings,
+        settings.step,
+        &on.flexible,
+        &on.base,
+    )?;
     let rigid = if settings.compare_rigid {
         // Valid as the models are (validation does not read `rigid`), and
         // validated again all the same.
@@ -422,18 +449,29 @@ pub fn run_switch_off_from(
                 .map_err(|e| SimulationError::RigidModel(Box::new(e)))
         };
         let (rigid_model, rigid_base) = (rigid(model)?, rigid(base)?);
+        let rigid_on = OnStates::default();
         Some(run_one(
             &rigid_model,
             &rigid_base,
             &point,
             settings,
             settings.step,
+            &rigid_on.flexible,
+            &rigid_on.base,
         )?)
     } else {
         None
     };
     let half = if settings.halve_step {
-        Some(run_one(model, base, &point, settings, 0.5 * settings.step)?)
+        Some(run_one(
+            model,
+            base,
+            &point,
+            settings,
+            0.5 * settings.step,
+            &on.flexible,
+            &on.base,
+        )?)
     } else {
         None
     };
@@ -478,7 +516,15 @@ pub fn run_switch_off_from(
     let calibrated = model.calibrations();
     let uncalibrated = if builtin && !calibrated.is_empty() {
         let companion = Model::switch_off_uncalibrated_builtin();
-        let run = run_one(&companion, base, &point, settings, settings.step)?;
+        let run = run_one(
+            &companion,
+            base,
+            &point,
+            settings,
+            settings.step,
+            &OnceCell::new(),
+            &on.base,
+        )?;
         Some(Uncalibrated {
             model: companion.name.clone(),
             time_to_distance_s: run.time_to_distance_s,

@@ -440,6 +440,18 @@ impl System {
         }
     }
 
+    /// Whether the contacts' regularizations `a` and `b` give the same
+    /// static Newton matrix at q (every contact regularized alike, see
+    /// [`crate::mechanics::contact::ContactElement::regularized_alike`]).
+    pub fn contacts_regularized_alike(
+        &self,
+        q: &[f64],
+        a: crate::mechanics::contact::Regularize,
+        b: crate::mechanics::contact::Regularize,
+    ) -> bool {
+        self.contacts.iter().all(|c| c.regularized_alike(q, a, b))
+    }
+
     /// Adds ∂(C_qᵀλ)/∂q = Σ λᵢ ∂²Cᵢ/∂q² into `out`.
     pub fn add_constraint_hessian(&self, q: &[f64], lambda: &[f64], out: &mut impl Scatter) {
         let mut h = PairHess::zeros();

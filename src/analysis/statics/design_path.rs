@@ -44,6 +44,7 @@ use crate::error::{AnalysisError, InvalidModel};
 use crate::mechanics::spring::ForceElement;
 use crate::model::ValidModel;
 use crate::system::System;
+use std::cell::OnceCell;
 
 /// Smallest step in τ before the path gives up.
 pub const MIN_STEP: f64 = 1.0 / 4096.0;
@@ -62,6 +63,22 @@ pub fn equilibrium_along(
     build: impl Fn(f64) -> Result<System, InvalidModel>,
     settings: &StaticSettings,
 ) -> Result<(Equilibrium, usize), DesignPathError> {
+    equilibrium_along_from(build, &PathStart::new(), settings)
+}
+
+/// The equilibrium of a path's first design, `build(0)`, once solved
+/// (load stepping from its reference): several paths from one design,
+/// built by one system builder, solve it once.
+pub type PathStart = OnceCell<Result<Equilibrium, AnalysisError>>;
+
+/// [`equilibrium_along`], with the equilibrium at τ = 0 taken from `start`
+/// when it was solved before, and kept there when it is solved here.
+/// `start` must belong to the same first design and system builder.
+pub fn equilibrium_along_from(
+    build: impl Fn(f64) -> Result<System, InvalidModel>,
+    start: &PathStart,
+    settings: &StaticSettings,
+) -> Result<(Equilibrium, usize), DesignPathError> {
     let invalid = |at: f64| {
         move |invalid| DesignPathError::InvalidDesign {
             at,
@@ -69,7 +86,10 @@ pub fn equilibrium_along(
         }
     };
     let mut prev = build(0.0).map_err(invalid(0.0))?;
-    let mut eq = solve_equilibrium(&prev, settings).map_err(DesignPathError::Start)?;
+    let mut eq = start
+        .get_or_init(|| solve_equilibrium(&prev, settings))
+        .clone()
+        .map_err(DesignPathError::Start)?;
     let closed: Vec<usize> = (0..prev.contacts.len())
         .filter(|&i| prev.contacts[i].elastic_force(&eq.q) > 0.0)
         .collect();
@@ -150,10 +170,23 @@ pub fn on_state_equilibrium(
     system: impl Fn(&ValidModel) -> System,
     settings: &StaticSettings,
 ) -> Result<Equilibrium, AnalysisError> {
+    on_state_equilibrium_from(model, base, &PathStart::new(), system, settings)
+}
+
+/// [`on_state_equilibrium`], with base's own equilibrium (where a path
+/// from it starts) kept in `start` for the next design continued from the
+/// same base with the same `system` ([`equilibrium_along_from`]).
+pub fn on_state_equilibrium_from(
+    model: &ValidModel,
+    base: &ValidModel,
+    start: &PathStart,
+    system: impl Fn(&ValidModel) -> System,
+    settings: &StaticSettings,
+) -> Result<Equilibrium, AnalysisError> {
     let Some(path) = base.path_to(model) else {
         return solve_equilibrium(&system(model), settings);
     };
-    match equilibrium_along(|tau| path.at(tau).map(|m| system(&m)), settings) {
+    match equilibrium_along_from(|tau| path.at(tau).map(|m| system(&m)), start, settings) {
         Ok((eq, steps)) => Ok(Equilibrium {
             branch: Branch::continued(&base.name, steps),
             ..eq

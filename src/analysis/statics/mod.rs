@@ -65,6 +65,7 @@
 
 pub mod balance;
 mod branch;
+mod continuation;
 pub mod design_path;
 mod newton;
 pub mod prestress;
@@ -252,21 +253,6 @@ pub(crate) struct State {
     pub(crate) violation: f64,
 }
 
-/// The Newton solves a load step tries, in turn, while the previous one
-/// stalls: whole steps, then a line search, then a line search with the
-/// closed contacts' exact tangents (a stiff contact closed at a small
-/// force, where the regularized matrix converges only linearly), then,
-/// where there are contacts, whole steps with the open contacts far from
-/// touching left unregularized (their regularization can swamp a soft
-/// structure's stiffness); that last solve's outcome counts only when it
-/// converges.
-const NEWTON_MODES: [(Damping, Regularize); 4] = [
-    (Damping::Full, Regularize::OpenOnly),
-    (Damping::LineSearch, Regularize::OpenOnly),
-    (Damping::LineSearch, Regularize::OpenAndBarelyClosed),
-    (Damping::Full, Regularize::NearOnly),
-];
-
 /// How Newton steps are damped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Damping {
@@ -322,7 +308,14 @@ pub const CONFIRM_STEP: f64 = 1.0 / 1024.0;
 /// Why one Newton solve at a fixed load failed.
 pub(crate) enum NewtonFailure {
     /// Out of iterations or no descent: retry with a smaller increment.
-    Stalled { iterations: usize, residual: f64 },
+    /// `repeats`: every iterate's Newton matrix would have been the same
+    /// with the other contact regularization the solve was asked about, so
+    /// a solve with it would repeat this one step by step.
+    Stalled {
+        iterations: usize,
+        residual: f64,
+        repeats: bool,
+    },
     /// A definite answer (no support, mechanism).
     Fatal(AnalysisError),
 }
@@ -520,100 +513,6 @@ impl<'a> Solver<'a> {
             gram,
             merit,
         }
-    }
-
-    /// Ramp gravity (to fraction `target`) or the applied loads (to factor
-    /// `target`) with adaptive increments.
-    ///
-    /// `path` is the load path the ramp is part of (for the messages).
-    pub(crate) fn ramp(
-        &self,
-        state: &mut State,
-        which: Ramp,
-        target: f64,
-        path: LoadPath,
-    ) -> Result<(), AnalysisError> {
-        let start = which.param(state);
-        let span = target - start;
-        let at = |t: f64| start + t * span;
-        let set = |s: &mut State, v: f64| which.set(s, v);
-        let mut t = 0.0;
-        let mut dt = self.settings.initial_increment.clamp(1e-12, 1.0);
-        let mut tried = 0usize;
-        let mut first = true;
-        while first || t < 1.0 {
-            first = false;
-            tried += 1;
-            let t_try = (t + dt).min(1.0);
-            let mut trial = state.clone();
-            let mut outcome = Err(NewtonFailure::Stalled {
-                iterations: 0,
-                residual: f64::INFINITY,
-            });
-            for (damping, contacts) in NEWTON_MODES {
-                let last = contacts == Regularize::NearOnly;
-                if last && self.system.contacts.is_empty() {
-                    break;
-                }
-                let mut attempt = state.clone();
-                set(&mut attempt, at(t_try));
-                let result = self.newton(&mut attempt, damping, contacts);
-                if last && result.is_err() {
-                    break;
-                }
-                (trial, outcome) = (attempt, result);
-                if !matches!(outcome, Err(NewtonFailure::Stalled { .. })) {
-                    break;
-                }
-            }
-            match outcome {
-                Ok(iterations) => {
-                    trial.steps += 1;
-                    if self.settings.check_stability {
-                        if let Some(low) = self.indefinite(&trial)? {
-                            // Confirmed only from a short step: a long one
-                            // may have jumped to another branch.
-                            if span != 0.0
-                                && t_try - t > CONFIRM_STEP
-                                && tried < self.settings.max_steps
-                            {
-                                dt = 0.25 * (t_try - t);
-                                continue;
-                            }
-                            return Err(self.locate_instability(state, &trial, low, which, path));
-                        }
-                    }
-                    *state = trial;
-                    t = t_try;
-                    if iterations <= 4 {
-                        dt = (2.0 * dt).min(1.0);
-                    }
-                }
-                Err(NewtonFailure::Fatal(e)) => return Err(e),
-                Err(NewtonFailure::Stalled {
-                    iterations,
-                    residual,
-                }) => {
-                    dt *= 0.25;
-                    // With nothing to ramp a smaller increment changes
-                    // nothing: the state did not converge where it is.
-                    if span == 0.0
-                        || dt < self.settings.min_increment
-                        || tried >= self.settings.max_steps
-                    {
-                        return Err(AnalysisError::NotConverged {
-                            load_factor: which.load_factor(at(t_try)),
-                            iterations,
-                            residual,
-                        });
-                    }
-                }
-            }
-            if span == 0.0 {
-                break;
-            }
-        }
-        Ok(())
     }
 }
 

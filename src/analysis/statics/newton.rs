@@ -18,12 +18,16 @@ impl Solver<'_> {
     /// (rigid rotations, mechanisms with springs); the continuation tries it
     /// before it cuts the load increment. `contacts` says which contacts'
     /// regularizing stiffness the Newton matrix gets (see
-    /// [`crate::mechanics::contact::ContactElement::regularization`]).
+    /// [`crate::mechanics::contact::ContactElement::regularization`]). A
+    /// stall says whether every iterate's Newton matrix would have been the
+    /// same with the regularization `also` (then a solve with it repeats
+    /// this one).
     pub(crate) fn newton(
         &self,
         state: &mut State,
         mode: Damping,
         contacts: Regularize,
+        also: Option<Regularize>,
     ) -> Result<usize, NewtonFailure> {
         let (g, l) = (state.gravity, state.loads);
         let mut snap = self.snapshot(&state.q, g, l);
@@ -33,6 +37,7 @@ impl Solver<'_> {
         // Whether the reduced tangent's eigenvalues were found clear of
         // zero in this solve.
         let mut clear = false;
+        let mut repeats = also.is_some();
         loop {
             let r = norm_inf(&snap.r);
             if norm_inf(&snap.c) <= c_tol && r <= self.settings.tolerance * f_ref {
@@ -42,9 +47,15 @@ impl Solver<'_> {
                 return Err(NewtonFailure::Stalled {
                     iterations,
                     residual: r,
+                    repeats,
                 });
             }
             iterations += 1;
+            repeats = repeats
+                && also.is_some_and(|b| {
+                    self.system
+                        .contacts_regularized_alike(&state.q, contacts, b)
+                });
             let step = self.tangent_solver(&state.q, &snap, l, contacts, &mut clear)?;
             let dq = step.correction(&snap, f_ref, true, self)?;
             let size = self.scaled_norm(&dq);
@@ -72,6 +83,7 @@ impl Solver<'_> {
                 return Err(NewtonFailure::Stalled {
                     iterations,
                     residual: r,
+                    repeats,
                 });
             };
             state.q = q;

@@ -280,7 +280,7 @@ impl Solver<'_> {
             let mut c = a.clone();
             which.set(&mut c, sc);
             if self
-                .newton(&mut c, Damping::Full, Regularize::OpenAndBarelyClosed)
+                .newton(&mut c, Damping::Full, Regularize::OpenAndBarelyClosed, None)
                 .is_err()
             {
                 // No equilibrium near the stable one at sc (past a limit

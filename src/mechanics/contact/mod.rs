@@ -411,17 +411,33 @@ impl ContactElement {
         let Some(g) = self.gap(q, None) else {
             return false;
         };
-        if which == Regularize::NearOnly && (g.delta > 0.0 || -g.delta > self.size()) {
-            return false;
-        }
-        if which == Regularize::OpenOnly && g.delta > 0.0 {
-            return false;
-        }
         let extra = self.regularizing_stiffness() - self.law.elastic(g.delta).d_delta;
-        if extra <= 0.0 {
+        if !self.regularized_at(g.delta, extra, which) {
             return false;
         }
         *out = g.grad * g.grad.transpose() * extra;
         true
+    }
+
+    /// Whether the regularizations `a` and `b` give this contact the same
+    /// stiffness at q (both none, or both the same (k_r − F_e')⁺): a static
+    /// Newton matrix is then the same under either.
+    pub fn regularized_alike(&self, q: &[f64], a: Regularize, b: Regularize) -> bool {
+        let Some(g) = self.gap(q, None) else {
+            return true;
+        };
+        let extra = self.regularizing_stiffness() - self.law.elastic(g.delta).d_delta;
+        self.regularized_at(g.delta, extra, a) == self.regularized_at(g.delta, extra, b)
+    }
+
+    /// Whether `which` regularizes the contact at penetration `delta`, where
+    /// the regularization would add `extra` [SI: N/m].
+    fn regularized_at(&self, delta: f64, extra: f64, which: Regularize) -> bool {
+        let excluded = match which {
+            Regularize::NearOnly => delta > 0.0 || -delta > self.size(),
+            Regularize::OpenOnly => delta > 0.0,
+            Regularize::OpenAndBarelyClosed => false,
+        };
+        !excluded && extra > 0.0
     }
 }
