@@ -358,16 +358,15 @@ fn modes(
     })
 }
 
-/// The Lanczos basis V and M V (each column's M V comes free with the
-/// operator's product M v), in blocks of [`CHUNK`] columns, so that
+/// The Lanczos basis V, in blocks of [`CHUNK`] columns, so that
 /// re-orthogonalization is matrix–vector products reading the basis once,
 /// not one dot product and one update per column, and the basis grows
-/// without copying.
+/// without copying. M V is not kept (at 100,000 elements it was a third of
+/// the run's peak memory): a pass takes M w instead.
 struct Basis {
     n: usize,
     len: usize,
     v: Vec<Mat<f64>>,
-    mv: Vec<Mat<f64>>,
 }
 
 /// Columns per block of [`Basis`].
@@ -379,7 +378,6 @@ impl Basis {
             n,
             len: 0,
             v: Vec::new(),
-            mv: Vec::new(),
         }
     }
 
@@ -387,58 +385,83 @@ impl Basis {
         self.len
     }
 
-    /// Appends v and M v.
-    fn push(&mut self, v: &[f64], mv: &[f64]) {
+    /// Appends v.
+    fn push(&mut self, v: &[f64]) {
         let (b, c) = (self.len / CHUNK, self.len % CHUNK);
         if c == 0 {
             self.v.push(Mat::zeros(self.n, CHUNK));
-            self.mv.push(Mat::zeros(self.n, CHUNK));
         }
         self.v[b].col_as_slice_mut(c).copy_from_slice(v);
-        self.mv[b].col_as_slice_mut(c).copy_from_slice(mv);
         self.len += 1;
     }
 
-    /// The used columns of block b.
-    fn block(&self, b: usize) -> (MatRef<'_, f64>, MatRef<'_, f64>) {
-        let cols = (self.len - b * CHUNK).min(CHUNK);
-        (self.v[b].subcols(0, cols), self.mv[b].subcols(0, cols))
+    /// Column j.
+    fn column(&self, j: usize) -> &[f64] {
+        self.v[j / CHUNK].col_as_slice(j % CHUNK)
     }
 
-    /// w ← w − V (M V)ᵀ w (one classical Gram–Schmidt pass in the M inner
-    /// product); returns the last coefficient, (M v_last)ᵀ w.
-    fn orthogonalize(&self, w: &mut [f64]) -> f64 {
+    /// The used columns of block b.
+    fn block(&self, b: usize) -> MatRef<'_, f64> {
+        let cols = (self.len - b * CHUNK).min(CHUNK);
+        self.v[b].subcols(0, cols)
+    }
+
+    /// w ← w − V Vᵀ (M w), given M w: one classical Gram–Schmidt pass in
+    /// the M inner product.
+    fn orthogonalize(&self, w: &mut [f64], mw: &[f64]) {
         let n = w.len();
-        let mut last = 0.0;
         // All coefficients from the w given, then the update.
+        let mw = MatRef::from_column_major_slice(mw, n, 1);
         let coefs: Vec<Mat<f64>> = (0..self.v.len())
             .map(|b| {
-                let (_, mv) = self.block(b);
-                let mut c = Mat::zeros(mv.ncols(), 1);
-                let w = MatRef::from_column_major_slice(w, n, 1);
-                matmul(c.as_mut(), Accum::Replace, mv.transpose(), w, 1.0, Par::Seq);
+                let v = self.block(b);
+                let mut c = Mat::zeros(v.ncols(), 1);
+                matmul(c.as_mut(), Accum::Replace, v.transpose(), mw, 1.0, Par::Seq);
                 c
             })
             .collect();
         let mut w = MatMut::from_column_major_slice_mut(w, n, 1);
         for (b, c) in coefs.iter().enumerate() {
-            let (v, _) = self.block(b);
-            matmul(w.as_mut(), Accum::Add, v, c.as_ref(), -1.0, Par::Seq);
-            last = c[(c.nrows() - 1, 0)];
+            matmul(
+                w.as_mut(),
+                Accum::Add,
+                self.block(b),
+                c.as_ref(),
+                -1.0,
+                Par::Seq,
+            );
         }
-        last
     }
 
     /// V Y for a j × k matrix Y.
     fn combine(&self, y: MatRef<'_, f64>) -> Mat<f64> {
         let mut out = Mat::zeros(self.n, y.ncols());
         for b in 0..self.v.len() {
-            let (v, _) = self.block(b);
+            let v = self.block(b);
             let rows = y.subrows(b * CHUNK, v.ncols());
             matmul(out.as_mut(), Accum::Add, v, rows, 1.0, Par::Seq);
         }
         out
     }
+}
+
+/// Makes w M-orthogonal to the basis: classical Gram–Schmidt against the
+/// whole basis, repeated while a pass removes more than half of w's
+/// squared M-norm (Daniel, Gragg, Kaufman and Stewart's test: after a pass
+/// that keeps most of w, what is left of the basis in it is round-off of
+/// round-off). `mw` is M w on entry and on return; returns wᵀ M w.
+fn reorthogonalize(op: &Operator, basis: &Basis, w: &mut [f64], mw: &mut [f64]) -> f64 {
+    let mut before = dot(w, mw);
+    for _ in 0..3 {
+        basis.orthogonalize(w, mw);
+        mul_vec(op.shifted.mass(), w, mw);
+        let after = dot(w, mw);
+        if after >= 0.5 * before {
+            return after;
+        }
+        before = after;
+    }
+    before
 }
 
 /// Lanczos with full re-orthogonalization in the M inner product from
@@ -469,20 +492,23 @@ fn lanczos(
     mul_vec(op.shifted.mass(), &v, &mut mv);
     loop {
         // w = S v.
-        basis.push(&v, &mv);
+        basis.push(&v);
         w.copy_from_slice(&mv);
         op.shifted.solve(&mut w);
         op.deflate(&mut w);
-        // Two passes of classical Gram–Schmidt against the whole basis.
-        let a = basis.orthogonalize(&mut w);
-        basis.orthogonalize(&mut w);
-        // wᵀMw once w is M-orthogonal to the basis (and to the deflated
-        // space, which the basis is M-orthogonal to).
+        // The three-term recurrence, then the whole basis against the
+        // round-off it leaves (w M-orthogonal to the basis, and so to the
+        // deflated space, which the basis is M-orthogonal to).
+        let j = basis.len();
+        let a = dot(&mv, &w);
+        axpy(-a, &v, &mut w);
+        if let Some(&b) = beta.last() {
+            axpy(-b, basis.column(j - 2), &mut w);
+        }
         mul_vec(op.shifted.mass(), &w, &mut mw);
-        let b2 = dot(&w, &mw);
+        let b2 = reorthogonalize(op, &basis, &mut w, &mut mw);
         alpha.push(a);
         let b = b2.max(0.0).sqrt();
-        let j = basis.len();
         let done = j >= wanted && (j - wanted).is_multiple_of(CHECK_EVERY) && {
             let (theta, s) = ritz(&alpha, &beta)?;
             let order = wanted_order(&theta, sigma);
@@ -500,13 +526,15 @@ fn lanczos(
                 .map(|i| (2.3 * i as f64 + 0.7 * j as f64).sin())
                 .collect();
             op.deflate(&mut fresh);
-            basis.orthogonalize(&mut fresh);
-            basis.orthogonalize(&mut fresh);
-            let norm = op.m_dot(&fresh, &fresh).max(0.0).sqrt();
+            let mut mf = vec![0.0; n];
+            mul_vec(op.shifted.mass(), &fresh, &mut mf);
+            let norm = reorthogonalize(op, &basis, &mut fresh, &mut mf)
+                .max(0.0)
+                .sqrt();
             if norm > 0.0 {
                 beta.push(0.0);
                 v = fresh.iter().map(|x| x / norm).collect();
-                mul_vec(op.shifted.mass(), &v, &mut mv);
+                mv = mf.iter().map(|x| x / norm).collect();
                 continue;
             }
         }
