@@ -10,7 +10,7 @@
 
 use super::{EigenFailure, KrylovModes, Operator, StiffnessProducts, GUARD, REFINE_STEPS};
 use crate::linalg::dense::symmetric_eigen_qr;
-use crate::linalg::sparse::mul_block;
+use crate::linalg::sparse::{mul_block, BLOCK_COLUMNS};
 use crate::linalg::vector::scrambled;
 use faer::sparse::SparseColMat;
 use faer::{Mat, Par};
@@ -62,26 +62,80 @@ impl Pool {
         self.free.push(m);
     }
 
-    /// A B into a block of the pool, sequential (a parallel product of
-    /// these thin blocks waits on its barriers more than it computes on two
-    /// busy cores).
-    fn mm(&mut self, a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> Mat<f64> {
-        let mut out = self.take(b.ncols());
-        faer::linalg::matmul::matmul(out.as_mut(), faer::Accum::Replace, a, b, 1.0, Par::Seq);
-        out
+    /// X ← X A + W B, in place where X has at least A's columns (rows a
+    /// chunk at a time, so that no second block of X's size is held); in
+    /// a block of the pool otherwise.
+    fn combine_into(
+        &mut self,
+        x: &mut Mat<f64>,
+        a: faer::MatRef<'_, f64>,
+        w: Option<(faer::MatRef<'_, f64>, faer::MatRef<'_, f64>)>,
+    ) {
+        let (n, k) = (x.nrows(), a.ncols());
+        if x.ncols() < k || x.ncols() == 0 {
+            let mut out = self.take(k);
+            let accum = if x.ncols() == 0 {
+                out.fill(0.0);
+                faer::Accum::Add
+            } else {
+                faer::Accum::Replace
+            };
+            let (out_ref, x_ref) = (out.as_mut(), x.as_ref());
+            faer::linalg::matmul::matmul(out_ref, accum, x_ref, a, 1.0, Par::Seq);
+            if let Some((w, b)) = w {
+                let out_ref = out.as_mut();
+                faer::linalg::matmul::matmul(out_ref, faer::Accum::Add, w, b, 1.0, Par::Seq);
+            }
+            self.give(std::mem::replace(x, out));
+            return;
+        }
+        let mut chunk = Mat::<f64>::zeros(ROW_CHUNK.min(n), k);
+        let mut r0 = 0;
+        while r0 < n {
+            let rows = ROW_CHUNK.min(n - r0);
+            let mut c = chunk.as_mut().subrows_mut(0, rows);
+            let xr = x.as_ref().subrows(r0, rows);
+            faer::linalg::matmul::matmul(c.as_mut(), faer::Accum::Replace, xr, a, 1.0, Par::Seq);
+            if let Some((w, b)) = w {
+                let wr = w.subrows(r0, rows);
+                faer::linalg::matmul::matmul(c.as_mut(), faer::Accum::Add, wr, b, 1.0, Par::Seq);
+            }
+            x.as_mut()
+                .subrows_mut(r0, rows)
+                .subcols_mut(0, k)
+                .copy_from(c.as_ref());
+            r0 += rows;
+        }
+        x.truncate(n, k);
     }
 
-    /// A B + C D in one block of the pool.
-    fn mm2(
-        &mut self,
-        a: faer::MatRef<'_, f64>,
-        b: faer::MatRef<'_, f64>,
-        c: faer::MatRef<'_, f64>,
-        d: faer::MatRef<'_, f64>,
-    ) -> Mat<f64> {
-        let mut out = self.mm(a, b);
-        faer::linalg::matmul::matmul(out.as_mut(), faer::Accum::Add, c, d, 1.0, Par::Seq);
-        out
+    /// Wᵀ M W, [`BLOCK_COLUMNS`] columns of M W at a time (no block of W's
+    /// size held).
+    fn gram_m(&mut self, m: &SparseColMat<usize, f64>, w: &Mat<f64>) -> Mat<f64> {
+        let k = w.ncols();
+        let mut g = Mat::zeros(k, k);
+        let mut mw = Mat::<f64>::zeros(w.nrows(), BLOCK_COLUMNS.min(k));
+        let mut c0 = 0;
+        while c0 < k {
+            let c = BLOCK_COLUMNS.min(k - c0);
+            let mut part = mw.as_mut().subcols_mut(0, c);
+            mul_block(
+                m,
+                w.as_ref().subcols(c0, c),
+                part.as_mut(),
+                &mut self.scratch,
+            );
+            faer::linalg::matmul::matmul(
+                g.as_mut().subcols_mut(c0, c),
+                faer::Accum::Replace,
+                w.transpose(),
+                part.as_ref(),
+                1.0,
+                Par::Seq,
+            );
+            c0 += c;
+        }
+        g
     }
 
     /// M W for every column, into a block of the pool.
@@ -109,6 +163,10 @@ impl Pool {
         kw
     }
 }
+
+/// Rows per chunk of [`Pool::combine_into`] (16 columns of them fit a
+/// core's L2 cache).
+const ROW_CHUNK: usize = 2048;
 
 /// A B (small blocks).
 fn mm(a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> Mat<f64> {
@@ -144,9 +202,7 @@ fn orthonormalize_against(
             let c = mm(mx.transpose(), w.as_ref());
             sub_mm(&mut w, x.as_ref(), c.as_ref());
         }
-        let mw = pool.m_block(m, &w);
-        let g = mm(w.transpose(), mw.as_ref());
-        pool.give(mw);
+        let g = pool.gram_m(m, &w);
         let g = Mat::from_fn(g.nrows(), g.ncols(), |i, j| 0.5 * (g[(i, j)] + g[(j, i)]));
         let (vals, vecs) = symmetric_eigen_qr(&g, Par::Seq)?;
         let top = vals.iter().fold(0.0f64, |a, &v| a.max(v));
@@ -156,8 +212,7 @@ fn orthonormalize_against(
         let t = Mat::from_fn(vecs.nrows(), keep.len(), |r, c| {
             vecs[(r, keep[c])] / vals[keep[c]].sqrt()
         });
-        let out = pool.mm(w.as_ref(), t.as_ref());
-        pool.give(std::mem::replace(&mut w, out));
+        pool.combine_into(&mut w, t.as_ref(), None);
     }
     Ok(w)
 }
@@ -222,12 +277,21 @@ pub(super) fn refine(
                 theta = order.iter().take(keep).map(|&i| vals[i]).collect();
                 let y_top = Mat::from_fn(q, keep, |r, c| vecs[(r, order[c])]);
                 let y_bot = Mat::from_fn(s - q, keep, |r, c| vecs[(q + r, order[c])]);
-                let x_new = pool.mm2(x.as_ref(), y_top.as_ref(), w.as_ref(), y_bot.as_ref());
-                pool.give(std::mem::replace(&mut x, x_new));
-                pool.give(w);
-                let kx_new = pool.mm2(kx.as_ref(), y_top.as_ref(), kw.as_ref(), y_bot.as_ref());
-                pool.give(std::mem::replace(&mut kx, kx_new));
-                pool.give(kw);
+                if q == 0 {
+                    // The first extension: X and K X are W's and K W's
+                    // own blocks, turned in place.
+                    pool.give(std::mem::replace(&mut x, w));
+                    pool.give(std::mem::replace(&mut kx, kw));
+                    pool.combine_into(&mut x, y_bot.as_ref(), None);
+                    pool.combine_into(&mut kx, y_bot.as_ref(), None);
+                } else {
+                    let w_part = (w.as_ref(), y_bot.as_ref());
+                    let k_part = (kw.as_ref(), y_bot.as_ref());
+                    pool.combine_into(&mut x, y_top.as_ref(), Some(w_part));
+                    pool.combine_into(&mut kx, y_top.as_ref(), Some(k_part));
+                    pool.give(w);
+                    pool.give(kw);
+                }
                 mx = pool.m_block(op.m(), &x);
             }
             if step == REFINE_STEPS {
@@ -288,6 +352,19 @@ pub(super) fn refine(
                 break;
             }
             previous_worst = worst;
+            // Only the modes not yet resolved (the wanted ones and the
+            // guard) extend the block: a resolved mode's correction is
+            // round-off, and each column costs its precise product.
+            let active: Vec<usize> = (0..keep)
+                .filter(|&j| bounds[j] > RESOLVED * theta[j].abs() || bounds[j].is_nan())
+                .collect();
+            for (c, &j) in active.iter().enumerate() {
+                if c != j {
+                    let (mut to, from) = w.as_mut().two_cols_mut(c, j);
+                    to.copy_from(from.as_ref());
+                }
+            }
+            w.truncate(n, active.len());
             pending = Some(w);
         }
         // The spare blocks go before the count's factorization.
