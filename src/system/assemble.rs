@@ -6,6 +6,7 @@
 //! loaded state adds ∂(C_qᵀλ)/∂q.
 
 use super::System;
+use crate::linalg::null_space::NullSpace;
 use crate::linalg::Scatter;
 use crate::mechanics::anchor::Hess;
 use crate::mechanics::cable_force::{elastic_forces_into, Wide, MAX_LANES};
@@ -50,18 +51,30 @@ pub struct Linearization<'a> {
 }
 
 /// A scatter target that adds A φ for each shape instead of storing A.
-struct Products<'a, 'b> {
-    phis: &'a [&'b [f64]],
-    out: &'a mut [Vec<f64>],
+/// K x for several x in reduced coordinates (x_full = N x), added into
+/// reduced outputs (Nᵀ K N x): a [`Scatter`] of K's entries.
+struct Products<'a, 'b, 'c> {
+    basis: &'a NullSpace,
+    xs: &'a [&'b [f64]],
+    out: &'a mut [&'c mut [f64]],
 }
 
-impl Scatter for Products<'_, '_> {
+impl Scatter for Products<'_, '_, '_> {
     #[inline]
     fn add(&mut self, i: usize, j: usize, v: f64) {
-        for (o, phi) in self.out.iter_mut().zip(self.phis) {
-            o[i] += v * phi[j];
+        for (o, x) in self.out.iter_mut().zip(self.xs) {
+            let f = v * gather(self.basis, x, j);
+            for &(r, z) in self.basis.row(i) {
+                o[r] += z * f;
+            }
         }
     }
+}
+
+/// Full coordinate g of N x.
+#[inline]
+fn gather(basis: &NullSpace, x: &[f64], g: usize) -> f64 {
+    basis.row(g).iter().map(|&(r, z)| z * x[r]).sum()
 }
 
 fn element_vec(q: &[f64], dofs: &[usize; 8]) -> Vec8 {
@@ -293,31 +306,38 @@ impl System {
     /// where the assembled matrix's product cancels entries of order
     /// EI/Le³ (the residual of a mode of a 100,000-element cantilever
     /// would be all round-off).
-    pub fn stiffness_products(&self, at: &Linearization, phis: &[&[f64]], out: &mut [Vec<f64>]) {
-        assert_eq!(phis.len(), out.len(), "one output per shape");
+    pub fn stiffness_products(
+        &self,
+        at: &Linearization,
+        basis: &NullSpace,
+        xs: &[&[f64]],
+        out: &mut [&mut [f64]],
+    ) {
+        assert_eq!(xs.len(), out.len(), "one output per shape");
         for o in out.iter_mut() {
-            o.clear();
-            o.resize(self.ndof(), 0.0);
+            o.fill(0.0);
         }
         let q = at.q;
-        let mut des = vec![Vec8::zeros(); phis.len()];
-        let mut forces = vec![Vec8::zeros(); phis.len()];
+        let mut des = vec![Vec8::zeros(); xs.len()];
+        let mut forces = vec![Vec8::zeros(); xs.len()];
         for b in &self.beams {
             for (k, el) in b.elements.iter().enumerate() {
                 let dofs = b.element_dofs(k);
-                for (de, phi) in des.iter_mut().zip(phis) {
-                    *de = element_vec(phi, &dofs);
+                for (de, x) in des.iter_mut().zip(xs) {
+                    *de = Vec8::from_fn(|i, _| gather(basis, x, dofs[i]));
                 }
                 forces.fill(Vec8::zeros());
                 el.add_tangent_products(&element_vec(q, &dofs), &des, &mut forces);
                 for (o, f) in out.iter_mut().zip(&forces) {
                     for (i, &d) in dofs.iter().enumerate() {
-                        o[d] += f[i];
+                        for &(r, z) in basis.row(d) {
+                            o[r] += z * f[i];
+                        }
                     }
                 }
             }
         }
-        let mut products = Products { phis, out };
+        let mut products = Products { basis, xs, out };
         self.add_tangent_stiffness_of_joints_and_loads(at, &mut products);
     }
 

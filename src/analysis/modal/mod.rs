@@ -147,11 +147,6 @@ enum Pencil {
     },
 }
 
-/// Columns per call of the precise stiffness products (each call holds
-/// two full-size vectors per column; the element states are formed once
-/// per call).
-const PRODUCT_COLUMNS: usize = 4;
-
 /// Modal analysis linearized at `at`.
 pub fn modal(
     system: &System,
@@ -235,23 +230,16 @@ pub fn modal(
                 (v, x, Some(f))
             }
             Pencil::Sparse { k, m } => {
-                // K_r x from strain variations: (DN)ᵀ K (DN x).
-                let products_of = |xs: &[&[f64]], out: &mut [&mut [f64]]| {
-                    let full: Vec<Vec<f64>> = xs.iter().map(|x| ns.expand(x)).collect();
-                    let refs: Vec<&[f64]> = full.iter().map(Vec::as_slice).collect();
-                    let mut kf = vec![Vec::new(); xs.len()];
-                    system.stiffness_products(at, &refs, &mut kf);
-                    for (o, f) in out.iter_mut().zip(&kf) {
-                        ns.project_forces_into(f, o);
-                    }
-                };
-                // Columns are independent: a few at a time (each takes two
-                // full-size vectors), on the pool's threads (the same
-                // operations per column, so the same bits).
+                // K_r x from strain variations: (DN)ᵀ K (DN x), the
+                // columns shared among the pool's threads (the same
+                // operations per column, so the same bits however shared;
+                // the element states are formed once per share).
+                let share = rayon::current_num_threads().max(1);
                 let products = |xs: &[&[f64]], out: &mut [&mut [f64]]| {
-                    xs.par_chunks(PRODUCT_COLUMNS)
-                        .zip(out.par_chunks_mut(PRODUCT_COLUMNS))
-                        .for_each(|(x, o)| products_of(x, o));
+                    let chunk = xs.len().div_ceil(share).max(1);
+                    xs.par_chunks(chunk)
+                        .zip(out.par_chunks_mut(chunk))
+                        .for_each(|(x, o)| system.stiffness_products(at, &ns, x, o));
                 };
                 let r = lowest_modes_refined(
                     k,
