@@ -10,9 +10,36 @@
 //! from the known design at τ = 0 to the wanted one at τ = 1); the
 //! equilibrium at τ = 0 is solved as usual, then each step starts Newton's
 //! method ([`super::continue_equilibrium`] at the full load factor) from
-//! the last converged state. Step control: the step doubles after a step
-//! that converged, is quartered after one that did not, and the path gives
-//! up below [`MIN_STEP`]. After every step the contacts that were closed at
+//! the secant predictor: the line through the last two converged states,
+//! extended to the next τ (from the first state alone on the first step).
+//! A design change that moves a stiff contact's seat (a slot's end cap
+//! 1 mm along the path, the contact closed by 1 µm) opens or crushes the
+//! contact when the last state is taken as it is, and Newton's method
+//! starts from the contact's whole force out of balance whatever the step;
+//! the secant moves the parts with the seat, and leaves an error of the
+//! order of the step squared. A step whose secant start fails (Newton's
+//! method stalls, the state does not balance or is unstable, or a closed
+//! contact opens) is tried again, the same step, from the last state as it
+//! is, before the step is cut.
+//!
+//! **Folds.** A path can fold back: the branch it follows ends at a limit
+//! point in τ (the path from the calibrated switch-off design to the
+//! uncalibrated one with its spring housing moved 0.1 mm folds near
+//! τ = 0.61) and the design beyond is held only on another branch. The
+//! secant follows the branch into the fold, where every step, from either
+//! start, stalls with a residual that shrinks with the step, and the path
+//! stops below [`MIN_STEP`]. Started from the last state alone, the path
+//! reaches the fold with longer steps and one of them lands on the other
+//! branch (it jumps the fold). So when the secant path does not reach the
+//! design, for any reason, the whole path is run again with the last state
+//! as each step's start ([`Predictor::LastState`]), and that outcome is the
+//! answer: the path never ends worse than it did without the secant
+//! (tests/design_path_fold.rs checks that on the fold's design, and that
+//! where both paths reach a design they reach the same equilibrium).
+//!
+//! **Step control.** The step doubles after a step that converged, is
+//! quartered after one that did not, and the path gives up below
+//! [`MIN_STEP`]. After every step the contacts that were closed at
 //! τ = 0 must still be, and the result must balance (checked
 //! independently): a contact that opens, or whose force has faded below
 //! [`FADED`] of its start where the path stalls, means that the design has
@@ -79,6 +106,33 @@ pub fn equilibrium_along_from(
     start: &PathStart,
     settings: &StaticSettings,
 ) -> Result<(Equilibrium, usize), DesignPathError> {
+    match equilibrium_along_with(&build, start, settings, Predictor::Secant) {
+        // A fold (module doc): the path as it was without the secant.
+        Err(e) if !matches!(e, DesignPathError::Start(_)) => {
+            equilibrium_along_with(build, start, settings, Predictor::LastState)
+        }
+        found => found,
+    }
+}
+
+/// Where each step of a design path starts Newton's method (module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Predictor {
+    /// The secant through the last two equilibria (carried to the next
+    /// design), then, when that step fails, the last equilibrium.
+    Secant,
+    /// The last equilibrium as it is.
+    LastState,
+}
+
+/// [`equilibrium_along_from`] with one predictor throughout, no second
+/// path when it does not reach the design.
+pub fn equilibrium_along_with(
+    build: impl Fn(f64) -> Result<System, InvalidModel>,
+    start: &PathStart,
+    settings: &StaticSettings,
+    predictor: Predictor,
+) -> Result<(Equilibrium, usize), DesignPathError> {
     let invalid = |at: f64| {
         move |invalid| DesignPathError::InvalidDesign {
             at,
@@ -98,37 +152,76 @@ pub fn equilibrium_along_from(
         .map(|&i| prev.contacts[i].elastic_force(&eq.q))
         .collect();
     let (mut tau, mut step, mut steps) = (0.0f64, FIRST_STEP, 0usize);
+    // The converged state before the last one, its system and τ.
+    let mut before: Option<(System, Vec<f64>, f64)> = None;
     while tau < 1.0 {
         let next = (tau + step).min(1.0);
         let sys = build(next).map_err(invalid(next))?;
-        let q = sys
-            .transfer_from(&prev, &eq.q)
-            .map_err(|source| DesignPathError::Transfer { at: next, source })?;
-        let start = Equilibrium {
-            q,
-            lambda: vec![0.0; sys.constraint_count()],
-            ..eq.clone()
+        let transfer = |from: &System, q: &[f64]| {
+            sys.transfer_from(from, q)
+                .map_err(|source| DesignPathError::Transfer { at: next, source })
         };
-        let step_result = continue_equilibrium(&sys, &start, eq.load_scale, settings)
-            .and_then(|found| balanced(&sys, found));
+        let last = transfer(&prev, &eq.q)?;
+        // The predictors in turn (module doc): the secant, then the last
+        // state as it is; the first step that converges with the closed
+        // contacts closed is taken, the last predictor's outcome decides.
+        let secant = match (&before, predictor) {
+            (Some((older, q_older, tau_older)), Predictor::Secant) => {
+                let q_older = transfer(older, q_older)?;
+                let ratio = (next - tau) / (tau - tau_older);
+                let mut q = last.clone();
+                q.iter_mut()
+                    .zip(&q_older)
+                    .for_each(|(a, b)| *a += ratio * (*a - b));
+                Some(q)
+            }
+            _ => None,
+        };
+        let mut step_result = Err(Rejected::Failed(AnalysisError::NotConverged {
+            load_factor: eq.load_scale,
+            iterations: 0,
+            residual: f64::INFINITY,
+        }));
+        for q in secant.into_iter().chain(std::iter::once(last)) {
+            let start = Equilibrium {
+                q,
+                lambda: vec![0.0; sys.constraint_count()],
+                ..eq.clone()
+            };
+            step_result = continue_equilibrium(&sys, &start, eq.load_scale, settings)
+                .and_then(|found| balanced(&sys, found))
+                .map_err(Rejected::Failed)
+                .and_then(|found| {
+                    match closed
+                        .iter()
+                        .find(|&&i| sys.contacts[i].elastic_force(&found.q) <= 0.0)
+                    {
+                        Some(&i) => Err(Rejected::Opens(i)),
+                        None => Ok(found),
+                    }
+                });
+            if step_result.is_ok() {
+                break;
+            }
+        }
         match step_result {
+            Err(Rejected::Opens(i)) => {
+                return Err(DesignPathError::ContactOpens {
+                    contact: sys.contacts[i].label.clone(),
+                    at: next,
+                });
+            }
             Ok(found) => {
-                if let Some(&i) = closed
-                    .iter()
-                    .find(|&&i| sys.contacts[i].elastic_force(&found.q) <= 0.0)
-                {
-                    return Err(DesignPathError::ContactOpens {
-                        contact: sys.contacts[i].label.clone(),
-                        at: next,
-                    });
-                }
-                eq = found;
-                prev = sys;
+                before = Some((
+                    std::mem::replace(&mut prev, sys),
+                    std::mem::replace(&mut eq, found).q,
+                    tau,
+                ));
                 tau = next;
                 steps += 1;
                 step = (2.0 * step).min(1.0);
             }
-            Err(source) => {
+            Err(Rejected::Failed(source)) => {
                 step *= 0.25;
                 if step < MIN_STEP {
                     // Stalled where a contact had almost let go: the
@@ -284,4 +377,12 @@ pub fn verify(sys: &System, eq: &Equilibrium) -> Result<(), DesignPathError> {
         return Err(DesignPathError::EnergyAboveReference { found, reference });
     }
     Ok(())
+}
+
+/// Why a path step from one predictor was not taken.
+enum Rejected {
+    /// Newton's method did not find a balanced state.
+    Failed(AnalysisError),
+    /// The state found has this contact, closed at the start, open.
+    Opens(usize),
 }
