@@ -11,7 +11,8 @@
 //! direction); see [`shifted`].
 //!
 //! The shift is negative and scaled to the model: starting from
-//! σ = −√ε·maxᵢ Kᵢᵢ/Mᵢᵢ, one solve u = S b gives the Rayleigh quotient
+//! σ = −√ε·maxᵢ Kᵢᵢ/Mᵢᵢ (refined runs: from 16ε of that scale, near
+//! what the factor resolves at all), one solve u = S b gives the Rayleigh quotient
 //! ρ = uᵀKu/uᵀMu (formed as uᵀMb/uᵀMu + σ, free of cancellation in K) ≥ λ₁,
 //! after four such inverse-iteration steps with the same factor; while
 //! |σ| > 1.5ρ the shift moves to −ρ and K − σM is factored again (a shift
@@ -43,6 +44,9 @@ use faer::sparse::SparseColMat;
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 use refine::{refine, Refinement};
 use shifted::Shifted;
+
+/// Refined runs: the first shift in units of ε·maxᵢ Kᵢᵢ/Mᵢᵢ.
+const START_RESOLUTIONS: f64 = 16.0;
 
 /// Inverse-iteration steps per trial shift.
 const INVERSE_STEPS: usize = 4;
@@ -224,7 +228,15 @@ fn modes(
         .iter()
         .zip(&md)
         .fold(0.0f64, |a, (k, m)| a.max((k / m).abs()));
-    let mut sigma = -f64::EPSILON.sqrt() * lmax.max(f64::MIN_POSITIVE);
+    // Refined, the walk starts near the factor's own resolution, a few
+    // ε·max Kᵢᵢ/Mᵢᵢ: no shift below it resolves more, and the block
+    // iteration does the rest; otherwise at √ε of that scale.
+    let start = if products.is_some() {
+        START_RESOLUTIONS * f64::EPSILON
+    } else {
+        f64::EPSILON.sqrt()
+    };
+    let mut sigma = -start * lmax.max(f64::MIN_POSITIVE);
     let mz = deflate
         .iter()
         .map(|z| {
@@ -281,6 +293,9 @@ fn modes(
         }
         sigma = -rho;
     }
+    // The walk's vectors go before the basis grows (a few MB each on a
+    // large model; only u starts Lanczos).
+    drop((b, mb, mu, md, kd));
     let (mut values, mut vectors, mut steps) = lanczos(&mut op, &u, wanted, sigma, settings)?;
     if let Some(products) = products {
         let refined = refine(

@@ -261,10 +261,18 @@ pub fn modal(
         // Rayleigh quotients from the cancellation-free energy form.
         let phis: Vec<&[f64]> = shapes.iter().map(Vec::as_slice).collect();
         let mut energies = vec![EnergyBreakdown::default(); phis.len()];
-        system.stiffness_quadratic_forms(at, &phis, &mut energies);
+        // Shapes shared among the pool's threads (each shape's sums are
+        // the same however they are shared).
+        let share = phis
+            .len()
+            .div_ceil(rayon::current_num_threads().max(1))
+            .max(1);
+        phis.par_chunks(share)
+            .zip(energies.par_chunks_mut(share))
+            .for_each(|(p, e)| system.stiffness_quadratic_forms(at, p, e));
         let mass = system.mass();
         let refined: Vec<f64> = shapes
-            .iter()
+            .par_iter()
             .zip(&energies)
             .map(|(s, e)| 2.0 * e.total() / mass.quadratic_form(s))
             .collect();
