@@ -23,10 +23,11 @@
 //!
 //! Known zero modes (M-orthonormal columns Z) are deflated: every Krylov
 //! vector is made M-orthogonal to them, so the iteration sees only the
-//! elastic spectrum. Full re-orthogonalization (classical Gram–Schmidt,
-//! twice, against the whole basis at once: the basis is kept with its M
-//! products, so a pass is two matrix–vector products) in the M inner
-//! product; the Ritz problem is solved by
+//! elastic spectrum. Full re-orthogonalization in the M inner product:
+//! after the three-term recurrence, classical Gram–Schmidt against the
+//! whole basis at once (two matrix–vector products with the basis and one
+//! product M w), repeated only while a pass removes more than half of w;
+//! the Ritz problem is solved by
 //! [`super::dense::symmetric_eigen_qr`]. The basis grows until the wanted
 //! Ritz pairs have residual estimates |βⱼ sⱼᵢ| ≤ tolerance·|θᵢ| (a short
 //! Lanczos, no restarts: shift-invert converges in a few steps per mode; an
