@@ -156,7 +156,9 @@ impl System {
                 let side_by_side = group.len() == lanes && (2..=MAX_LANES).contains(&lanes);
                 if side_by_side {
                     let d0 = b.dof0 + 4 * k;
-                    elastic_forces_into(simd, group, &q[d0..d0 + 4 * lanes + 4], &mut forces);
+                    let packed = b.packed.get(k / MAX_LANES).map(|p| (p, k % MAX_LANES));
+                    let q = &q[d0..d0 + 4 * lanes + 4];
+                    elastic_forces_into(simd, group, packed, q, &mut forces);
                 } else {
                     for (j, e) in group.iter().enumerate() {
                         let d0 = b.dof0 + 4 * (k + j);
@@ -393,6 +395,10 @@ impl System {
 
     /// Adds the constraint forces C_qᵀλ into `out` (no dense C_q formed).
     pub fn add_constraint_forces(&self, q: &[f64], lambda: &[f64], out: &mut [f64]) {
+        // Nothing to zero without a constraint (a free part's transient).
+        if self.constraints.is_empty() {
+            return;
+        }
         let mut j = ConstraintJac::zeros();
         for (c, &row) in self.constraints.iter().zip(&self.constraint_rows) {
             c.jacobian(q, &mut j);

@@ -4,8 +4,10 @@
 
 use super::{
     BeamMesh, PointMassDofs, ReleasedJoint, ReleasedSupport, RigidDofs, SensorPoint, System,
+    PACKED_ELEMENTS,
 };
 use crate::mechanics::anchor::{perp, Anchor};
+use crate::mechanics::cable_force::PackedElements;
 use crate::mechanics::contact::law::NormalLaw;
 use crate::mechanics::contact::{ContactElement, ContactKind};
 use crate::mechanics::element::{CableElement, CableSection};
@@ -91,10 +93,14 @@ impl System {
             let extra: Vec<f64> = nodes.iter().filter(|n| n.0 == index).map(|n| n.1).collect();
             let node_s = mesh_nodes(model, b, &extra);
             let section = CableSection::of(&b.section, &b.material);
-            let elements = node_s
+            let elements: Vec<CableElement> = node_s
                 .windows(2)
                 .map(|w| CableElement::new(w[1] - w[0], section))
                 .collect();
+            let packed = match elements.len() <= PACKED_ELEMENTS {
+                true => PackedElements::of_beam(&elements),
+                false => Vec::new(),
+            };
             let t = v2(b.tangent());
             let start = v2(b.start);
             for &s in &node_s {
@@ -106,6 +112,7 @@ impl System {
                 dof0: dof,
                 section,
                 elements,
+                packed,
                 start,
                 tangent: t,
                 node_s,
