@@ -106,6 +106,11 @@ impl Anchor {
 
     /// Velocity ṙ = (∂r/∂q) q̇.
     pub fn velocity(&self, q: &[f64], qd: &[f64]) -> Vector2<f64> {
+        // A beam point moves with its shape functions: the Jacobian's
+        // product below without its zero half (the same sums, same bits).
+        if let Anchor::Beam { dofs, shape } = self {
+            return combine(qd, dofs, &shape.s.into());
+        }
         let mut jac = PosJac::zeros();
         self.position_jacobian(q, &mut jac);
         let mut v = Vector2::zeros();

@@ -87,9 +87,12 @@ impl SensorProbe {
         &self.point.id
     }
 
-    /// Best fit of the beam's nodes and its rates up to the `order`-th
-    /// (1 or 2; the second rates are 0 when not asked for).
-    fn fit(&self, st: &State, order: usize) -> Fit {
+    /// Best fit of the beam's nodes and its rates up to the `ORDER`-th
+    /// (1 or 2; the second rates are 0 when not asked for). A constant, so
+    /// that the loops over the rates unroll (the impulse reads a velocity
+    /// at every step).
+    fn fit<const ORDER: usize>(&self, st: &State) -> Fit {
+        let order = ORDER;
         let n = self.nodes.len() as f64;
         let node = |x: &[f64], i: usize| Vector2::new(x[i], x[i + 1]);
         let x = [&st.q, &st.v, &st.a];
@@ -113,9 +116,13 @@ impl SensorProbe {
         let den = cc[0] * cc[0] + s[0] * s[0];
         let num = cc[0] * s[1] - s[0] * cc[1];
         let phi_d = num / den;
-        let num_d = cc[0] * s[2] - s[0] * cc[2];
-        let den_d = 2.0 * (cc[0] * cc[1] + s[0] * s[1]);
-        let phi_dd = (num_d * den - num * den_d) / (den * den);
+        let phi_dd = if ORDER == 2 {
+            let num_d = cc[0] * s[2] - s[0] * cc[2];
+            let den_d = 2.0 * (cc[0] * cc[1] + s[0] * s[1]);
+            (num_d * den - num * den_d) / (den * den)
+        } else {
+            0.0
+        };
         Fit {
             c,
             rt: rot_t(cc[0], s[0], den),
@@ -143,12 +150,11 @@ impl SensorProbe {
         }
         // The acceleration's fit only for an acceleration (the impulse
         // reads a velocity at every step).
-        let order = if quantity == SensorQuantity::Acceleration {
-            2
+        let fit = if quantity == SensorQuantity::Acceleration {
+            self.fit::<2>(st)
         } else {
-            1
+            self.fit::<1>(st)
         };
-        let fit = self.fit(st, order);
         let rt = fit.rt;
         let j = jm();
         let w = r - fit.c[0];
