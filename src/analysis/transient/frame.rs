@@ -32,6 +32,9 @@ use crate::system::System;
 pub struct RotatingFrame {
     /// (x, y) index pairs of [q; λ] that turn as plane vectors.
     pairs: Vec<(usize, usize)>,
+    /// How many of the first pairs are (0, 1), (2, 3), …: the beams' nodes
+    /// when the beams come first in q, turned by one sweep over x.
+    leading: usize,
     /// Coordinates (x index; y follows) of the points the fit uses.
     points: Vec<usize>,
     /// Centred point positions when the matrix was factored [SI: m].
@@ -68,7 +71,13 @@ impl RotatingFrame {
                 pairs.push((n + row + first, n + row + first + 1));
             }
         }
+        let leading = pairs
+            .iter()
+            .enumerate()
+            .take_while(|&(k, &(i, j))| i == 2 * k && j == 2 * k + 1)
+            .count();
         RotatingFrame {
+            leading,
             pairs,
             reference: vec![[0.0; 2]; points.len()],
             points,
@@ -125,7 +134,12 @@ impl RotatingFrame {
             return;
         }
         let cos = self.cos;
-        for &(i, j) in &self.pairs {
+        for p in x[..2 * self.leading].chunks_exact_mut(2) {
+            let (a, b) = (p[0], p[1]);
+            p[0] = cos * a - sin * b;
+            p[1] = sin * a + cos * b;
+        }
+        for &(i, j) in &self.pairs[self.leading..] {
             let (a, b) = (x[i], x[j]);
             x[i] = cos * a - sin * b;
             x[j] = sin * a + cos * b;
