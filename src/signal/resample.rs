@@ -355,26 +355,57 @@ impl Polyphase {
     }
 }
 
-/// (Σ hᵢxᵢ, Σ hᵢ) over equal-length slices, in four partial sums.
+/// (Σ hᵢxᵢ, Σ hᵢ) over equal-length slices, in four partial sums (one a
+/// lane of an AVX2 register where the CPU has them: the same sums, the
+/// same bits).
 fn dot_and_sum(h: &[f64], x: &[f64]) -> (f64, f64) {
-    let (mut acc, mut norm) = ([0.0; 4], [0.0; 4]);
-    let (hc, xc) = (h.chunks_exact(4), x.chunks_exact(4));
-    let (hr, xr) = (hc.remainder(), xc.remainder());
-    for (h4, x4) in hc.zip(xc) {
-        for i in 0..4 {
-            acc[i] += h4[i] * x4[i];
-            norm[i] += h4[i];
+    pulp::Arch::new().dispatch(DotAndSum { h, x })
+}
+
+struct DotAndSum<'a> {
+    h: &'a [f64],
+    x: &'a [f64],
+}
+
+impl pulp::WithSimd for DotAndSum<'_> {
+    type Output = (f64, f64);
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, simd: S) -> (f64, f64) {
+        let n = self.h.len().min(self.x.len());
+        let (h, x) = (&self.h[..n], &self.x[..n]);
+        let whole = h.len() / 4 * 4;
+        let (mut acc, mut norm) = ([0.0; 4], [0.0; 4]);
+        if std::mem::size_of::<S::f64s>() == std::mem::size_of::<[f64; 4]>() {
+            let (hv, xv) = (
+                S::as_simd_f64s(&h[..whole]).0,
+                S::as_simd_f64s(&x[..whole]).0,
+            );
+            let (mut a, mut n) = (simd.splat_f64s(0.0), simd.splat_f64s(0.0));
+            for (&h4, &x4) in hv.iter().zip(xv) {
+                a = simd.add_f64s(a, simd.mul_f64s(h4, x4));
+                n = simd.add_f64s(n, h4);
+            }
+            S::as_mut_simd_f64s(&mut acc).0[0] = a;
+            S::as_mut_simd_f64s(&mut norm).0[0] = n;
+        } else {
+            for (h4, x4) in h[..whole].chunks_exact(4).zip(x[..whole].chunks_exact(4)) {
+                for i in 0..4 {
+                    acc[i] += h4[i] * x4[i];
+                    norm[i] += h4[i];
+                }
+            }
         }
+        let (mut a, mut n) = (
+            (acc[0] + acc[1]) + (acc[2] + acc[3]),
+            (norm[0] + norm[1]) + (norm[2] + norm[3]),
+        );
+        for (h, x) in h[whole..].iter().zip(&x[whole..]) {
+            a += h * x;
+            n += h;
+        }
+        (a, n)
     }
-    let (mut a, mut n) = (
-        (acc[0] + acc[1]) + (acc[2] + acc[3]),
-        (norm[0] + norm[1]) + (norm[2] + norm[3]),
-    );
-    for (h, x) in hr.iter().zip(xr) {
-        a += h * x;
-        n += h;
-    }
-    (a, n)
 }
 
 /// [`filter_onto`] for any ratio: the kernel evaluated at every tap.

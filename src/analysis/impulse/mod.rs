@@ -578,19 +578,22 @@ impl<'p> Recorder<'p> {
     }
 
     /// Sample times, the (filtered, resampled) sensor signal and force.
-    fn finish(self, force: impl Fn(f64) -> f64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-        let raw_force: Vec<f64> = self.time.iter().map(|&t| force(t)).collect();
+    fn finish(self, force: impl Fn(f64) -> f64 + Sync) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let raw_force = || -> Vec<f64> { self.time.iter().map(|&t| force(t)).collect() };
         let Some(rate) = self.rate else {
+            let raw_force = raw_force();
             return (self.time, self.signal, raw_force);
         };
         let design = AntiAlias::default();
         let f_in = 1.0 / self.step;
         let t0 = self.time.first().copied().unwrap_or(0.0);
         // At rest before the blow: the sensor holds its first value, the
-        // excitation is zero.
+        // excitation is zero. The two records are filtered side by side.
         let rest = self.signal.first().copied().unwrap_or(0.0);
-        let signal = resample_from_rest(&self.signal, rest, f_in, rate, &design);
-        let force = resample_from_rest(&raw_force, 0.0, f_in, rate, &design);
+        let (signal, force) = rayon::join(
+            || resample_from_rest(&self.signal, rest, f_in, rate, &design),
+            || resample_from_rest(&raw_force(), 0.0, f_in, rate, &design),
+        );
         let lead = pre_trigger(&design, rate) as f64;
         let time = (0..signal.len())
             .map(|m| t0 + (m as f64 - lead) / rate)
