@@ -54,7 +54,9 @@ fn odd_end_times_end_on_whole_steps_without_a_sliver() {
 /// at their end time, in the sliver step round-off left. Every end time
 /// now runs to its end; at a spectral radius of 0.9 the balance closes
 /// within 1e-3 of the push's work (measured 3e-5 … 1e-4), and at 1, where
-/// index-3 joints drift (measured 8 … 11 %), the run says it gains.
+/// index-3 joints drift, an error past 1e-3 is said, gained or lost: the
+/// drift follows round-off (8 … 11 % gained with one summation order of
+/// the dense solve, 0.05 % … 0.55 % gained or lost with another).
 #[test]
 fn a_prismatic_slider_runs_to_every_end_time() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/slider_crank.json");
@@ -92,7 +94,7 @@ fn a_prismatic_slider_runs_to_every_end_time() {
                 .document
                 .warnings
                 .iter()
-                .any(|w| w.contains("energy balance: the run gains"));
+                .any(|w| w.contains("energy balance: the run"));
             if rho < 1.0 {
                 assert!(share < 1e-3 && !warned, "end {end}: {share:.3e}");
             } else {
