@@ -44,6 +44,7 @@ pub mod contacts;
 pub mod dispersion;
 pub mod frame;
 pub mod ledger;
+mod predictor;
 pub mod rayleigh;
 mod scaling;
 mod settings;
@@ -447,15 +448,25 @@ impl<'s> Integrator<'s> {
         let nx = &mut self.next;
         nx.t = self.t_next;
         let n = from.q.len();
-        // Equal-length slices: the loop runs without bounds checks.
-        let (q0, v0, a0, ab0) = (&from.q[..n], &from.v[..n], &from.a[..n], &from.abar[..n]);
-        let (q1, v1, ab1) = (&mut nx.q[..n], &mut nx.v[..n], &mut nx.abar[..n]);
-        for i in 0..n {
-            let abar = (a0[i] - alpha_m * ab0[i]) / (1.0 - alpha_m);
-            ab1[i] = abar;
-            q1[i] = q0[i] + h * v0[i] + h * h * ((0.5 - beta) * ab0[i] + beta * abar);
-            v1[i] = v0[i] + h * ((1.0 - gamma) * ab0[i] + gamma * abar);
-        }
+        predictor::predict(
+            predictor::Coefficients {
+                h,
+                alpha_m,
+                beta,
+                gamma,
+            },
+            predictor::From {
+                q: &from.q[..n],
+                v: &from.v[..n],
+                a: &from.a[..n],
+                abar: &from.abar[..n],
+            },
+            predictor::Into {
+                q: &mut nx.q[..n],
+                v: &mut nx.v[..n],
+                abar: &mut nx.abar[..n],
+            },
+        );
         nx.a.copy_from_slice(&from.a);
         nx.lambda.copy_from_slice(&from.lambda);
     }
