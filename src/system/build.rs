@@ -97,9 +97,10 @@ impl System {
                 .windows(2)
                 .map(|w| CableElement::new(w[1] - w[0], section))
                 .collect();
-            let packed = match elements.len() <= PACKED_ELEMENTS {
-                true => PackedElements::of_beam(&elements),
-                false => Vec::new(),
+            let packed = if elements.len() <= PACKED_ELEMENTS {
+                PackedElements::of_beam(&elements)
+            } else {
+                Vec::new()
             };
             let t = v2(b.tangent());
             let start = v2(b.start);

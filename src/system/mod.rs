@@ -37,11 +37,11 @@ use crate::model::{SensorFrame, SensorQuantity};
 use nalgebra::Vector2;
 use std::sync::OnceLock;
 
-/// A meshed beam.
 /// The most elements a beam has its constants packed for (at 432 bytes an
 /// element, 1.8 MB): a transient's beams, not a 100,000-element modal mesh.
 pub const PACKED_ELEMENTS: usize = 4096;
 
+/// A meshed beam.
 #[derive(Debug, Clone)]
 pub struct BeamMesh {
     pub id: String,

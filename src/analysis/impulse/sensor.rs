@@ -92,13 +92,12 @@ impl SensorProbe {
     /// that the loops over the rates unroll (the impulse reads a velocity
     /// at every step).
     fn fit<const ORDER: usize>(&self, st: &State) -> Fit {
-        let order = ORDER;
         let n = self.nodes.len() as f64;
         let node = |x: &[f64], i: usize| Vector2::new(x[i], x[i + 1]);
         let x = [&st.q, &st.v, &st.a];
         let mut c = [Vector2::zeros(); 3];
         for &i in &self.nodes {
-            for o in 0..=order {
+            for o in 0..=ORDER {
                 c[o] += node(x[o], i);
             }
         }
@@ -107,7 +106,7 @@ impl SensorProbe {
         let (mut s, mut cc) = ([0.0; 3], [0.0; 3]);
         for (k, &i) in self.nodes.iter().enumerate() {
             let p = self.reference[k];
-            for o in 0..=order {
+            for o in 0..=ORDER {
                 let d = node(x[o], i) - c[o];
                 s[o] += p.x * d.y - p.y * d.x;
                 cc[o] += p.dot(&d);
