@@ -53,7 +53,7 @@ impl MassMatrix {
             entries.push((p.dof0 + 1, p.dof0 + 1, p.mass));
         }
         // Sum repeated positions (in assembly order, as a dense sum would).
-        entries.sort_by_key(|&(i, j, _)| (j, i));
+        let entries = sorted_by_column_then_row(n, entries);
         let mut lower: Vec<(usize, usize, f64)> = Vec::with_capacity(entries.len());
         for (i, j, v) in entries {
             match lower.last_mut() {
@@ -152,9 +152,50 @@ impl MassMatrix {
     }
 }
 
+/// The entries in the order a stable sort by (column, row) gives, in time
+/// linear in their number: a counting sort by column, then each column's
+/// few entries stably by row (a comparison sort of a 100,000-element
+/// beam's 3.6 million entries was a twelfth of its modal analysis).
+fn sorted_by_column_then_row(
+    n: usize,
+    entries: Vec<(usize, usize, f64)>,
+) -> Vec<(usize, usize, f64)> {
+    let mut start = vec![0usize; n + 1];
+    for &(_, j, _) in &entries {
+        start[j + 1] += 1;
+    }
+    for j in 0..n {
+        start[j + 1] += start[j];
+    }
+    let mut next = start.clone();
+    let mut sorted = vec![(0, 0, 0.0); entries.len()];
+    for e in entries {
+        sorted[next[e.1]] = e;
+        next[e.1] += 1;
+    }
+    for w in start.windows(2) {
+        sorted[w[0]..w[1]].sort_by_key(|e| e.0);
+    }
+    sorted
+}
+
 #[cfg(test)]
 mod tests {
     use crate::{Model, System};
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The counting sort orders entries, repeated positions included,
+        /// exactly as the standard library's stable sort by (column, row).
+        #[test]
+        fn the_counting_sort_is_the_stable_sort(
+            entries in prop::collection::vec((0usize..12, 0usize..12, -1.0f64..1.0), 0..300)
+        ) {
+            let mut stable = entries.clone();
+            stable.sort_by_key(|&(i, j, _)| (j, i));
+            prop_assert_eq!(super::sorted_by_column_then_row(12, entries), stable);
+        }
+    }
 
     #[test]
     fn sparse_quadratic_form_matches_the_dense_product() {
