@@ -37,12 +37,13 @@ mod refine;
 mod shifted;
 
 use super::dense::symmetric_eigen_qr;
-use super::sparse::{diagonal, mul_vec, Triplets};
+use super::sparse::{diagonal, mul_symmetric, Triplets};
 use super::vector::{axpy, dot_long as dot};
 use super::EigenFailure;
 use faer::linalg::matmul::matmul;
 use faer::sparse::SparseColMat;
 use faer::{Accum, Mat, MatMut, MatRef, Par};
+use rayon::prelude::*;
 use refine::{refine, Refinement};
 use shifted::Shifted;
 
@@ -139,7 +140,7 @@ impl Operator<'_> {
         for c in 0..vectors.ncols() {
             let z = vectors.col_as_slice(c).to_vec();
             let mut mz = vec![0.0; z.len()];
-            mul_vec(self.shifted.mass(), &z, &mut mz);
+            mul_symmetric(self.shifted.mass(), &z, &mut mz);
             self.z.push(z);
             self.mz.push(mz);
         }
@@ -154,7 +155,7 @@ impl Operator<'_> {
     }
 
     fn m_dot(&mut self, x: &[f64], y: &[f64]) -> f64 {
-        mul_vec(self.shifted.mass(), x, &mut self.scratch);
+        mul_symmetric(self.shifted.mass(), x, &mut self.scratch);
         dot(&self.scratch, y)
     }
 }
@@ -242,7 +243,7 @@ fn modes(
         .iter()
         .map(|z| {
             let mut out = vec![0.0; n];
-            mul_vec(shifted.mass(), z, &mut out);
+            mul_symmetric(shifted.mass(), z, &mut out);
             out
         })
         .collect();
@@ -258,7 +259,7 @@ fn modes(
     let mut u = vec![0.0; n];
     // M b and M u kept beside b and u: one product with M per step.
     let (mut mb, mut mu) = (vec![0.0; n], vec![0.0; n]);
-    mul_vec(op.shifted.mass(), &b, &mut mb);
+    mul_symmetric(op.shifted.mass(), &b, &mut mb);
     let mut factorizations = 0;
     // Refined, the shift need only be of the right order: the block
     // iteration, not Lanczos, sets the accuracy.
@@ -274,7 +275,7 @@ fn modes(
             u.copy_from_slice(&mb);
             op.shifted.solve(&mut u);
             op.deflate(&mut u);
-            mul_vec(op.shifted.mass(), &u, &mut mu);
+            mul_symmetric(op.shifted.mass(), &u, &mut mu);
             let (umb, umu) = (dot(&u, &mb), dot(&u, &mu));
             rho = umb / umu + sigma;
             let scale = 1.0 / umu.sqrt();
@@ -388,6 +389,10 @@ struct Basis {
 /// Columns per block of [`Basis`].
 const CHUNK: usize = 16;
 
+/// Rows per task of [`Basis::orthogonalize`]: fixed, so that its sums do
+/// not depend on the number of threads.
+const ROWS_PER_TASK: usize = 1 << 14;
+
 impl Basis {
     fn new(n: usize) -> Self {
         Basis {
@@ -423,30 +428,47 @@ impl Basis {
     }
 
     /// w ← w − V Vᵀ (M w), given M w: one classical Gram–Schmidt pass in
-    /// the M inner product.
+    /// the M inner product. The rows go [`ROWS_PER_TASK`] at a time to the
+    /// pool's threads (two cores stream the basis nearly twice as fast as
+    /// one): each task's partial coefficients are summed in row order, so
+    /// the result is the same however many threads share them.
     fn orthogonalize(&self, w: &mut [f64], mw: &[f64]) {
-        let n = w.len();
+        let len = self.len;
         // All coefficients from the w given, then the update.
-        let mw = MatRef::from_column_major_slice(mw, n, 1);
-        let coefs: Vec<Mat<f64>> = (0..self.v.len())
-            .map(|b| {
-                let v = self.block(b);
-                let mut c = Mat::zeros(v.ncols(), 1);
-                matmul(c.as_mut(), Accum::Replace, v.transpose(), mw, 1.0, Par::Seq);
-                c
+        let partial: Vec<Vec<f64>> = mw
+            .par_chunks(ROWS_PER_TASK)
+            .enumerate()
+            .map(|(t, mw)| {
+                let r0 = t * ROWS_PER_TASK;
+                let mw = MatRef::from_column_major_slice(mw, mw.len(), 1);
+                let mut c = Mat::zeros(len, 1);
+                for b in 0..self.v.len() {
+                    let v = self.block(b).subrows(r0, mw.nrows());
+                    let part = c.as_mut().subrows_mut(b * CHUNK, v.ncols());
+                    matmul(part, Accum::Replace, v.transpose(), mw, 1.0, Par::Seq);
+                }
+                c.col_as_slice(0).to_vec()
             })
             .collect();
-        let mut w = MatMut::from_column_major_slice_mut(w, n, 1);
-        for (b, c) in coefs.iter().enumerate() {
-            matmul(
-                w.as_mut(),
-                Accum::Add,
-                self.block(b),
-                c.as_ref(),
-                -1.0,
-                Par::Seq,
-            );
+        let mut c = Mat::<f64>::zeros(len, 1);
+        for p in &partial {
+            c.col_as_slice_mut(0)
+                .iter_mut()
+                .zip(p)
+                .for_each(|(a, b)| *a += b);
         }
+        w.par_chunks_mut(ROWS_PER_TASK)
+            .enumerate()
+            .for_each(|(t, w)| {
+                let r0 = t * ROWS_PER_TASK;
+                let rows = w.len();
+                let mut w = MatMut::from_column_major_slice_mut(w, rows, 1);
+                for b in 0..self.v.len() {
+                    let v = self.block(b).subrows(r0, rows);
+                    let cb = c.as_ref().subrows(b * CHUNK, v.ncols());
+                    matmul(w.as_mut(), Accum::Add, v, cb, -1.0, Par::Seq);
+                }
+            });
     }
 
     /// V Y for a j × k matrix Y.
@@ -470,7 +492,7 @@ fn reorthogonalize(op: &Operator, basis: &Basis, w: &mut [f64], mw: &mut [f64]) 
     let mut before = dot(w, mw);
     for _ in 0..3 {
         basis.orthogonalize(w, mw);
-        mul_vec(op.shifted.mass(), w, mw);
+        mul_symmetric(op.shifted.mass(), w, mw);
         let after = dot(w, mw);
         if after >= 0.5 * before {
             return after;
@@ -505,7 +527,7 @@ fn lanczos(
     let mut mw = vec![0.0; n];
     // M v beside v: formed here for the start, then M w / β with v = w / β.
     let mut mv = vec![0.0; n];
-    mul_vec(op.shifted.mass(), &v, &mut mv);
+    mul_symmetric(op.shifted.mass(), &v, &mut mv);
     loop {
         // w = S v.
         basis.push(&v);
@@ -521,7 +543,7 @@ fn lanczos(
         if let Some(&b) = beta.last() {
             axpy(-b, basis.column(j - 2), &mut w);
         }
-        mul_vec(op.shifted.mass(), &w, &mut mw);
+        mul_symmetric(op.shifted.mass(), &w, &mut mw);
         let b2 = reorthogonalize(op, &basis, &mut w, &mut mw);
         alpha.push(a);
         let b = b2.max(0.0).sqrt();
@@ -543,7 +565,7 @@ fn lanczos(
                 .collect();
             op.deflate(&mut fresh);
             let mut mf = vec![0.0; n];
-            mul_vec(op.shifted.mass(), &fresh, &mut mf);
+            mul_symmetric(op.shifted.mass(), &fresh, &mut mf);
             let norm = reorthogonalize(op, &basis, &mut fresh, &mut mf)
                 .max(0.0)
                 .sqrt();

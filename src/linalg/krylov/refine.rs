@@ -10,10 +10,11 @@
 
 use super::{EigenFailure, KrylovModes, Operator, StiffnessProducts, GUARD, REFINE_STEPS};
 use crate::linalg::dense::symmetric_eigen_qr;
-use crate::linalg::sparse::{mul_block, BLOCK_COLUMNS};
+use crate::linalg::sparse::{mul_symmetric_block, BLOCK_COLUMNS};
 use crate::linalg::vector::scrambled;
 use faer::sparse::SparseColMat;
 use faer::{Mat, Par};
+use rayon::prelude::*;
 
 /// The relative bound on θ at which the refinement stops: 1e-10 on ω² is
 /// 5e-11 on a frequency, far below the 1e-9 (and the 1e-5 refusal) the
@@ -37,8 +38,6 @@ pub(super) struct Refinement {
 struct Pool {
     n: usize,
     free: Vec<Mat<f64>>,
-    /// Row-major scratch of [`mul_block`].
-    scratch: Vec<f64>,
 }
 
 impl Pool {
@@ -46,7 +45,6 @@ impl Pool {
         Pool {
             n,
             free: Vec::new(),
-            scratch: Vec::new(),
         }
     }
 
@@ -89,23 +87,38 @@ impl Pool {
             self.give(std::mem::replace(x, out));
             return;
         }
-        let mut chunk = Mat::<f64>::zeros(ROW_CHUNK.min(n), k);
-        let mut r0 = 0;
-        while r0 < n {
-            let rows = ROW_CHUNK.min(n - r0);
-            let mut c = chunk.as_mut().subrows_mut(0, rows);
-            let xr = x.as_ref().subrows(r0, rows);
-            faer::linalg::matmul::matmul(c.as_mut(), faer::Accum::Replace, xr, a, 1.0, Par::Seq);
-            if let Some((w, b)) = w {
-                let wr = w.subrows(r0, rows);
-                faer::linalg::matmul::matmul(c.as_mut(), faer::Accum::Add, wr, b, 1.0, Par::Seq);
-            }
-            x.as_mut()
-                .subrows_mut(r0, rows)
-                .subcols_mut(0, k)
-                .copy_from(c.as_ref());
-            r0 += rows;
-        }
+        // Row chunks shared among the pool's threads (each chunk's
+        // products are the same however they are shared).
+        x.as_mut()
+            .par_row_chunks_mut(ROW_CHUNK)
+            .enumerate()
+            .for_each_init(
+                || Mat::<f64>::zeros(ROW_CHUNK.min(n), k),
+                |chunk, (t, xr)| {
+                    let (r0, rows) = (t * ROW_CHUNK, xr.nrows());
+                    let mut c = chunk.as_mut().subrows_mut(0, rows);
+                    faer::linalg::matmul::matmul(
+                        c.as_mut(),
+                        faer::Accum::Replace,
+                        xr.as_ref(),
+                        a,
+                        1.0,
+                        Par::Seq,
+                    );
+                    if let Some((w, b)) = w {
+                        let wr = w.subrows(r0, rows);
+                        faer::linalg::matmul::matmul(
+                            c.as_mut(),
+                            faer::Accum::Add,
+                            wr,
+                            b,
+                            1.0,
+                            Par::Seq,
+                        );
+                    }
+                    xr.subcols_mut(0, k).copy_from(c.as_ref());
+                },
+            );
         x.truncate(n, k);
     }
 
@@ -119,12 +132,7 @@ impl Pool {
         while c0 < k {
             let c = BLOCK_COLUMNS.min(k - c0);
             let mut part = mw.as_mut().subcols_mut(0, c);
-            mul_block(
-                m,
-                w.as_ref().subcols(c0, c),
-                part.as_mut(),
-                &mut self.scratch,
-            );
+            mul_symmetric_block(m, w.as_ref().subcols(c0, c), part.as_mut());
             faer::linalg::matmul::matmul(
                 g.as_mut().subcols_mut(c0, c),
                 faer::Accum::Replace,
@@ -141,7 +149,7 @@ impl Pool {
     /// M W for every column, into a block of the pool.
     fn m_block(&mut self, m: &SparseColMat<usize, f64>, w: &Mat<f64>) -> Mat<f64> {
         let mut out = self.take(w.ncols());
-        mul_block(m, w.as_ref(), out.as_mut(), &mut self.scratch);
+        mul_symmetric_block(m, w.as_ref(), out.as_mut());
         out
     }
 

@@ -25,8 +25,12 @@ use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::SparseColMat;
 use faer::sparse::SparseColMatRef;
 use faer::{Conj, MatMut, Side};
+use rayon::prelude::*;
 use std::borrow::Cow;
 use std::sync::Arc;
+
+/// Columns per task of [`Shifted::solve_block`].
+const SOLVE_COLUMNS: usize = 4;
 
 /// The shifted matrix K − σM on a fixed pattern, factored.
 pub(super) struct Shifted<'a> {
@@ -233,12 +237,16 @@ impl<'a> Shifted<'a> {
     }
 
     /// Solves for every column of `x` in place.
+    /// Solves for every column of `x` in place, [`SOLVE_COLUMNS`] columns
+    /// at a time on the pool's threads (the columns are independent, and
+    /// fixed groups give the same result however many threads share them).
     pub(super) fn solve_block(&self, x: MatMut<'_, f64>) {
-        match &self.factor {
-            Factor::Cholesky(l) => l.solve_in_place(x),
-            Factor::Lu(l) => l.solve_in_place(x),
-            Factor::None => unreachable!("solve before factor"),
-        }
+        x.par_col_chunks_mut(SOLVE_COLUMNS)
+            .for_each(|x| match &self.factor {
+                Factor::Cholesky(l) => l.solve_in_place(x),
+                Factor::Lu(l) => l.solve_in_place(x),
+                Factor::None => unreachable!("solve before factor"),
+            });
     }
 
     pub(super) fn solve(&self, x: &mut [f64]) {
