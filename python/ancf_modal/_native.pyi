@@ -229,7 +229,9 @@ class Model:
         impulse experiment (keyword arguments as ``impulse``'s) and their
         first bending frequencies beside the experiment's: the fitted mode
         of the ``measured`` hammer records (``measured_window``, fit band
-        ``measured_band`` (LO, HI) [Hz]) nearest it, else the model's
+        ``measured_band`` (LO, HI) [Hz]) nearest it of those that are a
+        peak of the fitted spectrum (a ``ModelWarning`` when the records
+        show no peak there or the fit misses them), else the model's
         ``reference``; ``calibrate`` fits the first beam's equivalent
         height to it."""
     def report(

@@ -376,8 +376,8 @@ impl PyModel {
     /// paper's Table 3 for the paper's model). The experiment is the fitted
     /// mode of the `measured` hammer records (files as for `frf_files`,
     /// with `measured_window` and the fit band `measured_band` (LO, HI)
-    /// [Hz]) nearest the first bending frequency, else the model's
-    /// `reference`; `calibrate` fits the first beam's equivalent height to
+    /// [Hz]) nearest the first bending frequency, of those that are a
+    /// peak of the fitted spectrum, else the model's `reference`; `calibrate` fits the first beam's equivalent height to
     /// it.
     #[pyo3(signature = (amplitude = None, duration = None, end_time = 0.1, step = 1e-6, spectral_radius = 0.9, sample_rate = 51200.0, sensor = None, window = "hann", from_reference = false, calibrate = false, measured = None, measured_window = "rect", measured_band = None))]
     #[allow(clippy::too_many_arguments)]

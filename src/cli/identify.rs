@@ -42,8 +42,10 @@ pub struct ComparisonArgs {
     #[arg(long)]
     pub calibrate: bool,
     /// Measured hammer records (CSV or UFF 58, as for `frf`): their fitted
-    /// mode nearest the model's first bending frequency replaces the
-    /// model's `reference` as the experiment.
+    /// mode nearest the model's first bending frequency, of those that are
+    /// a peak of the fitted spectrum, replaces the model's `reference` as
+    /// the experiment (a warning when the records show no peak there or the
+    /// fit misses them around it).
     #[arg(long, value_name = "FILE", num_args = 1..)]
     pub measured: Vec<PathBuf>,
     /// Window of the measured records (see `frf --window`).

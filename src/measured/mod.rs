@@ -15,7 +15,10 @@
 //! * [`analysis`] runs the hammer-test pipeline: the band the hammer
 //!   excited, the modal fit of [`crate::signal::fit`] over it and over the
 //!   rest of the spectrum, and the modes outside the band;
-//! * [`band`] chooses that band from the force spectrum.
+//! * [`band`] chooses that band from the force spectrum;
+//! * [`experiment`] picks the fitted mode `identify` compares the model
+//!   with (a peak of the fit and of the records) and checks it against
+//!   the records.
 //!
 //! Units: time in s, frequency in Hz, force in N, response in the unit of
 //! its quantity (m, m/s or m/s²); an FRF is response per newton.
@@ -25,6 +28,7 @@ pub mod band;
 pub mod csv;
 pub mod cut_off;
 pub mod error;
+pub mod experiment;
 pub mod frf;
 mod quantity;
 pub mod record_checks;

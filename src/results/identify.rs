@@ -4,9 +4,10 @@
 //! model's reference is the paper's.
 //!
 //! The experiment is, in this order: the fitted mode of measured records
-//! nearest the model's first bending frequency; the model's `reference`;
-//! none. Errors are given both ways, (f − exp)/exp and the paper's
-//! (exp − f)/f, in percent.
+//! nearest the model's first bending frequency among those that are a
+//! peak of the fitted spectrum ([`crate::measured::experiment`]); the
+//! model's `reference`; none. Errors are given both ways, (f − exp)/exp
+//! and the paper's (exp − f)/f, in percent.
 
 use super::{CalibrationOutput, ImpulseOutput, ModalOutput};
 use crate::analysis::impulse::ImpulseResult;
@@ -38,6 +39,13 @@ pub fn names_the_paper(model: &Model) -> bool {
         .is_some_and(|r| r.source.to_ascii_lowercase().contains("paper"))
 }
 
+/// The index in `measured.fit.modes` of the mode taken as the experiment:
+/// a peak of the fitted spectrum nearest the model's eigenvalue first
+/// bending frequency `eigen_hz` ([`crate::measured::experiment::choose`]).
+pub fn measured_mode(measured: &FrfAnalysis, eigen_hz: Option<f64>) -> Option<usize> {
+    crate::measured::experiment::choose(&measured.fit, eigen_hz.unwrap_or(0.0))
+}
+
 /// The experiment (module doc) for a model whose eigenvalue first bending
 /// frequency is `eigen_hz`; `paper` says whether it is the paper's Table 3.
 pub fn choose_experiment(
@@ -47,18 +55,12 @@ pub fn choose_experiment(
 ) -> (Option<Experiment>, bool) {
     let paper = names_the_paper(model) && measured.is_none();
     let experiment = match (measured, &model.reference) {
-        (Some(a), _) => {
-            let near = eigen_hz.unwrap_or(0.0);
-            a.fit
-                .modes
-                .iter()
-                .min_by(|x, y| {
-                    (x.frequency_hz - near)
-                        .abs()
-                        .total_cmp(&(y.frequency_hz - near).abs())
-                })
-                .map(|m| ("measured (frf fit)".to_string(), m.frequency_hz))
-        }
+        (Some(a), _) => measured_mode(a, eigen_hz).map(|j| {
+            (
+                "measured (frf fit)".to_string(),
+                a.fit.modes[j].frequency_hz,
+            )
+        }),
         (None, Some(r)) if paper => Some(("experiment (paper Table 3)".into(), r.first_bending_hz)),
         (None, Some(r)) if !r.source.trim().is_empty() => Some((
             format!("experiment ({})", r.source.trim()),

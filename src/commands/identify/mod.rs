@@ -7,8 +7,10 @@
 //! Table 3 for the paper's model ([`crate::results::identify`]).
 //!
 //! The experiment is the fitted mode of measured hammer records nearest
-//! the model's first bending frequency (`measured`, analysed as `frf`
-//! does), else the model's `reference`. With `calibrate`, the first beam's
+//! the model's first bending frequency among those that are a peak of the
+//! fitted spectrum (`measured`, analysed as `frf` does; checked against
+//! the records, a poor fit warned of: [`crate::measured::experiment`]),
+//! else the model's `reference`. With `calibrate`, the first beam's
 //! equivalent height [m] whose eigenvalue first bending frequency meets the
 //! experiment's.
 
@@ -20,7 +22,7 @@ use super::{CommandError, ModelInput, Run};
 use crate::analysis::impulse::{run_impulse, ImpulseResult, ImpulseSettings};
 use crate::analysis::{ModalResult, ModalSettings};
 use crate::measured::analysis::FrfAnalysis;
-use crate::results::identify::{choose_experiment, IDENTIFY_MODES};
+use crate::results::identify::{choose_experiment, measured_mode, IDENTIFY_MODES};
 use crate::results::IdentifyOutput;
 use crate::signal::Window;
 use crate::System;
@@ -39,7 +41,9 @@ pub struct IdentifyRequest {
     /// first bending frequency (eigenvalue-based `calibrate`).
     pub calibrate: bool,
     /// Measured hammer records (CSV or UFF 58, as for `frf`): their fitted
-    /// mode nearest the model's first bending frequency is the experiment.
+    /// mode nearest the model's first bending frequency, of those that are
+    /// a peak of the fitted spectrum, is the experiment
+    /// ([`crate::measured::experiment`]).
     pub measured: Vec<PathBuf>,
     /// The window of the measured records.
     pub measured_window: Window,
@@ -135,6 +139,14 @@ pub fn run_with_progress(
     };
     let (experiment, paper) =
         choose_experiment(model, modal_output.first_bending_hz, measured.as_ref());
+    // The mode taken as the experiment, checked against its records: a
+    // poor fit is said, not printed as a frequency alone.
+    let mut notes = notes;
+    if let Some(a) = &measured {
+        if let Some(j) = measured_mode(a, modal_output.first_bending_hz) {
+            notes.extend(crate::measured::experiment::check(a, j).warnings());
+        }
+    }
     let calibration = match (request.calibrate, &experiment) {
         (true, Some(e)) => Some(
             super::calibrate::equivalent_height(model, e.frequency_hz).map_err(|source| {
