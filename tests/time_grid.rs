@@ -55,8 +55,8 @@ fn odd_end_times_end_on_whole_steps_without_a_sliver() {
 /// now runs to its end; at a spectral radius of 0.9 the balance closes
 /// within 1e-3 of the push's work (measured 3e-5 … 1e-4), and at 1, where
 /// index-3 joints drift, an error past 1e-3 is said, gained or lost: the
-/// drift follows round-off (8 … 11 % gained with this dense solve;
-/// 0.05 % … 0.55 % gained or lost with one that summed in another order).
+/// drift follows round-off (8 … 11 % gained with one summation order of
+/// the dense solve, 0.05 % … 0.55 % gained or lost with another).
 #[test]
 fn a_prismatic_slider_runs_to_every_end_time() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/slider_crank.json");
