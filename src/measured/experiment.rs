@@ -94,14 +94,17 @@ pub fn peak_share(fit: &ModalFit, mode: &FittedMode) -> f64 {
 /// `near_hz` among those whose [`peak_share`] is at least [`PEAK_SHARE`],
 /// or among all when none is (module doc); `None` without modes.
 pub fn choose(fit: &ModalFit, near_hz: f64) -> Option<usize> {
-    let nearest = |candidates: &mut dyn Iterator<Item = usize>| {
-        candidates.min_by(|&a, &b| {
-            let d = |j: usize| (fit.modes[j].frequency_hz - near_hz).abs();
-            d(a).total_cmp(&d(b))
-        })
+    let distance = |j: usize| (fit.modes[j].frequency_hz - near_hz).abs();
+    let nearest = |modes: Vec<usize>| {
+        modes
+            .into_iter()
+            .min_by(|&a, &b| distance(a).total_cmp(&distance(b)))
     };
-    let peaks = &mut (0..fit.modes.len()).filter(|&j| peak_share(fit, &fit.modes[j]) >= PEAK_SHARE);
-    nearest(peaks).or_else(|| nearest(&mut (0..fit.modes.len())))
+    let all: Vec<usize> = (0..fit.modes.len()).collect();
+    let peaks = (all.iter().copied())
+        .filter(|&j| peak_share(fit, &fit.modes[j]) >= PEAK_SHARE)
+        .collect();
+    nearest(peaks).or_else(|| nearest(all))
 }
 
 /// What the records say of one fitted mode ([`check`]).
