@@ -13,6 +13,9 @@
 //!   are. The experiment is the generated mode within [`TOLERANCE`], stays
 //!   there when amplitudes, frequencies and noise change by 1e-5 relative
 //!   (frequencies by 1e-6), and no warning is given.
+//! - A fitted mode moved three lines off the generated records' peak is
+//!   warned of by both checks (the records show no peak there, the fit
+//!   misses them around it).
 //! - The built-in assembly's `impulse` records, its blow's amplitude
 //!   changed by up to 2e-5 relative (which moves the records about as
 //!   much as the transient's Newton tolerance does: some such records fit
@@ -22,8 +25,8 @@
 
 mod measured_support;
 
-use ancf_modal::measured::analysis::{analyse, AnalysisSettings};
-use ancf_modal::measured::experiment::{check, choose, peak_share, PEAK_SHARE};
+use ancf_modal::measured::analysis::{analyse, AnalysisSettings, FrfAnalysis};
+use ancf_modal::measured::experiment::{check, choose, peak_share, MAX_MISFIT, PEAK_SHARE};
 use ancf_modal::measured::Measurement;
 use ancf_modal::signal::fit::{FitSettings, FittedMode, ModalFit, PoleBasis};
 use ancf_modal::signal::Window;
@@ -114,8 +117,9 @@ struct Generated {
     ratio: f64,
 }
 
-/// The experiment of the generated records and its warnings.
-fn experiment(g: &Generated, scale: f64, stretch: f64, seed: u64) -> (f64, Vec<String>) {
+/// The analysis of the generated records (`frf`'s, as `identify` runs
+/// it on `--measured` records).
+fn analysis(g: &Generated, scale: f64, stretch: f64, seed: u64) -> FrfAnalysis {
     // Receptance peak ≈ (1/m)/(2ζω²): the band's mode 1e-6 m/N at its peak.
     let inv_mass = |f: f64, zeta: f64, peak: f64| peak * 2.0 * zeta * (2.0 * PI * f).powi(2);
     let modes = [
@@ -133,7 +137,7 @@ fn experiment(g: &Generated, scale: f64, stretch: f64, seed: u64) -> (f64, Vec<S
     let clean = hammer_records(&modes, FS, N, 1, 0.0, 0.0, seed);
     let noise = 1e-5 * peak(&clean[0].response);
     let records = hammer_records(&modes, FS, N, 1, 0.0, noise, seed);
-    let analysis = analyse(
+    analyse(
         records.into_iter().map(Measurement::Time).collect(),
         AnalysisSettings {
             window: WINDOW,
@@ -141,7 +145,12 @@ fn experiment(g: &Generated, scale: f64, stretch: f64, seed: u64) -> (f64, Vec<S
             ..AnalysisSettings::default()
         },
     )
-    .unwrap();
+    .unwrap()
+}
+
+/// The experiment of the generated records and its warnings.
+fn experiment(g: &Generated, scale: f64, stretch: f64, seed: u64) -> (f64, Vec<String>) {
+    let analysis = analysis(g, scale, stretch, seed);
     let j = choose(&analysis.fit, MODEL_HZ).expect("a mode in the band");
     (
         analysis.fit.modes[j].frequency_hz,
@@ -186,6 +195,32 @@ proptest! {
         prop_assert!((moved - f).abs() <= 2.0 * TOLERANCE * g.f);
         prop_assert!(warnings.is_empty(), "{warnings:?}");
     }
+}
+
+/// A fitted mode moved three lines off the records' peak is no longer
+/// what they show: both checks say so.
+#[test]
+fn a_mode_off_the_records_peak_is_warned_of() {
+    let g = Generated {
+        f: 4_500.0,
+        zeta: 1e-3,
+        above: 11_000.0,
+        ratio: 1.0,
+    };
+    let mut analysis = analysis(&g, 1.0, 1.0, 7);
+    let j = choose(&analysis.fit, MODEL_HZ).unwrap();
+    assert!(check(&analysis, j).warnings().is_empty());
+    let line = analysis.frequency_hz[1] - analysis.frequency_hz[0];
+    let mode = &mut analysis.fit.modes[j];
+    mode.pole.im += 2.0 * PI * 3.0 * line;
+    mode.frequency_hz = mode.pole.norm() / (2.0 * PI);
+    let moved = check(&analysis, j);
+    assert!(!moved.at_spectrum_peak(), "{moved:?}");
+    assert!(moved.misfit > MAX_MISFIT, "{moved:?}");
+    let warnings = moved.warnings();
+    assert_eq!(warnings.len(), 2, "{warnings:?}");
+    assert!(warnings[0].contains("is not a peak of the records' |H|"));
+    assert!(warnings[1].contains("the modal fit misses the records' |H|"));
 }
 
 fn bin() -> Command {
