@@ -106,6 +106,52 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// A weaker mode below a strong one, nearer the model, is the
+    /// experiment exactly when it is a peak of the fitted spectrum: its own
+    /// term makes at least half of |Ĥ| there, or |Ĥ|, sampled here on a
+    /// fine grid of its own, has a local maximum within the mode's
+    /// half-power half-width. Otherwise the strong mode is.
+    #[test]
+    fn a_weak_mode_that_makes_its_own_peak_is_the_experiment(
+        strong_hz in 4_000.0f64..5_500.0,
+        gap in 0.05f64..0.5,
+        zeta_weak in 1e-3f64..2e-2,
+        zeta_strong in 1e-4f64..1e-2,
+        log_weakness in -6.0f64..-0.5,
+    ) {
+        let weak_hz = strong_hz * (1.0 - gap);
+        let fit = fit_of(vec![
+            fitted(weak_hz, zeta_weak, 10f64.powf(log_weakness)),
+            fitted(strong_hz, zeta_strong, 1.0),
+        ]);
+        let weak = &fit.modes[0];
+        let f = weak.pole.im / (2.0 * PI);
+        let half = -weak.pole.re / (2.0 * PI);
+        let grid: Vec<f64> = (0..=4000).map(|k| f - 2.0 * half + k as f64 * half / 1000.0).collect();
+        let mag: Vec<f64> = grid.iter().map(|&x| fit.evaluate(x).norm()).collect();
+        // Local maxima within `reach` of f, each with its rise over the
+        // lowest |Ĥ| an eighth of a half-width below it.
+        let maxima = |reach: f64| -> Vec<f64> {
+            (125..grid.len() - 1)
+                .filter(|&k| {
+                    (grid[k] - f).abs() <= reach && mag[k] > mag[k - 1] && mag[k] >= mag[k + 1]
+                })
+                .map(|k| mag[k] / mag[k - 125..k].iter().cloned().fold(f64::INFINITY, f64::min) - 1.0)
+                .collect()
+        };
+        let (inner, outer) = (maxima(0.8 * half), maxima(1.2 * half));
+        // Not the knife's edge: a maximum at the half-width's border, or
+        // one too shallow for any sampling to call.
+        prop_assume!(inner.len() == outer.len());
+        prop_assume!(outer.iter().all(|&rise| rise > 1e-4));
+        let peak = !inner.is_empty() || peak_share(&fit, weak) >= PEAK_SHARE;
+        prop_assert_eq!(choose(&fit, MODEL_HZ), Some(if peak { 0 } else { 1 }));
+    }
+}
+
 /// A generated test: the mode in the band (f, ζ) and above it (its peak
 /// `ratio` × the first's), amplitudes scaled by `scale`, frequencies by
 /// `stretch`, noise from `seed`.
