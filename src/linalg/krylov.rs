@@ -37,7 +37,7 @@ mod refine;
 mod shifted;
 
 use super::dense::symmetric_eigen_qr;
-use super::sparse::{diagonal, mul_symmetric, Triplets};
+use super::sparse::{diagonal, mul_symmetric, Triplets, ROWS_PER_TASK};
 use super::vector::{axpy, dot_long as dot};
 use super::EigenFailure;
 use faer::linalg::matmul::matmul;
@@ -388,10 +388,6 @@ struct Basis {
 
 /// Columns per block of [`Basis`].
 const CHUNK: usize = 16;
-
-/// Rows per task of [`Basis::orthogonalize`]: fixed, so that its sums do
-/// not depend on the number of threads.
-const ROWS_PER_TASK: usize = 1 << 14;
 
 impl Basis {
     fn new(n: usize) -> Self {

@@ -172,9 +172,11 @@ fn mul_columns(
     }
 }
 
-/// Rows per task of [`mul_symmetric`] and [`mul_symmetric_block`]: fixed,
-/// so that the result is the same however many threads share the rows.
-const ROWS_PER_TASK: usize = 1 << 14;
+/// Rows per task of the products shared among the pool's threads
+/// ([`mul_symmetric`], [`mul_symmetric_block`], the Lanczos basis'
+/// re-orthogonalization): fixed, so that the result is the same however
+/// many threads share the rows.
+pub const ROWS_PER_TASK: usize = 1 << 14;
 
 /// y = A x for a symmetric compressed-column A (column j read as row j),
 /// each yⱼ one dot product of column j with x, the rows shared among the
