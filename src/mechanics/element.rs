@@ -16,6 +16,7 @@
 //! whose integrand is of degree 4) and 3 for bending (degree 2).
 
 use super::cable_force::ForceTables;
+use super::element_state::Displaced;
 use crate::model::{Material, Section};
 use nalgebra::{Matrix2, Matrix4, SMatrix, SVector, Vector2, Vector4};
 
@@ -148,8 +149,8 @@ pub fn gauss01(n: usize) -> Vec<(f64, f64)> {
 #[derive(Debug, Clone, Copy)]
 pub(super) struct QuadPoint {
     pub(super) w: f64,
-    d1: Vector4<f64>,
-    d2: Vector4<f64>,
+    pub(super) d1: Vector4<f64>,
+    pub(super) d2: Vector4<f64>,
 }
 
 pub(super) const AXIAL_POINTS: usize = 5;
@@ -200,7 +201,7 @@ fn combine(e: &Vec8, c: &Vector4<f64>) -> Vector2<f64> {
 /// |c₀||δr| that cancel to it (on a 1e-5 m element, 1e10 times less for
 /// the curvature of a smooth mode).
 #[inline]
-fn combine_variation(de: &Vec8, c: &Vector4<f64>) -> Vector2<f64> {
+pub(super) fn combine_variation(de: &Vec8, c: &Vector4<f64>) -> Vector2<f64> {
     if c[2] == -c[0] {
         (node(de, 0) - node(de, 2)) * c[0] + node(de, 1) * c[1] + node(de, 3) * c[3]
     } else {
@@ -217,7 +218,7 @@ fn nodal_size(de: &Vec8, c: &Vector4<f64>) -> f64 {
 /// The sum of the sizes of the terms [`combine_variation`] adds: its
 /// round-off is ε times this.
 #[inline]
-fn variation_size(de: &Vec8, c: &Vector4<f64>) -> f64 {
+pub(super) fn variation_size(de: &Vec8, c: &Vector4<f64>) -> f64 {
     if c[2] == -c[0] {
         c[0].abs() * (node(de, 0) - node(de, 2)).norm()
             + c[1].abs() * node(de, 1).norm()
@@ -261,34 +262,10 @@ fn add_spread(out: &mut Vec8, c: &Vector4<f64>, g: Vector2<f64>) {
     }
 }
 
-/// The state at an axial quadrature point: unit tangent and normal of r',
-/// ½wEA, the tension factor ½wEA·ε/l and its round-off.
-struct AxialPoint {
-    t: Vector2<f64>,
-    n: Vector2<f64>,
-    stretch: f64,
-    tension: f64,
-    noise: f64,
-}
-
-/// The state at a bending quadrature point, ½wEI and its curvature's round-off.
-struct BendingStatePoint {
-    point: BendingPoint,
-    c: f64,
-    noise: f64,
-    /// Σᵢ|d1ᵢ||nodeᵢ|/|r'|: ε times this is r''s relative round-off.
-    slope_noise: f64,
-}
-
-struct StatePoints {
-    axial: [AxialPoint; AXIAL_POINTS],
-    bending: [BendingStatePoint; BENDING_POINTS],
-}
-
 /// `J a` with J = [[0, 1], [−1, 0]], so that `bᵀ J a = b × a`… written out:
 /// returns [a_y, −a_x]; r' × r'' = r'ᵀ [r''_y, −r''_x].
 #[inline]
-fn perp_neg(a: Vector2<f64>) -> Vector2<f64> {
+pub(super) fn perp_neg(a: Vector2<f64>) -> Vector2<f64> {
     Vector2::new(a.y, -a.x)
 }
 
@@ -437,7 +414,7 @@ impl CableElement {
         }
     }
 
-    /// The quadratic form ½ δeᵀ K δe of the tangent at `e`, split into its
+    /// The quadratic form ½ δeᵀ K δe of the tangent at `state`, split into its
     /// axial part (stretching) and its transverse part (bending, plus the
     /// geometric stiffness of the axial force), evaluated from the strain
     /// variations at the
@@ -445,9 +422,9 @@ impl CableElement {
     /// does not cancel large stiffness entries against each other: a rigid
     /// motion of a short element gives exactly zero, so Rayleigh quotients of
     /// smooth modes keep full relative precision on any mesh.
-    pub fn quadratic_form(&self, e: &Vec8, de: &Vec8) -> EnergySplit {
+    pub fn quadratic_form(&self, state: &Displaced, de: &Vec8) -> EnergySplit {
         let mut out = [EnergySplit::default()];
-        self.add_quadratic_forms(e, std::slice::from_ref(de), &mut out);
+        self.add_quadratic_forms(state, std::slice::from_ref(de), &mut out);
         out[0]
     }
 
@@ -455,9 +432,9 @@ impl CableElement {
     /// added into `out` (one entry per variation): the state's quantities at
     /// each quadrature point (|r'|, curvature and its derivatives) are
     /// computed once for all of them.
-    pub fn add_quadratic_forms(&self, e: &Vec8, des: &[Vec8], out: &mut [EnergySplit]) {
+    pub fn add_quadratic_forms(&self, state: &Displaced, des: &[Vec8], out: &mut [EnergySplit]) {
         assert_eq!(des.len(), out.len(), "one output per variation");
-        let points = self.state_points(e);
+        let points = self.state_points(state);
         for (de, o) in des.iter().zip(out.iter_mut()) {
             let (mut ax, mut bd, mut cancel, mut stress) = (0.0, 0.0, 0.0, 0.0);
             let (mut state, mut first) = (0.0, 0.0);
@@ -504,71 +481,15 @@ impl CableElement {
         }
     }
 
-    /// The state's quantities at every quadrature point, shared by the
-    /// quadratic forms and the products of the tangent.
-    ///
-    /// The state's own strain and curvature carry the round-off of the
-    /// sums that form r' and r'' from nodal values: a tension or curvature
-    /// of that size is not a stress, and the forms are uncertain by it
-    /// times their second-order terms. The curvature's is taken per
-    /// component (a beam along an axis has its transverse components, and
-    /// so κ, exactly zero); an axial strain snapped to zero
-    /// ([`axial_strain`]: below the round-off of forming r') is the
-    /// stress-free state it stands for and carries none.
-    fn state_points(&self, e: &Vec8) -> StatePoints {
-        let CableSection { ea, ei, .. } = self.section;
-        let size =
-            |d: &Vector4<f64>| -> f64 { (0..4).map(|i| d[i].abs() * node(e, i).norm()).sum() };
-        let size_xy = |d: &Vector4<f64>| -> Vector2<f64> {
-            (0..4)
-                .map(|i| node(e, i).abs() * d[i].abs())
-                .fold(Vector2::zeros(), |a, b| a + b)
-        };
-        let axial = std::array::from_fn(|k| {
-            let d1 = &self.axial[k].d1;
-            let (r1, l, eps) = axial_strain(e, d1);
-            // The stretch term is axial; the tension term ε/l·|δr'⊥|²
-            // acts on transverse motion (a string's stiffness) and
-            // counts as bending.
-            let stretch = 0.5 * self.axial[k].w * ea;
-            let noise = if eps == 0.0 {
-                0.0
-            } else {
-                stretch * f64::EPSILON * size(d1) / (l * l)
-            };
-            AxialPoint {
-                t: r1 / l,
-                n: perp_neg(r1) / l,
-                stretch,
-                tension: stretch * eps / l,
-                noise,
-            }
-        });
-        let bending = std::array::from_fn(|k| {
-            let qp = &self.bending[k];
-            let point = BendingPoint::snapped(e, qp);
-            let (n1, n2) = (size_xy(&qp.d1), size_xy(&qp.d2));
-            let noise = f64::EPSILON * (point.p.abs().dot(&n1) + point.q.abs().dot(&n2));
-            let slope_noise = size(&qp.d1) / combine(e, &qp.d1).norm().max(f64::MIN_POSITIVE);
-            BendingStatePoint {
-                point,
-                c: 0.5 * qp.w * ei,
-                noise,
-                slope_noise,
-            }
-        });
-        StatePoints { axial, bending }
-    }
-
-    /// K δe of the tangent at `e` for each variation, added into `out`
+    /// K δe of the tangent at `state` for each variation, added into `out`
     /// (one per variation): the gradient of [`CableElement::quadratic_form`],
     /// formed from the strain variations at the quadrature points and
     /// their stresses, so that a smooth variation's nodal forces carry the
     /// round-off of its strains, not of the stiffness entries (of order
     /// EI/Le³) that a product with the matrix cancels.
-    pub fn add_tangent_products(&self, e: &Vec8, des: &[Vec8], out: &mut [Vec8]) {
+    pub fn add_tangent_products(&self, state: &Displaced, des: &[Vec8], out: &mut [Vec8]) {
         assert_eq!(des.len(), out.len(), "one output per variation");
-        let points = self.state_points(e);
+        let points = self.state_points(state);
         for (de, o) in des.iter().zip(out.iter_mut()) {
             // ∂U₂/∂r' and ∂U₂/∂r'' per point, spread by the shape derivatives.
             for (qp, p) in self.axial.iter().zip(&points.axial) {
@@ -599,41 +520,17 @@ impl CableElement {
     }
 }
 
-/// r'' at a quadrature point with its component along r' snapped to zero
-/// when below the round-off of forming it from the nodal values
-/// (4 ε Σᵢ |d2ᵢ| |nodeᵢ|), as [`axial_strain`] does for the strain. Nodes of a straight beam stored at rounded positions give an
-/// r'' of ε|r|/Le² (7e-6 /m at 100,000 elements of a 1 m beam): it is no
-/// curvature, but ∂κ/∂r' = Jr''/|r'|² − … turns it into a coupling of the
-/// slope with the curvature variation that moved f₁ by 8e-9.
-#[inline]
-fn snapped_second_derivative(e: &Vec8, d2: &Vector4<f64>, r1: Vector2<f64>) -> Vector2<f64> {
-    let r2 = combine(e, d2);
-    let l = r1.norm();
-    if l == 0.0 {
-        return r2;
-    }
-    let size: f64 = (0..4).map(|i| d2[i].abs() * node(e, i).norm()).sum();
-    let tol = 4.0 * f64::EPSILON * size;
-    let (t, n) = (r1 / l, Vector2::new(-r1.y, r1.x) / l);
-    let (along, across) = (t.dot(&r2), n.dot(&r2));
-    // Only the component along r' (a stretch gradient, which κ sees only
-    // through ∂κ/∂r'): the one across is the curvature, which a small
-    // vibration's state has of this size and must keep.
-    let along = if along.abs() <= tol { 0.0 } else { along };
-    t * along + n * across
-}
-
 /// Curvature and its first and second derivatives with respect to (r', r'').
-struct BendingPoint {
-    kappa: f64,
+pub(super) struct BendingPoint {
+    pub(super) kappa: f64,
     /// ∂κ/∂r'
-    p: Vector2<f64>,
+    pub(super) p: Vector2<f64>,
     /// ∂κ/∂r''
-    q: Vector2<f64>,
+    pub(super) q: Vector2<f64>,
     /// ∂²κ/∂r'²
-    h11: Matrix2<f64>,
+    pub(super) h11: Matrix2<f64>,
     /// ∂²κ/∂r'∂r''
-    h12: Matrix2<f64>,
+    pub(super) h12: Matrix2<f64>,
 }
 
 impl BendingPoint {
@@ -645,17 +542,8 @@ impl BendingPoint {
         Self::of(r1, combine(e, &qp.d2))
     }
 
-    /// With r'''s round-off along r' snapped (see
-    /// [`snapped_second_derivative`]): the linearization the precise
-    /// products and the energy split use.
     #[inline]
-    fn snapped(e: &Vec8, qp: &QuadPoint) -> Self {
-        let r1 = combine(e, &qp.d1);
-        Self::of(r1, snapped_second_derivative(e, &qp.d2, r1))
-    }
-
-    #[inline]
-    fn of(r1: Vector2<f64>, r2: Vector2<f64>) -> Self {
+    pub(super) fn of(r1: Vector2<f64>, r2: Vector2<f64>) -> Self {
         let g = r1.norm_squared();
         let jr2 = perp_neg(r2); // ∂c/∂r'
         let jtr1 = Vector2::new(-r1.y, r1.x); // ∂c/∂r''
@@ -696,8 +584,10 @@ mod tests {
             Vec8::from_fn(|i, _| (1.3 * i as f64).sin()),
             Vec8::from_fn(|i, _| (0.7 * i as f64 + 0.2).cos()),
         ];
+        let reference = CableElement::straight(el.le, Vector2::new(0.1, 0.2), Vector2::x());
+        let state = Displaced::new(&e, &reference);
         let mut out = [Vec8::zeros(); 2];
-        el.add_tangent_products(&e, &des, &mut out);
+        el.add_tangent_products(&state, &des, &mut out);
         for (de, o) in des.iter().zip(&out) {
             let expected = k * de;
             let scale = k.abs().max() * de.abs().max();
@@ -712,7 +602,7 @@ mod tests {
         }
         let shift = Vec8::from_column_slice(&[0.3, -0.2, 0.0, 0.0, 0.3, -0.2, 0.0, 0.0]);
         let mut rigid = [Vec8::zeros()];
-        el.add_tangent_products(&e, &[shift], &mut rigid);
+        el.add_tangent_products(&state, &[shift], &mut rigid);
         assert!(rigid[0].iter().all(|&v| v == 0.0), "{:?}", rigid[0]);
     }
 }

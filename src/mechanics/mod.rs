@@ -4,6 +4,8 @@
 //! - [`element`] — the planar ANCF cable element: Hermite shape functions,
 //!   mass matrix, axial strain and curvature energy, their gradients and
 //!   Hessians [SI: N, N/m];
+//! - [`element_state`] — an element's state as its displacement from its
+//!   straight reference (the precise linearization's r' and r'');
 //! - [`cable_force`] — the element's elastic force, point by point in
 //!   arrays [SI: N];
 //! - [`anchor`] — a material point of a beam, rigid body, point mass or
@@ -25,6 +27,7 @@ pub mod anchor;
 pub mod cable_force;
 pub mod contact;
 pub mod element;
+pub mod element_state;
 pub mod joint;
 pub mod load;
 pub mod pair;

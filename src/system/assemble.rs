@@ -11,6 +11,7 @@ use crate::linalg::Scatter;
 use crate::mechanics::anchor::Hess;
 use crate::mechanics::cable_force::{elastic_forces_into, Wide, MAX_LANES};
 use crate::mechanics::element::{EnergySplit, Mat8, Vec8};
+use crate::mechanics::element_state::Displaced;
 use crate::mechanics::joint::ConstraintJac;
 use crate::mechanics::pair::{PairGrad, PairHess};
 use faer::Mat;
@@ -77,8 +78,28 @@ fn gather(basis: &NullSpace, x: &[f64], g: usize) -> f64 {
     basis.row(g).iter().map(|&(r, z)| z * x[r]).sum()
 }
 
+/// Which internal forces a sum takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ForceParts {
+    /// The beams' elastic forces and the members' (springs, torsion
+    /// springs, contacts).
+    All,
+    /// The beams' elastic forces alone.
+    Beams,
+    /// The springs', torsion springs' and contacts' alone.
+    Members,
+}
+
 fn element_vec(q: &[f64], dofs: &[usize; 8]) -> Vec8 {
     Vec8::from_fn(|i, _| q[dofs[i]])
+}
+
+impl System {
+    /// The state at `q` of the element on `dofs`, as its displacement from
+    /// its straight reference in q₀ ([`Displaced`]).
+    pub fn element_state(&self, q: &[f64], dofs: &[usize; 8]) -> Displaced {
+        Displaced::new(&element_vec(q, dofs), &element_vec(&self.q0, dofs))
+    }
 }
 
 fn scatter_mat<const R: usize, const C: usize>(
@@ -113,13 +134,19 @@ impl System {
 
     /// Internal force Q_int(q) = Q_s + ∂U_springs/∂q, overwriting `out`.
     pub fn internal_force(&self, q: &[f64], out: &mut [f64]) {
-        self.forces_into(q, None, out);
+        self.forces_into(q, None, ForceParts::All, out);
+    }
+
+    /// The internal forces of `parts` alone at `q`, overwriting `out`
+    /// [SI: N, N m].
+    pub fn internal_force_of(&self, parts: ForceParts, q: &[f64], out: &mut [f64]) {
+        self.forces_into(q, None, parts, out);
     }
 
     /// M a + Q_int(q), overwriting `out`: the inertial and internal forces
     /// of the equations of motion, element by element [SI: N, N m].
     pub fn inertial_and_internal_force(&self, q: &[f64], a: &[f64], out: &mut [f64]) {
-        self.forces_into(q, Some(a), out);
+        self.forces_into(q, Some(a), ForceParts::All, out);
     }
 
     /// Compiled for the machine's vector extensions (AVX2 where the CPU
@@ -127,11 +154,12 @@ impl System {
     /// time, one per vector lane ([`elastic_forces_into`]), the rest one
     /// by one; the sums into `out` in element order. Rust never fuses a
     /// product and a sum, so the results are the same bits on every path.
-    fn forces_into(&self, q: &[f64], a: Option<&[f64]>, out: &mut [f64]) {
+    fn forces_into(&self, q: &[f64], a: Option<&[f64]>, parts: ForceParts, out: &mut [f64]) {
         pulp::Arch::new().dispatch(Forces {
             sys: self,
             q,
             a,
+            parts,
             out,
         })
     }
@@ -142,11 +170,17 @@ impl System {
         simd: S,
         q: &[f64],
         a: Option<&[f64]>,
+        parts: ForceParts,
         out: &mut [f64],
     ) {
         out.fill(0.0);
         let lanes = Wide::<S>::LANES;
-        for b in &self.beams {
+        let beams = if parts == ForceParts::Members {
+            &[][..]
+        } else {
+            &self.beams[..]
+        };
+        for b in beams {
             // Element k's 8 coordinates are q[dof0 + 4k..][..8].
             let mut k = 0;
             while k < b.elements.len() {
@@ -195,6 +229,9 @@ impl System {
                 out[p.dof0 + 1] += p.mass * a[p.dof0 + 1];
             }
         }
+        if parts == ForceParts::Beams {
+            return;
+        }
         let mut g = PairGrad::zeros();
         for fe in self.elastic_elements() {
             fe.gradient(q, &mut g);
@@ -209,10 +246,17 @@ impl System {
     /// `weight` [SI: N when the weights turn moments into forces]. Members
     /// in balance with each other cancel in the assembled Q_int (two
     /// opposed preloaded springs, the elements of a tensioned beam); this is
-    /// the size of the forces they carry.
-    pub fn largest_member_force(&self, q: &[f64], weight: &[f64]) -> f64 {
+    /// the size of the forces they carry. The beam elements' only with
+    /// `parts` other than [`ForceParts::Members`], the springs' only with
+    /// parts other than [`ForceParts::Beams`].
+    pub fn largest_member_force(&self, parts: ForceParts, q: &[f64], weight: &[f64]) -> f64 {
         let mut largest = 0.0f64;
-        for b in &self.beams {
+        let beams = if parts == ForceParts::Members {
+            &[][..]
+        } else {
+            &self.beams[..]
+        };
+        for b in beams {
             for (k, e) in b.elements.iter().enumerate() {
                 let d0 = b.dof0 + 4 * k;
                 let mut f = Vec8::zeros();
@@ -221,6 +265,9 @@ impl System {
                     largest = largest.max((fi * weight[d0 + i]).abs());
                 }
             }
+        }
+        if parts == ForceParts::Beams {
+            return largest;
         }
         let mut g = PairGrad::zeros();
         for fe in self.elastic_elements() {
@@ -329,7 +376,7 @@ impl System {
                     *de = Vec8::from_fn(|i, _| gather(basis, x, dofs[i]));
                 }
                 forces.fill(Vec8::zeros());
-                el.add_tangent_products(&element_vec(q, &dofs), &des, &mut forces);
+                el.add_tangent_products(&self.element_state(q, &dofs), &des, &mut forces);
                 for (o, f) in out.iter_mut().zip(&forces) {
                     for (i, &d) in dofs.iter().enumerate() {
                         for &(r, z) in basis.row(d) {
@@ -535,7 +582,7 @@ impl System {
                     *de = element_vec(phi, &dofs);
                 }
                 split.fill(EnergySplit::default());
-                el.add_quadratic_forms(&element_vec(q, &dofs), &des, &mut split);
+                el.add_quadratic_forms(&self.element_state(q, &dofs), &des, &mut split);
                 for (e, s) in out.iter_mut().zip(&split) {
                     e.axial += s.axial;
                     e.bending += s.bending;
@@ -596,6 +643,7 @@ struct Forces<'a> {
     sys: &'a System,
     q: &'a [f64],
     a: Option<&'a [f64]>,
+    parts: ForceParts,
     out: &'a mut [f64],
 }
 
@@ -604,6 +652,7 @@ impl pulp::WithSimd for Forces<'_> {
 
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, simd: S) {
-        self.sys.forces_into_here(simd, self.q, self.a, self.out)
+        self.sys
+            .forces_into_here(simd, self.q, self.a, self.parts, self.out)
     }
 }

@@ -19,7 +19,7 @@ mod rigid_motion;
 mod supports;
 mod transfer;
 
-pub use assemble::{EnergyBreakdown, Linearization};
+pub use assemble::{EnergyBreakdown, ForceParts, Linearization};
 pub use mass::MassMatrix;
 pub use release::{ReleasedJoint, ReleasedSupport};
 pub use rigid_motion::{RigidMotions, SparseColumn};

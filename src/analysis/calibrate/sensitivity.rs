@@ -48,9 +48,8 @@ fn beam_forms(system: &System, beam: usize, phi: &[f64]) -> BeamForms {
     };
     for (k, el) in b.elements.iter().enumerate() {
         let dofs = b.element_dofs(k);
-        let e = crate::mechanics::element::Vec8::from_fn(|i, _| q[dofs[i]]);
         let v = crate::mechanics::element::Vec8::from_fn(|i, _| phi[dofs[i]]);
-        let s = el.quadratic_form(&e, &v);
+        let s = el.quadratic_form(&system.element_state(q, &dofs), &v);
         out.axial += 2.0 * s.axial;
         out.bending += 2.0 * s.bending;
         out.mass += v.dot(&(el.mass() * v));

@@ -152,6 +152,11 @@ pub struct EquilibriumCheck {
     pub force_scale_n: f64,
     /// Relative tolerance of the check [–].
     pub tolerance: f64,
+    /// The unbalanced force the arithmetic may leave at a balanced state
+    /// (the rounding of the elastic forces, of the stored reference and of
+    /// the statics' smallest step) [N]: balanced when `unbalanced_n` ≤
+    /// `tolerance` × `force_scale_n` + `rounding_n`.
+    pub rounding_n: f64,
     /// The coordinate the largest unbalanced force acts on.
     pub at: String,
     /// Largest constraint residual ‖C(q)‖∞ [m, –].
@@ -170,6 +175,7 @@ impl EquilibriumCheck {
             unbalanced_n: b.unbalanced,
             force_scale_n: b.scale,
             tolerance: BALANCE_TOLERANCE,
+            rounding_n: b.noise,
             at: system.dof_label(b.worst_dof),
             constraint_violation: b.constraint_violation,
             free_fall: b.free_fall,

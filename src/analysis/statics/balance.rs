@@ -29,6 +29,14 @@
 //! counted as unbalance. A free rigid rotation is not fitted (it is not a
 //! steady motion).
 //!
+//! **The reference.** The beams are straight and stress-free at the
+//! reference q₀ by definition, so at q = q₀ their elastic forces are zero
+//! and are not summed: their stored nodes are rounded to ε|r|, and on a
+//! beam turned off the axes (or far from the origin) the forces computed
+//! from them are that rounding times EI/Le³ at every node (a 20,000-element
+//! hanger at 250 m from the origin: a resultant of 47.5 kN), which hid
+//! real loads of 500 N.
+//!
 //! **Verdict.** The state is balanced when the resultant |r|²/‖r‖∞ (the
 //! unbalance of parts that move together, summed back from the
 //! coordinates the projection spreads it over) is ≤ `tolerance` · F + noise
@@ -36,22 +44,24 @@
 //! entry of Q_int, Q_ext and the joint forces C_qᵀλ, of any one member's
 //! force (two opposed springs preloaded to 50 N cancel in Q_int: judged
 //! against the assembled 4e-14 N they were "not an equilibrium"), and of
-//! those at the
-//! reference (a spring's preload is the model's force even where the
-//! equilibrium relaxes it: without it, springs relaxed to 1e-9 N were
-//! judged against 1e-9 N), and the noise the
-//! larger of 256 ε · max EA, the rounding a straight, stress-free beam's
-//! elastic forces carry ([`NOISE_FACTOR`]), 8 ε k L for the stiffest
-//! spring or contact k ([`MEMBER_ROUNDING`]), and the force a displacement
-//! of [`STEP_RESOLUTION`] × L makes in the stiffest element, EA/Le (the
-//! statics' Newton iteration stops on a step that small, so it does not
-//! resolve a smaller unbalance: a 25 mm cantilever of 8 elements, 0.1 N at
-//! 9.4 mm, stops at 3.5e-7 N).
+//! the springs' and contacts' at the reference (a spring's preload is the
+//! model's force even where the equilibrium relaxes it: without it,
+//! springs relaxed to 1e-9 N were judged against 1e-9 N). The noise is
+//! the larger of 256 ε · max EA, the rounding a straight, stress-free
+//! beam's elastic forces carry ([`NOISE_FACTOR`]), and 8 ε k L for the
+//! stiffest spring or contact k ([`MEMBER_ROUNDING`]); away from the
+//! reference (a state the statics found) also twice the resultant of the
+//! beams' elastic forces at the reference, their storage's rounding,
+//! which a state's forces carry too ([`REFERENCE_ROUNDING`]), and the
+//! force a displacement of [`STEP_RESOLUTION`] × L makes in the stiffest
+//! element, EA/Le (the statics' Newton iteration stops on a step that
+//! small, so it does not resolve a smaller unbalance: a 25 mm cantilever
+//! of 8 elements, 0.1 N at 9.4 mm, stops at 3.5e-7 N).
 
 use crate::linalg::null_space::NullSpace;
 use crate::linalg::vector::dot;
 use crate::linalg::Triplets;
-use crate::system::System;
+use crate::system::{ForceParts, System};
 
 /// Relative tolerance of the force balance and of the constraints
 /// [`Balance::is_balanced`] uses (the static solver converges to 1e-10 of
@@ -70,6 +80,38 @@ pub const MEMBER_ROUNDING: f64 = 8.0;
 /// The statics' smallest resolved step, relative to the assembly's size L
 /// (its Newton iteration stops on a step below it).
 pub const STEP_RESOLUTION: f64 = 1e-10;
+
+/// Multiple of the resultant of the beams' elastic forces at the reference
+/// below which an unbalanced force away from it is their round-off. A beam
+/// is straight and stress-free there by definition, but its nodes are
+/// stored rounded to ε|r|: on a beam not along an axis they zigzag by that
+/// much, and its elements bend by ε|r|/Le², a force of ε|r| EI/Le³ at every
+/// node (a 1.5 m ruler turned 30°, 20,000 elements: a resultant of 7.1 N).
+/// A state near the reference carries another sample of the same rounding;
+/// twice the reference's allows for that.
+pub const REFERENCE_ROUNDING: f64 = 2.0;
+
+/// The resultant of a (weighted) force along its own motion, |r|²/max|rᵢ|,
+/// and the coordinate of its largest entry. The unbalance of parts that
+/// move together is spread over their coordinates by the projection (two
+/// masses pinned together carry half each; a mass pinned under an unbalance
+/// of 0.01 N read 5e-3 N), and summed back here; on one coordinate it is
+/// that entry.
+fn resultant(r: &[f64]) -> (f64, usize) {
+    let (mut worst, mut largest, mut squares) = (0, 0.0, 0.0);
+    for (i, ri) in r.iter().enumerate() {
+        squares += ri * ri;
+        if ri.abs() > largest {
+            (worst, largest) = (i, ri.abs());
+        }
+    }
+    let resultant = if largest > 0.0 {
+        squares / largest
+    } else {
+        0.0
+    };
+    (resultant, worst)
+}
 
 /// The force of a displacement of [`STEP_RESOLUTION`] × L in the stiffest
 /// element, max EA/Le × 1e-10 L [SI: N].
@@ -93,7 +135,7 @@ pub struct Balance {
     pub unbalanced: f64,
     /// Largest entry of Q_int, Q_ext and C_qᵀλ, the same units [SI: N].
     pub scale: f64,
-    /// The rounding a balanced state may leave, 256 ε · max EA [SI: N].
+    /// The rounding a balanced state may leave (module doc) [SI: N].
     pub noise: f64,
     /// Coordinate where the largest unbalanced entry acts.
     pub worst_dof: usize,
@@ -144,8 +186,17 @@ pub fn unbalanced_force(
         w[i] = 1.0;
         w[i + 1] = 1.0;
     }
+    // The beams are straight and stress-free at the reference by
+    // definition: their forces there are zero, and what their rounded
+    // storage gives is round-off ([`REFERENCE_ROUNDING`]), not counted.
+    let at_reference = q == system.q0.as_slice();
+    let parts = if at_reference {
+        ForceParts::Members
+    } else {
+        ForceParts::All
+    };
     let mut internal = vec![0.0; n];
-    system.internal_force(q, &mut internal);
+    system.internal_force_of(parts, q, &mut internal);
     let mut external = vec![0.0; n];
     system.external_force(q, time, load_scale, &mut external);
     let f: Vec<f64> = internal.iter().zip(&external).map(|(a, b)| a - b).collect();
@@ -157,25 +208,32 @@ pub fn unbalanced_force(
     };
     let mut scale = weighted_max(&internal)
         .max(weighted_max(&external))
-        .max(system.largest_member_force(q, &w));
-    // The reference's forces too, unless q is the reference (a modal
-    // analysis there: the same sweeps again, a sixth of a 100,000-element
-    // run's post-processing).
-    if q != system.q0.as_slice() {
-        let mut at_reference = vec![0.0; n];
-        system.internal_force(&system.q0, &mut at_reference);
-        scale = scale
-            .max(weighted_max(&at_reference))
-            .max(system.largest_member_force(&system.q0, &w));
-    }
-    let noise = (NOISE_FACTOR * f64::EPSILON * system.stiffest_ea())
-        .max(resolution_force(system))
+        .max(system.largest_member_force(parts, q, &w));
+    let mut noise = (NOISE_FACTOR * f64::EPSILON * system.stiffest_ea())
         .max(MEMBER_ROUNDING * f64::EPSILON * system.stiffest_member(q) * length);
+    // Away from the reference: the members' forces there (their preloads)
+    // too, the statics' resolution, and the beams' rounding at the
+    // reference, which another state's forces carry as well.
+    let mut reference_rounding = Vec::new();
+    if !at_reference {
+        let mut members = vec![0.0; n];
+        system.internal_force_of(ForceParts::Members, &system.q0, &mut members);
+        scale = scale
+            .max(weighted_max(&members))
+            .max(system.largest_member_force(ForceParts::Members, &system.q0, &w));
+        noise = noise.max(resolution_force(system));
+        let mut beams = vec![0.0; n];
+        system.internal_force_of(ForceParts::Beams, &system.q0, &mut beams);
+        reference_rounding = beams.iter().zip(&w).map(|(x, wi)| x * wi).collect();
+    }
     let mut cq = Triplets::new(m, n);
     system.add_constraint_jacobian(q, &mut cq);
     let mut free_fall = false;
     let r: Vec<f64> = match lambda {
         Some(lambda) => {
+            if !reference_rounding.is_empty() {
+                noise = noise.max(REFERENCE_ROUNDING * resultant(&reference_rounding).0);
+            }
             let mut joint = vec![0.0; n];
             system.add_constraint_forces(q, lambda, &mut joint);
             scale = scale.max(weighted_max(&joint));
@@ -193,6 +251,10 @@ pub fn unbalanced_force(
                 let full = ns.expand(&ns.restrict(&dv));
                 full.iter().zip(&d).map(|(x, di)| x / di).collect()
             };
+            if ns.dim() > 0 && !reference_rounding.is_empty() {
+                let rounding = resultant(&project(&reference_rounding)).0;
+                noise = noise.max(REFERENCE_ROUNDING * rounding);
+            }
             let g: Vec<f64> = f.iter().zip(&w).map(|(x, wi)| x * wi).collect();
             let mut rw = if ns.dim() == 0 {
                 vec![0.0; n]
@@ -205,9 +267,12 @@ pub fn unbalanced_force(
                 // them by k L): nothing grounded resists.
                 let step = length;
                 let moved: Vec<f64> = q.iter().zip(t).map(|(qi, ti)| qi + step * ti).collect();
-                let mut after = vec![0.0; n];
-                system.internal_force(&moved, &mut after);
-                let change: Vec<f64> = after.iter().zip(&internal).map(|(a, b)| a - b).collect();
+                // The members' alone: a beam's forces do not change under a
+                // translation but for their rounding.
+                let (mut before, mut after) = (vec![0.0; n], vec![0.0; n]);
+                system.internal_force_of(ForceParts::Members, q, &mut before);
+                system.internal_force_of(ForceParts::Members, &moved, &mut after);
+                let change: Vec<f64> = after.iter().zip(&before).map(|(a, b)| a - b).collect();
                 weighted_max(&change) <= 1e-9 * scale + noise
             };
             free_fall = remove_free_fall(system, &cq, &w, &project, &translates, &mut rw);
@@ -216,23 +281,8 @@ pub fn unbalanced_force(
             rw.iter().zip(&w).map(|(x, wi)| x / wi).collect()
         }
     };
-    let (mut worst_dof, mut largest, mut squares) = (0, 0.0, 0.0);
-    for (i, (ri, wi)) in r.iter().zip(&w).enumerate() {
-        squares += (ri * wi).powi(2);
-        if (ri * wi).abs() > largest {
-            (worst_dof, largest) = (i, (ri * wi).abs());
-        }
-    }
-    // The resultant along the residual's own motion, |r|²/max|rᵢ|: the
-    // unbalance of parts that move together is spread over their
-    // coordinates by the projection (two masses pinned together carry half
-    // each; a mass pinned under an unbalance of 0.01 N read 5e-3 N), and
-    // summed back here; on one coordinate it is that entry.
-    let unbalanced = if largest > 0.0 {
-        squares / largest
-    } else {
-        0.0
-    };
+    let weighted: Vec<f64> = r.iter().zip(&w).map(|(ri, wi)| ri * wi).collect();
+    let (unbalanced, worst_dof) = resultant(&weighted);
     let mut c = vec![0.0; m];
     system.constraint_residual(q, &mut c);
     Balance {
