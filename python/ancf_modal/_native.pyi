@@ -509,8 +509,9 @@ class FrfResult:
         """Identified modes: frequency_hz [Hz], damping_ratio [–] and
         magnitude (None when the records do not resolve the damping),
         residue, damping_upper_bound (the largest ζ the records allow when
-        they do not resolve it, else None) and magnitude_lower_bound (then
-        the smallest |H| at the peak they allow, else None)."""
+        they do not resolve it, else None), magnitude_lower_bound (then
+        the smallest |H| at the peak they allow, else None) and own_peak
+        (whether the mode makes its own peak of the fitted |H|)."""
     @property
     def rejected(self) -> List[Dict[str, Any]]:
         """Stable poles not reported as modes: dicts with frequency_hz [Hz],

@@ -26,6 +26,9 @@
 //! experiment is the candidate nearest the model's first bending frequency
 //! ([`choose`]); with no candidate, the nearest mode (and the checks below
 //! say what is wrong with it). Modes passed over stay in the fit's list.
+//! A chosen mode nearer another of the model's modes than its first
+//! bending measures that mode, and is no experiment
+//! ([`crate::results::identify::measured_mode`]).
 //!
 //! **Checks** ([`check`]): the records themselves, beside the fit.
 //! - The records' |H| must peak at the mode: the local maximum reached

@@ -152,6 +152,17 @@ fn mode_rows(s: &mut String, a: &FrfAnalysis) {
             magnitude
         );
     }
+    let no_peak: Vec<String> = (a.fit.modes.iter().enumerate())
+        .filter(|(_, m)| !crate::measured::experiment::is_fitted_peak(&a.fit, m))
+        .map(|(i, _)| (i + 1).to_string())
+        .collect();
+    if !no_peak.is_empty() {
+        let _ = writeln!(
+            s,
+            "mode {} makes no peak of its own in the fitted |H| (its own term under half of |H| at its frequency, and no local maximum within its half-width): a term the fit needs beside another mode's peak, not a resonance the records show",
+            no_peak.join(", ")
+        );
+    }
     let ringing: Vec<String> = (a.fit.modes.iter().enumerate())
         .filter(|(_, m)| m.damping_bound.is_some())
         .map(|(i, _)| (i + 1).to_string())

@@ -161,6 +161,12 @@ pub struct FittedPeak {
     /// they do not resolve the damping (|R|/(ζ_max ω): `magnitude` is then
     /// null); null when they do.
     pub magnitude_lower_bound: Option<f64>,
+    /// Whether the mode makes its own peak of the fitted |Ĥ|: its own term
+    /// at least half of |Ĥ| at its frequency, or a local maximum of |Ĥ|
+    /// within its half-power half-width. A mode that makes none is a term
+    /// the fit needs beside another mode's peak (it bends that skirt), not
+    /// a resonance the records show.
+    pub own_peak: bool,
 }
 
 /// A pole the fit found and did not report.
@@ -359,6 +365,7 @@ impl FrfOutput {
                     residue: [m.residue.re, m.residue.im],
                     damping_upper_bound: m.damping_bound,
                     magnitude_lower_bound: m.magnitude_lower_bound(),
+                    own_peak: crate::measured::experiment::is_fitted_peak(&a.fit, m),
                 })
                 .collect(),
             rejected: a

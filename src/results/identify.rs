@@ -39,23 +39,80 @@ pub fn names_the_paper(model: &Model) -> bool {
         .is_some_and(|r| r.source.to_ascii_lowercase().contains("paper"))
 }
 
-/// The index in `measured.fit.modes` of the mode taken as the experiment:
-/// a peak of the fitted spectrum nearest the model's eigenvalue first
-/// bending frequency `eigen_hz` ([`crate::measured::experiment::choose`]).
-pub fn measured_mode(measured: &FrfAnalysis, eigen_hz: Option<f64>) -> Option<usize> {
-    crate::measured::experiment::choose(&measured.fit, eigen_hz.unwrap_or(0.0))
+/// The measured mode nearest the model's first bending frequency, and
+/// whether it is that mode's measurement ([`measured_mode`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Pairing {
+    /// The fit has no mode.
+    Nothing,
+    /// `fit.modes[index]` is the experiment.
+    FirstBending(usize),
+    /// `fit.modes[index]` lies nearer the model's mode at `model_hz` than
+    /// its first bending frequency `first_hz`: it measures that mode.
+    OtherMode {
+        index: usize,
+        model_hz: f64,
+        first_hz: f64,
+    },
 }
 
-/// The experiment (module doc) for a model whose eigenvalue first bending
-/// frequency is `eigen_hz`; `paper` says whether it is the paper's Table 3.
+impl Pairing {
+    /// The experiment's index in the fit's modes.
+    pub fn experiment(self) -> Option<usize> {
+        match self {
+            Pairing::FirstBending(j) => Some(j),
+            _ => None,
+        }
+    }
+}
+
+/// The model's elastic frequencies [Hz]: the modes a measured one may be.
+pub fn model_frequencies(modal: &ModalOutput) -> Vec<f64> {
+    (modal.modes.iter())
+        .filter(|m| !m.mode.kind.is_zero() && m.mode.frequency_hz > 0.0)
+        .map(|m| m.mode.frequency_hz)
+        .collect()
+}
+
+/// The mode of `measured`'s fit taken as the experiment: a peak of the
+/// fitted spectrum nearest the model's eigenvalue first bending frequency
+/// ([`crate::measured::experiment::choose`]), unless it lies nearer
+/// another of `modal`'s modes than that one. A fit band that leaves the
+/// first bending peak out (20–60 Hz on a board whose modes are 6.17 and
+/// 42.6 Hz) has its nearest peak at the second mode, 39 Hz: it was printed
+/// as the first bending, 84 % off the model.
+pub fn measured_mode(measured: &FrfAnalysis, modal: &ModalOutput) -> Pairing {
+    let eigen_hz = modal.first_bending_hz;
+    let Some(index) = crate::measured::experiment::choose(&measured.fit, eigen_hz.unwrap_or(0.0))
+    else {
+        return Pairing::Nothing;
+    };
+    let Some(first_hz) = eigen_hz else {
+        return Pairing::FirstBending(index);
+    };
+    let f = measured.fit.modes[index].frequency_hz;
+    let nearest = (model_frequencies(modal).into_iter())
+        .min_by(|a, b| (a - f).abs().total_cmp(&(b - f).abs()));
+    match nearest {
+        Some(model_hz) if (model_hz - f).abs() < (first_hz - f).abs() => Pairing::OtherMode {
+            index,
+            model_hz,
+            first_hz,
+        },
+        _ => Pairing::FirstBending(index),
+    }
+}
+
+/// The experiment (module doc) for a model whose modal analysis is
+/// `modal`; `paper` says whether it is the paper's Table 3.
 pub fn choose_experiment(
     model: &Model,
-    eigen_hz: Option<f64>,
+    modal: &ModalOutput,
     measured: Option<&FrfAnalysis>,
 ) -> (Option<Experiment>, bool) {
     let paper = names_the_paper(model) && measured.is_none();
     let experiment = match (measured, &model.reference) {
-        (Some(a), _) => measured_mode(a, eigen_hz).map(|j| {
+        (Some(a), _) => measured_mode(a, modal).experiment().map(|j| {
             (
                 "measured (frf fit)".to_string(),
                 a.fit.modes[j].frequency_hz,
@@ -230,7 +287,7 @@ impl IdentifyOutput {
         measured: Option<&FrfAnalysis>,
         calibration: Option<&crate::analysis::calibrate::CalibrationResult>,
     ) -> Self {
-        let (experiment, paper) = choose_experiment(model, modal.first_bending_hz, measured);
+        let (experiment, paper) = choose_experiment(model, &modal, measured);
         let experiment_hz = experiment.as_ref().map(|e| e.frequency_hz);
         IdentifyOutput {
             model: model.name.clone(),

@@ -117,11 +117,20 @@ impl IdentifyRun {
                 }
             }
         }
-        if output.experiment_hz.is_none() {
-            let _ = writeln!(
-                s,
-                "no experiment to compare with: give the model a `reference` or measured records with --measured"
-            );
+        match (output.experiment_hz, &output.measured) {
+            (Some(_), _) => {}
+            (None, Some(_)) => {
+                let _ = writeln!(
+                    s,
+                    "no experiment to compare with: the measured records show no mode to take as the first bending (see the warnings)"
+                );
+            }
+            (None, None) => {
+                let _ = writeln!(
+                    s,
+                    "no experiment to compare with: give the model a `reference` or measured records with --measured"
+                );
+            }
         }
         if let Some(m) = &output.measured {
             let _ = writeln!(

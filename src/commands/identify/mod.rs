@@ -22,7 +22,7 @@ use super::{CommandError, ModelInput, Run};
 use crate::analysis::impulse::{run_impulse, ImpulseResult, ImpulseSettings};
 use crate::analysis::{ModalResult, ModalSettings};
 use crate::measured::analysis::FrfAnalysis;
-use crate::results::identify::{choose_experiment, measured_mode, IDENTIFY_MODES};
+use crate::results::identify::{choose_experiment, measured_mode, Pairing, IDENTIFY_MODES};
 use crate::results::IdentifyOutput;
 use crate::signal::Window;
 use crate::System;
@@ -137,14 +137,24 @@ pub fn run_with_progress(
         )?;
         (Some(frf.analysis), frf.document.warnings)
     };
-    let (experiment, paper) =
-        choose_experiment(model, modal_output.first_bending_hz, measured.as_ref());
+    let (experiment, paper) = choose_experiment(model, &modal_output, measured.as_ref());
     // The mode taken as the experiment, checked against its records: a
     // poor fit is said, not printed as a frequency alone.
     let mut notes = notes;
     if let Some(a) = &measured {
-        if let Some(j) = measured_mode(a, modal_output.first_bending_hz) {
-            notes.extend(crate::measured::experiment::check(a, j).warnings());
+        match measured_mode(a, &modal_output) {
+            Pairing::FirstBending(j) => {
+                notes.extend(crate::measured::experiment::check(a, j).warnings());
+            }
+            Pairing::OtherMode {
+                index,
+                model_hz,
+                first_hz,
+            } => notes.push(format!(
+                "the measured mode nearest the model's first bending frequency ({first_hz:.3} Hz), {:.3} Hz, lies nearer the model's mode at {model_hz:.3} Hz: it measures that mode, and is not compared as the first bending; a fit band that holds the first bending peak measures it",
+                a.fit.modes[index].frequency_hz
+            )),
+            Pairing::Nothing => {}
         }
     }
     let calibration = match (request.calibrate, &experiment) {
