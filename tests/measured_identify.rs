@@ -166,6 +166,19 @@ fn a_measured_mode_nearer_another_model_mode_is_not_the_first_bending() {
     let (_, doc) = run("200:5000");
     let exp = doc["experiment_hz"].as_f64().unwrap();
     assert!((exp - 530.0).abs() < 0.3, "experiment {exp} Hz");
+    // Between the two modes the fit finds none, and says so.
+    let (text, doc) = run("1200:2400");
+    assert!(doc["experiment_hz"].is_null(), "{}", doc["experiment_hz"]);
+    assert_eq!(doc["measured"]["peaks"], serde_json::json!([]));
+    assert!(
+        text.contains("measured modes over 1200–2400 Hz (3 records): none"),
+        "{text}"
+    );
+    let warnings = doc["warnings"].to_string();
+    assert!(
+        warnings.contains("found no mode over 1200–2400 Hz"),
+        "{warnings}"
+    );
 }
 
 #[test]

@@ -133,21 +133,28 @@ impl IdentifyRun {
             }
         }
         if let Some(m) = &output.measured {
-            let _ = writeln!(
-                s,
-                "measured modes ({} over {:.0}–{:.0} Hz): {}",
-                m.files.len(),
-                m.band_hz[0],
-                m.band_hz[1],
-                m.peaks
-                    .iter()
-                    .map(|p| format!(
-                        "{:.1} Hz (ζ {:.3} %)",
-                        p.frequency_hz,
-                        100.0 * p.damping_ratio
-                    ))
+            let modes = if m.peaks.is_empty() {
+                "none".to_string()
+            } else {
+                (m.peaks.iter())
+                    .map(|p| {
+                        format!(
+                            "{:.1} Hz (ζ {:.3} %)",
+                            p.frequency_hz,
+                            100.0 * p.damping_ratio
+                        )
+                    })
                     .collect::<Vec<_>>()
                     .join(", ")
+            };
+            let records = match m.files.len() {
+                1 => "1 record".to_string(),
+                n => format!("{n} records"),
+            };
+            let _ = writeln!(
+                s,
+                "measured modes over {:.0}–{:.0} Hz ({records}): {modes}",
+                m.band_hz[0], m.band_hz[1],
             );
         }
         let i = &output.impulse;

@@ -154,7 +154,10 @@ pub fn run_with_progress(
                 "the measured mode nearest the model's first bending frequency ({first_hz:.3} Hz), {:.3} Hz, lies nearer the model's mode at {model_hz:.3} Hz: it measures that mode, and is not compared as the first bending; a fit band that holds the first bending peak measures it",
                 a.fit.modes[index].frequency_hz
             )),
-            Pairing::Nothing => {}
+            Pairing::Nothing => notes.push(format!(
+                "the fit of the measured records found no mode over {:.0}–{:.0} Hz: there is no measured first bending to compare with; a fit band that holds its peak measures it",
+                a.band.0, a.band.1
+            )),
         }
     }
     let calibration = match (request.calibrate, &experiment) {
