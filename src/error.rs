@@ -63,7 +63,7 @@ pub enum Problem {
     NotPositive { value: f64 },
     #[error("must not be negative, got {value:?}")]
     Negative { value: f64 },
-    #[error("must be at least 1")]
+    #[error("must be at least 1, got 0")]
     ZeroCount,
     #[error("the beams have {total} elements in all, more than the {max} this machine's available memory holds (about {kib_per_element} kB per element)")]
     TooManyElements {

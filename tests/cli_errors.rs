@@ -469,7 +469,7 @@ fn spring_stiffness_zero() {
 #[test]
 fn elements_zero() {
     let f = fails(&edited(|m| m["beams"][0]["elements"] = json!(0)));
-    f.names("beams[0].elements", &["must be at least 1"]);
+    f.names("beams[0].elements", &["must be at least 1, got 0"]);
 }
 
 #[test]
