@@ -73,11 +73,16 @@ def test_another_model_with_measured_records(tmp_path, cli):
     mine = r.to_dict()
     assert without_version(mine) == without_version(doc)
     assert mine["measured"]["files"] == [str(sig)]
-    # The records' one note besides the analyses' warnings (beam theory,
-    # and the impulse's: a 10 ms run holds too few periods).
+    # The records' notes besides the analyses' warnings (beam theory, and
+    # the impulse's: a 10 ms run holds too few periods).
     notes = [w for w in mine["warnings"]
              if "beam theory limits it" not in w and "periods of the first bending mode" not in w]
-    assert len(notes) == 1 and not r.paper
+    # The hann window's taper note, and that its fit found no mode to
+    # compare with.
+    assert len(notes) == 2 and not r.paper
+    assert any("tapers the blow" in w for w in notes)
+    assert any("found no mode over" in w for w in notes)
+    assert r.experiment_hz is None
     # The window and band of the records are --measured-window and
     # --measured-band: the fitted mode is the experiment.
     measured = ["--measured", str(sig), "--measured-window", "exponential:0.01",
